@@ -1,0 +1,121 @@
+//! The command line: clap's derive structs and their conversion into
+//! library settings. Nothing here renders.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use rastty::{ColorDepth, GlyphMode, Traversal};
+
+/// Largest terminal side accepted, in cells.
+pub const MAX_CELLS: u16 = 4096;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rastty",
+    version,
+    about = "The terminal's character grid as a raster display"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Print one frame of a scene to stdout.
+    Render(RenderArgs),
+}
+
+#[derive(Args, Debug, Default)]
+pub struct RenderArgs {
+    /// A scene file (TOML); without it, the built-in default scene.
+    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+/// How a frame is laid out on the terminal.
+#[derive(Args, Debug, Default)]
+pub struct ViewArgs {
+    /// Width in cells [default: the terminal's, or 80]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
+    pub cols: Option<u16>,
+    /// Height in cells [default: the terminal's less one, or 24]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
+    pub rows: Option<u16>,
+    /// How samples become glyphs
+    #[arg(long, value_enum, default_value_t = GlyphArg::Block)]
+    pub glyphs: GlyphArg,
+    /// Colour depth; auto looks at the terminal and NO_COLOR
+    #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
+    pub color: ColorArg,
+    /// A cell's width over its height [default: the terminal's, or 0.5]
+    #[arg(long, value_name = "R", value_parser = parse_aspect)]
+    pub cell_aspect: Option<f32>,
+    /// How the rasterizer walks samples (all give the same picture)
+    #[arg(long, value_enum, default_value_t = TraversalArg::Incremental)]
+    pub traversal: TraversalArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GlyphArg {
+    Ascii,
+    #[default]
+    Block,
+}
+
+impl From<GlyphArg> for GlyphMode {
+    fn from(g: GlyphArg) -> Self {
+        match g {
+            GlyphArg::Ascii => GlyphMode::Ascii,
+            GlyphArg::Block => GlyphMode::Block,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ColorArg {
+    #[default]
+    Auto,
+    None,
+    Truecolor,
+}
+
+impl ColorArg {
+    /// The explicit depth, or `None` for auto.
+    pub fn depth(self) -> Option<ColorDepth> {
+        match self {
+            ColorArg::Auto => None,
+            ColorArg::None => Some(ColorDepth::None),
+            ColorArg::Truecolor => Some(ColorDepth::TrueColor),
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TraversalArg {
+    Scan,
+    BoundingBox,
+    #[default]
+    Incremental,
+}
+
+impl From<TraversalArg> for Traversal {
+    fn from(t: TraversalArg) -> Self {
+        match t {
+            TraversalArg::Scan => Traversal::Scan,
+            TraversalArg::BoundingBox => Traversal::BoundingBox,
+            TraversalArg::Incremental => Traversal::Incremental,
+        }
+    }
+}
+
+fn parse_aspect(s: &str) -> Result<f32, String> {
+    let r: f32 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    if r.is_finite() && (0.05..=20.0).contains(&r) {
+        Ok(r)
+    } else {
+        Err(format!("{s} is not between 0.05 and 20"))
+    }
+}

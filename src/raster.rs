@@ -1,0 +1,600 @@
+//! Stage 4: rasterization as sampling, exact.
+//!
+//! `inside(tri, x, y)` is the notes' three cross products, evaluated at the
+//! sample centre `(x + 0.5, y + 0.5)`. To make it exact, as D3D10+ and
+//! Vulkan are, every vertex is snapped once to 1/256 of a sample
+//! ([`Fixed`], 8 fractional bits, round to nearest) and the edge functions
+//! are evaluated in `i64`:
+//!
+//! * Samples exactly on an edge are decided by the **top-left rule** (y up,
+//!   so "top" is larger y): with the triangle counter-clockwise, an edge is
+//!   *top* if it is horizontal and runs towards −x, *left* if it runs
+//!   towards −y. A sample on a top or left edge is inside; on any other edge
+//!   it is not. Two triangles sharing an edge see it with opposite
+//!   directions, so exactly one of them owns each sample on it: no cracks,
+//!   no double hits.
+//! * Either winding is accepted: a clockwise triangle's edges are taken in
+//!   the reverse direction, which is the same triangle. Culling by winding is
+//!   a separate, explicit [`Cull`] choice.
+//! * A triangle of zero area after snapping draws nothing; one with a NaN or
+//!   infinite coordinate, or one beyond [`MAX_COORD`], is dropped and
+//!   counted in [`RasterStats`].
+//!
+//! **Bit widths.** Vertices lie within ±[`MAX_COORD`] = ±2^21 samples, so a
+//! snapped coordinate is below 2^29 in magnitude; sample centres inside the
+//! grid (at most [`MAX_GRID`] = 2^16 a side) are too. A difference of two
+//! coordinates is below 2^30, each product in
+//! `E(p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x)` below 2^60, and
+//! `E` itself below 2^61: two bits to spare in an `i64`. The incremental
+//! traversal only ever holds values of `E` at sample centres inside the
+//! grid (or one step past its edge), so the same bound covers it. The clip
+//! stage keeps every vertex inside ±`MAX_COORD` (its guard band); the
+//! rasterizer checks it anyway and drops what is outside rather than risk an
+//! overflow.
+//!
+//! **Traversals** ([`Traversal`]), all visiting the same samples in the same
+//! order (rows bottom to top, left to right) and so giving identical
+//! coverage: `Scan` tests every sample of the grid (the notes' first method),
+//! `BoundingBox` only those in the triangle's bounding box (the second),
+//! `Incremental` steps the three edge values by constant deltas over the
+//! bounding box (the third, and the default: two additions per edge per
+//! sample instead of two multiplications).
+//!
+//! The rasterizer knows nothing of colours or glyphs: it reports each
+//! covered sample, with its three edge values (the unnormalised barycentric
+//! weights), to a closure.
+
+/// Fractional bits of a snapped coordinate.
+pub const FRAC_BITS: u32 = 8;
+/// One sample in fixed-point units.
+pub const ONE: i64 = 1 << FRAC_BITS;
+/// Largest vertex coordinate magnitude accepted, in samples (2^21).
+pub const MAX_COORD: f32 = (1u32 << 21) as f32;
+/// Largest grid side, in samples (2^16).
+pub const MAX_GRID: u32 = 1 << 16;
+
+/// A coordinate in samples, snapped to 1/256 of a sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Fixed(pub i64);
+
+impl Fixed {
+    /// Snaps a coordinate in samples to the nearest 1/256 (ties away from
+    /// zero). `None` for NaN, infinity, or a magnitude beyond [`MAX_COORD`].
+    pub fn snap(v: f32) -> Option<Fixed> {
+        if v.is_finite() && v.abs() <= MAX_COORD {
+            // v·256 is exact in f32 (a power-of-two scale, no overflow).
+            Some(Fixed((v * ONE as f32).round() as i64))
+        } else {
+            None
+        }
+    }
+
+    /// The centre of sample `i`: `i + 0.5`.
+    pub const fn sample_centre(i: u32) -> Fixed {
+        Fixed(i as i64 * ONE + ONE / 2)
+    }
+
+    pub fn to_f32(self) -> f32 {
+        self.0 as f32 / ONE as f32
+    }
+}
+
+/// A snapped point on the sample grid.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct FixedPoint {
+    pub x: Fixed,
+    pub y: Fixed,
+}
+
+impl FixedPoint {
+    /// Snaps a point given in samples; `None` when either coordinate cannot
+    /// be snapped (see [`Fixed::snap`]).
+    pub fn snap(p: [f32; 2]) -> Option<FixedPoint> {
+        Some(FixedPoint {
+            x: Fixed::snap(p[0])?,
+            y: Fixed::snap(p[1])?,
+        })
+    }
+}
+
+/// How the rasterizer walks the samples. All give identical coverage.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Traversal {
+    /// Every sample of the grid.
+    Scan,
+    /// Every sample of the triangle's bounding box, each edge evaluated
+    /// afresh.
+    BoundingBox,
+    /// The bounding box with the edge values stepped by constant deltas.
+    #[default]
+    Incremental,
+}
+
+impl Traversal {
+    pub const ALL: [Traversal; 3] = [
+        Traversal::Scan,
+        Traversal::BoundingBox,
+        Traversal::Incremental,
+    ];
+}
+
+/// Which triangles to discard by their winding on screen (y up;
+/// counter-clockwise faces the viewer, as in OpenGL).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Cull {
+    /// Draw both windings.
+    #[default]
+    None,
+    /// Drop clockwise (back-facing) triangles.
+    Back,
+    /// Drop counter-clockwise (front-facing) triangles.
+    Front,
+}
+
+/// The sample grid: `width × height` samples, sample `(x, y)` centred on
+/// `(x + 0.5, y + 0.5)`, y up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Grid {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Grid {
+    /// A grid; each side is clamped to [`MAX_GRID`].
+    pub fn new(width: u32, height: u32) -> Grid {
+        Grid {
+            width: width.min(MAX_GRID),
+            height: height.min(MAX_GRID),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// What the rasterizer did, summed over the triangles it was given.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RasterStats {
+    /// Triangles set up and walked.
+    pub triangles_drawn: u64,
+    /// Dropped for a NaN or infinite coordinate.
+    pub dropped_non_finite: u64,
+    /// Dropped for a coordinate beyond [`MAX_COORD`].
+    pub dropped_out_of_range: u64,
+    /// Zero area after snapping.
+    pub dropped_degenerate: u64,
+    /// Dropped by [`Cull`].
+    pub culled: u64,
+    /// Samples whose edge functions were evaluated.
+    pub samples_tested: u64,
+    /// Samples found inside.
+    pub samples_covered: u64,
+}
+
+impl RasterStats {
+    pub fn add(&mut self, o: &RasterStats) {
+        self.triangles_drawn += o.triangles_drawn;
+        self.dropped_non_finite += o.dropped_non_finite;
+        self.dropped_out_of_range += o.dropped_out_of_range;
+        self.dropped_degenerate += o.dropped_degenerate;
+        self.culled += o.culled;
+        self.samples_tested += o.samples_tested;
+        self.samples_covered += o.samples_covered;
+    }
+}
+
+/// One edge function `E(p) = (q − p0) × (p − p0)` in fixed point, oriented
+/// so that the triangle's interior is positive.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    from: FixedPoint,
+    /// `q − p0`.
+    dx: i64,
+    dy: i64,
+    /// Smallest value of `E` that counts as inside: 0 on a top or left edge,
+    /// 1 elsewhere.
+    min: i64,
+}
+
+impl Edge {
+    fn new(from: FixedPoint, to: FixedPoint) -> Edge {
+        let dx = to.x.0 - from.x.0;
+        let dy = to.y.0 - from.y.0;
+        // Counter-clockwise, y up: a left edge runs down, a top edge is
+        // horizontal and runs towards −x.
+        let top_left = dy < 0 || (dy == 0 && dx < 0);
+        Edge {
+            from,
+            dx,
+            dy,
+            min: if top_left { 0 } else { 1 },
+        }
+    }
+
+    /// `E` at a point, directly (two multiplications).
+    #[inline(always)]
+    fn at(&self, px: i64, py: i64) -> i64 {
+        self.dx * (py - self.from.y.0) - self.dy * (px - self.from.x.0)
+    }
+
+    /// Change of `E` for one sample step in +x.
+    fn step_x(&self) -> i64 {
+        -self.dy * ONE
+    }
+
+    /// Change of `E` for one sample step in +y.
+    fn step_y(&self) -> i64 {
+        self.dx * ONE
+    }
+}
+
+/// A triangle set up for rasterization: snapped, oriented, bounded.
+#[derive(Clone, Copy, Debug)]
+pub struct Setup {
+    /// `edges[i]` is the edge opposite vertex `i`, so its value at a sample
+    /// is the (unnormalised) barycentric weight of vertex `i`.
+    edges: [Edge; 3],
+    /// Twice the snapped area in fixed-point units squared (> 0); the sum of
+    /// the three edge values at any point.
+    pub area2: i64,
+    /// Whether the triangle is counter-clockwise on screen (front-facing).
+    pub ccw: bool,
+    /// Inclusive sample bounds, clamped to the grid; empty when `x0 > x1` or
+    /// `y0 > y1`.
+    x0: i64,
+    x1: i64,
+    y0: i64,
+    y1: i64,
+}
+
+/// Why a triangle produced no [`Setup`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rejected {
+    NonFinite,
+    OutOfRange,
+    Degenerate,
+    Culled,
+}
+
+impl Setup {
+    /// Snaps and sets up a triangle given in samples.
+    pub fn new(v: [[f32; 2]; 3], grid: Grid, cull: Cull) -> Result<Setup, Rejected> {
+        if v.iter().flatten().any(|c| !c.is_finite()) {
+            return Err(Rejected::NonFinite);
+        }
+        let snap = |p| FixedPoint::snap(p).ok_or(Rejected::OutOfRange);
+        let p = [snap(v[0])?, snap(v[1])?, snap(v[2])?];
+        Setup::from_fixed(p, grid, cull)
+    }
+
+    /// Sets up a triangle already snapped.
+    pub fn from_fixed(p: [FixedPoint; 3], grid: Grid, cull: Cull) -> Result<Setup, Rejected> {
+        let limit = (MAX_COORD as i64) * ONE;
+        if p.iter().any(|q| q.x.0.abs() > limit || q.y.0.abs() > limit) {
+            return Err(Rejected::OutOfRange);
+        }
+        let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
+        if area2 == 0 {
+            return Err(Rejected::Degenerate);
+        }
+        let ccw = area2 > 0;
+        match (cull, ccw) {
+            (Cull::Back, false) | (Cull::Front, true) => return Err(Rejected::Culled),
+            _ => {}
+        }
+        // Edge opposite vertex i runs from i+1 to i+2 when counter-clockwise;
+        // a clockwise triangle takes each edge the other way round.
+        let edge = |i: usize| {
+            let (a, b) = (p[(i + 1) % 3], p[(i + 2) % 3]);
+            if ccw {
+                Edge::new(a, b)
+            } else {
+                Edge::new(b, a)
+            }
+        };
+        let edges = [edge(0), edge(1), edge(2)];
+
+        // Bounding box in samples: sample i is a candidate when its centre
+        // i·256 + 128 lies within [min, max].
+        let (min_x, max_x) = min_max(p.map(|q| q.x.0));
+        let (min_y, max_y) = min_max(p.map(|q| q.y.0));
+        let first = |lo: i64| (lo - ONE / 2 + ONE - 1).div_euclid(ONE);
+        let last = |hi: i64| (hi - ONE / 2).div_euclid(ONE);
+        Ok(Setup {
+            edges,
+            area2: area2.abs(),
+            ccw,
+            x0: first(min_x).max(0),
+            x1: last(max_x).min(grid.width as i64 - 1),
+            y0: first(min_y).max(0),
+            y1: last(max_y).min(grid.height as i64 - 1),
+        })
+    }
+
+    /// Whether the sample centre `(x + 0.5, y + 0.5)` is inside, with its
+    /// three edge values.
+    #[inline(always)]
+    pub fn inside(&self, x: u32, y: u32) -> Option<[i64; 3]> {
+        let (px, py) = (Fixed::sample_centre(x).0, Fixed::sample_centre(y).0);
+        let e = self.edges.map(|e| e.at(px, py));
+        self.accepts(e).then_some(e)
+    }
+
+    #[inline(always)]
+    fn accepts(&self, e: [i64; 3]) -> bool {
+        // Each (e − min) is ≥ 0 exactly when its edge accepts the sample; the
+        // OR of the three is non-negative only when all are.
+        ((e[0] - self.edges[0].min) | (e[1] - self.edges[1].min) | (e[2] - self.edges[2].min)) >= 0
+    }
+
+    /// Number of samples in the clamped bounding box.
+    pub fn bbox_samples(&self) -> u64 {
+        if self.x0 > self.x1 || self.y0 > self.y1 {
+            0
+        } else {
+            ((self.x1 - self.x0 + 1) * (self.y1 - self.y0 + 1)) as u64
+        }
+    }
+
+    /// Walks the samples with `traversal`, calling `hit(x, y, e)` for each
+    /// covered sample, where `e[i]` is the weight of vertex `i` (the three sum
+    /// to [`Setup::area2`]). Returns the number of samples tested.
+    #[inline]
+    pub fn walk<F: FnMut(u32, u32, [i64; 3])>(
+        &self,
+        grid: Grid,
+        traversal: Traversal,
+        mut hit: F,
+    ) -> u64 {
+        match traversal {
+            Traversal::Scan => {
+                for y in 0..grid.height {
+                    for x in 0..grid.width {
+                        if let Some(e) = self.inside(x, y) {
+                            hit(x, y, e);
+                        }
+                    }
+                }
+                grid.len() as u64
+            }
+            Traversal::BoundingBox => {
+                for y in self.y0..=self.y1 {
+                    for x in self.x0..=self.x1 {
+                        if let Some(e) = self.inside(x as u32, y as u32) {
+                            hit(x as u32, y as u32, e);
+                        }
+                    }
+                }
+                self.bbox_samples()
+            }
+            Traversal::Incremental => {
+                if self.bbox_samples() == 0 {
+                    return 0;
+                }
+                let (px, py) = (
+                    Fixed::sample_centre(self.x0 as u32).0,
+                    Fixed::sample_centre(self.y0 as u32).0,
+                );
+                let mut row = self.edges.map(|e| e.at(px, py));
+                let sx = self.edges.map(|e| e.step_x());
+                let sy = self.edges.map(|e| e.step_y());
+                for y in self.y0..=self.y1 {
+                    let mut e = row;
+                    for x in self.x0..=self.x1 {
+                        if self.accepts(e) {
+                            hit(x as u32, y as u32, e);
+                        }
+                        e = [e[0] + sx[0], e[1] + sx[1], e[2] + sx[2]];
+                    }
+                    row = [row[0] + sy[0], row[1] + sy[1], row[2] + sy[2]];
+                }
+                self.bbox_samples()
+            }
+        }
+    }
+}
+
+fn min_max(v: [i64; 3]) -> (i64, i64) {
+    (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]))
+}
+
+/// Rasterizes one triangle given in samples: sets it up, walks it, and
+/// counts what happened in `stats`. The convenience entry point for tests
+/// and tools; the renderer calls [`Setup`] directly.
+pub fn rasterize<F: FnMut(u32, u32, [i64; 3])>(
+    v: [[f32; 2]; 3],
+    grid: Grid,
+    cull: Cull,
+    traversal: Traversal,
+    stats: &mut RasterStats,
+    mut hit: F,
+) {
+    match Setup::new(v, grid, cull) {
+        Ok(setup) => {
+            stats.triangles_drawn += 1;
+            let mut covered = 0;
+            stats.samples_tested += setup.walk(grid, traversal, |x, y, e| {
+                covered += 1;
+                hit(x, y, e)
+            });
+            stats.samples_covered += covered;
+        }
+        Err(r) => stats.count_rejected(r),
+    }
+}
+
+impl RasterStats {
+    pub fn count_rejected(&mut self, r: Rejected) {
+        match r {
+            Rejected::NonFinite => self.dropped_non_finite += 1,
+            Rejected::OutOfRange => self.dropped_out_of_range += 1,
+            Rejected::Degenerate => self.dropped_degenerate += 1,
+            Rejected::Culled => self.culled += 1,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn coverage(v: [[f32; 2]; 3], grid: Grid, t: Traversal) -> Vec<u8> {
+        let mut out = vec![0u8; grid.len()];
+        let mut stats = RasterStats::default();
+        rasterize(v, grid, Cull::None, t, &mut stats, |x, y, _| {
+            out[(y * grid.width + x) as usize] += 1
+        });
+        out
+    }
+
+    #[test]
+    fn snap_rounds_to_the_nearest_256th() {
+        assert_eq!(Fixed::snap(1.0), Some(Fixed(256)));
+        assert_eq!(Fixed::snap(0.5 / 256.0), Some(Fixed(1)));
+        assert_eq!(Fixed::snap(0.49 / 256.0), Some(Fixed(0)));
+        assert_eq!(Fixed::snap(-1.5 / 256.0), Some(Fixed(-2)));
+        assert_eq!(Fixed::snap(f32::NAN), None);
+        assert_eq!(Fixed::snap(f32::INFINITY), None);
+        assert_eq!(Fixed::snap(MAX_COORD * 2.0), None);
+        assert_eq!(Fixed::sample_centre(3), Fixed(3 * 256 + 128));
+    }
+
+    #[test]
+    fn diagonal_split_square_follows_the_top_left_rule() {
+        // The D3D example: a 5×5 square split along its diagonal. The lower
+        // triangle owns the 5 diagonal samples (its diagonal edge is a left
+        // edge): 15 and 10.
+        let g = Grid::new(5, 5);
+        let lower = coverage(
+            [[0.0, 0.0], [5.0, 0.0], [5.0, 5.0]],
+            g,
+            Traversal::Incremental,
+        );
+        let upper = coverage(
+            [[0.0, 0.0], [5.0, 5.0], [0.0, 5.0]],
+            g,
+            Traversal::Incremental,
+        );
+        assert_eq!(lower.iter().map(|&c| c as u32).sum::<u32>(), 15);
+        assert_eq!(upper.iter().map(|&c| c as u32).sum::<u32>(), 10);
+        for i in 0..25 {
+            assert_eq!(lower[i] + upper[i], 1, "sample {i}");
+        }
+    }
+
+    #[test]
+    fn winding_does_not_change_coverage_and_cull_selects_it() {
+        let g = Grid::new(8, 8);
+        let ccw = [[0.3, 0.2], [7.1, 1.0], [2.0, 6.6]];
+        let cw = [ccw[0], ccw[2], ccw[1]];
+        assert_eq!(
+            coverage(ccw, g, Traversal::Incremental),
+            coverage(cw, g, Traversal::Incremental)
+        );
+        let mut stats = RasterStats::default();
+        rasterize(
+            cw,
+            g,
+            Cull::Back,
+            Traversal::Incremental,
+            &mut stats,
+            |_, _, _| panic!("culled"),
+        );
+        rasterize(
+            ccw,
+            g,
+            Cull::Front,
+            Traversal::Incremental,
+            &mut stats,
+            |_, _, _| panic!("culled"),
+        );
+        assert_eq!(stats.culled, 2);
+    }
+
+    #[test]
+    fn rejects_are_counted_not_drawn() {
+        let g = Grid::new(4, 4);
+        let mut stats = RasterStats::default();
+        let never = |_: u32, _: u32, _: [i64; 3]| panic!("must not draw");
+        rasterize(
+            [[0.0, 0.0], [f32::NAN, 1.0], [1.0, 0.0]],
+            g,
+            Cull::None,
+            Traversal::Scan,
+            &mut stats,
+            never,
+        );
+        rasterize(
+            [[0.0, 0.0], [f32::INFINITY, 1.0], [1.0, 0.0]],
+            g,
+            Cull::None,
+            Traversal::Scan,
+            &mut stats,
+            never,
+        );
+        rasterize(
+            [[0.0, 0.0], [1e30, 1.0], [1.0, 0.0]],
+            g,
+            Cull::None,
+            Traversal::Scan,
+            &mut stats,
+            never,
+        );
+        rasterize(
+            [[0.0, 0.0], [2.0, 2.0], [4.0, 4.0]],
+            g,
+            Cull::None,
+            Traversal::Scan,
+            &mut stats,
+            never,
+        );
+        // Distinct in f32, equal after the snap: zero area.
+        rasterize(
+            [[1.0, 1.0], [1.0001, 3.0], [1.0, 3.0]],
+            g,
+            Cull::None,
+            Traversal::Scan,
+            &mut stats,
+            never,
+        );
+        assert_eq!(stats.dropped_non_finite, 2);
+        assert_eq!(stats.dropped_out_of_range, 1);
+        assert_eq!(stats.dropped_degenerate, 2);
+        assert_eq!(stats.triangles_drawn, 0);
+    }
+
+    #[test]
+    fn edge_values_are_barycentric_weights() {
+        let g = Grid::new(16, 16);
+        let v = [[0.0, 0.0], [16.0, 0.0], [0.0, 16.0]];
+        let setup = Setup::new(v, g, Cull::None).unwrap();
+        assert_eq!(setup.area2, 256 * 256 * 256);
+        let e = setup.inside(0, 0).unwrap();
+        assert_eq!(e.iter().sum::<i64>(), setup.area2);
+        // At sample (0,0), centre (0.5,0.5): weights of b and c are 0.5/16.
+        assert_eq!(e[1], setup.area2 / 32);
+        assert_eq!(e[2], setup.area2 / 32);
+    }
+
+    #[test]
+    fn bounding_box_excludes_samples_outside_and_clamps_to_grid() {
+        let g = Grid::new(10, 10);
+        // Vertices far off the grid: bbox clamps.
+        let s = Setup::new(
+            [[-100.0, -100.0], [100.0, -100.0], [0.0, 100.0]],
+            g,
+            Cull::None,
+        )
+        .unwrap();
+        assert_eq!(s.bbox_samples(), 100);
+        // A triangle between sample centres in x touches no column.
+        let s = Setup::new([[0.6, 0.0], [1.4, 0.0], [1.0, 5.0]], g, Cull::None).unwrap();
+        assert_eq!(s.bbox_samples(), 0);
+        assert_eq!(s.walk(g, Traversal::Incremental, |_, _, _| panic!()), 0);
+    }
+}

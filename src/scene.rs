@@ -1,0 +1,390 @@
+//! Stage 1: the scene, and its TOML file format.
+//!
+//! The format is a contract (keep these names):
+//!
+//! ```toml
+//! background = "#000000"          # optional; without it, uncovered cells keep the terminal's own background
+//!
+//! [camera]
+//! projection = "perspective"      # "perspective" | "orthographic" | "none"
+//! fov_y = 45.0                    # degrees, vertical field of view (perspective)
+//! near = 0.1                      # distances in front of the eye (> 0 for perspective)
+//! far = 100.0
+//! eye = [0.0, 0.0, 5.0]
+//! target = [0.0, 0.0, 0.0]
+//! up = [0.0, 1.0, 0.0]
+//! height = 2.0                    # orthographic: height of the view volume
+//!
+//! [[triangle]]                    # world coordinates
+//! vertices = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.0, 0.5, 0.0]]
+//! color = "#ff8800"               # one colour, or:
+//! # colors = ["#ff0000", "#00ff00", "#0000ff"]   # one per vertex, interpolated
+//! ```
+//!
+//! Every key of `[camera]` is optional and defaults to the values above; a
+//! file without `[camera]` gets that default camera. A triangle without a
+//! colour is white. With `projection = "none"` vertices are already in the
+//! canonical cube (x right, y up, larger z nearer).
+//!
+//! Parsing is strict: unknown keys, wrong types, a colour that is not
+//! `#rrggbb`, non-finite numbers and impossible cameras are errors that
+//! name the file, line and column.
+
+use std::path::Path;
+
+use glam::{Mat4, Vec3};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::color::Rgb;
+use crate::error::{Error, Result};
+use crate::transform::{self, Frustum};
+
+/// Everything there is to draw, in world coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The colour of uncovered samples; `None` keeps the terminal's own.
+    pub background: Option<Rgb>,
+    pub camera: Camera,
+    /// Loose triangles, drawn in order (later over earlier).
+    pub triangles: Vec<Triangle>,
+}
+
+/// A triangle and its colouring.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub vertices: [Vec3; 3],
+    pub color: TriangleColor,
+}
+
+/// One colour for the whole triangle, or one per vertex, interpolated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TriangleColor {
+    Flat(Rgb),
+    PerVertex([Rgb; 3]),
+}
+
+impl TriangleColor {
+    /// The colour at each vertex.
+    pub fn at_vertices(self) -> [Rgb; 3] {
+        match self {
+            TriangleColor::Flat(c) => [c; 3],
+            TriangleColor::PerVertex(c) => c,
+        }
+    }
+}
+
+/// Where the viewer stands and how the view is projected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub projection: Projection,
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+}
+
+/// The projection into the canonical cube.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// `fov_y` in degrees; `near` and `far` are distances in front of the
+    /// eye, `0 < near < far`.
+    Perspective { fov_y: f32, near: f32, far: f32 },
+    /// A box `height` tall, as wide as the aspect makes it.
+    Orthographic { height: f32, near: f32, far: f32 },
+    /// The vertices are in the canonical cube already; eye, target and up
+    /// are ignored.
+    None,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            projection: Projection::Perspective {
+                fov_y: 45.0,
+                near: 0.1,
+                far: 100.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 5.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+        }
+    }
+}
+
+impl Camera {
+    /// `M_projection · M_view` for a view whose physical width/height ratio
+    /// is `aspect`.
+    pub fn view_projection(&self, aspect: f32) -> Mat4 {
+        let view = transform::view(self.eye, self.target, self.up);
+        match self.projection {
+            Projection::Perspective { fov_y, near, far } => {
+                transform::perspective(&Frustum::from_fov(fov_y, aspect, near, far)) * view
+            }
+            Projection::Orthographic { height, near, far } => {
+                transform::orthographic(&Frustum::orthographic_box(height, aspect, near, far))
+                    * view
+            }
+            Projection::None => Mat4::IDENTITY,
+        }
+    }
+
+    /// Why this camera cannot be used, if it cannot.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let finite = [self.eye, self.target, self.up]
+            .iter()
+            .all(|v| v.is_finite());
+        if !finite {
+            return Err("camera eye, target and up must be finite".into());
+        }
+        let (near, far) = match self.projection {
+            Projection::None => return Ok(()),
+            Projection::Perspective { fov_y, near, far } => {
+                if !(fov_y > 0.0 && fov_y < 180.0) {
+                    return Err(format!(
+                        "fov_y must be between 0 and 180 degrees, not {fov_y}"
+                    ));
+                }
+                if !(near > 0.0) {
+                    return Err(format!(
+                        "near must be > 0 for a perspective camera, not {near}"
+                    ));
+                }
+                (near, far)
+            }
+            Projection::Orthographic { height, near, far } => {
+                if !(height > 0.0 && height.is_finite()) {
+                    return Err(format!("height must be > 0, not {height}"));
+                }
+                (near, far)
+            }
+        };
+        if !(far > near && far.is_finite() && near.is_finite()) {
+            return Err(format!(
+                "far ({far}) must be finite and greater than near ({near})"
+            ));
+        }
+        let forward = self.target - self.eye;
+        if forward.length_squared() == 0.0 {
+            return Err("camera eye and target are the same point".into());
+        }
+        if forward.cross(self.up).length_squared()
+            <= 1e-12 * forward.length_squared() * self.up.length_squared()
+        {
+            return Err("camera up must not be parallel to the view direction (or zero)".into());
+        }
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// Reads and parses a scene file.
+    pub fn load(path: &Path) -> Result<Scene> {
+        let src = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Scene::parse(&src, &path.display().to_string())
+    }
+
+    /// Parses a scene from TOML text; `name` is used in error messages.
+    pub fn parse(src: &str, name: &str) -> Result<Scene> {
+        let def: SceneDef = toml::from_str(src).map_err(|e| {
+            let offset = e.span().map_or(0, |s| s.start);
+            Error::parse_at(name, src, offset, e.message().trim_end())
+        })?;
+        let at =
+            |span: std::ops::Range<usize>, msg: String| Error::parse_at(name, src, span.start, msg);
+
+        let camera = match def.camera {
+            None => Camera::default(),
+            Some(c) => {
+                let span = c.span();
+                let camera = c.into_inner().into_camera();
+                camera.check().map_err(|m| at(span, m))?;
+                camera
+            }
+        };
+        let mut triangles = Vec::with_capacity(def.triangle.len());
+        for t in def.triangle {
+            let span = t.span();
+            let t = t.into_inner();
+            if t.vertices.iter().flatten().any(|c| !c.is_finite()) {
+                return Err(at(span, "triangle vertices must be finite numbers".into()));
+            }
+            let color = match (t.color, t.colors) {
+                (Some(_), Some(_)) => {
+                    return Err(at(
+                        span,
+                        "a triangle takes `color` or `colors`, not both".into(),
+                    ));
+                }
+                (Some(c), None) => TriangleColor::Flat(c),
+                (None, Some(c)) => TriangleColor::PerVertex(c),
+                (None, None) => TriangleColor::Flat(Rgb::WHITE),
+            };
+            triangles.push(Triangle {
+                vertices: t.vertices.map(Vec3::from),
+                color,
+            });
+        }
+        Ok(Scene {
+            background: def.background,
+            camera,
+            triangles,
+        })
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneDef {
+    background: Option<Rgb>,
+    camera: Option<Spanned<CameraDef>>,
+    #[serde(default)]
+    triangle: Vec<Spanned<TriangleDef>>,
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(rename_all = "lowercase")]
+enum ProjectionDef {
+    Perspective,
+    Orthographic,
+    None,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct CameraDef {
+    projection: ProjectionDef,
+    fov_y: f32,
+    near: f32,
+    far: f32,
+    eye: [f32; 3],
+    target: [f32; 3],
+    up: [f32; 3],
+    height: f32,
+}
+
+impl Default for CameraDef {
+    fn default() -> Self {
+        CameraDef {
+            projection: ProjectionDef::Perspective,
+            fov_y: 45.0,
+            near: 0.1,
+            far: 100.0,
+            eye: [0.0, 0.0, 5.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            height: 2.0,
+        }
+    }
+}
+
+impl CameraDef {
+    fn into_camera(self) -> Camera {
+        let projection = match self.projection {
+            ProjectionDef::Perspective => Projection::Perspective {
+                fov_y: self.fov_y,
+                near: self.near,
+                far: self.far,
+            },
+            ProjectionDef::Orthographic => Projection::Orthographic {
+                height: self.height,
+                near: self.near,
+                far: self.far,
+            },
+            ProjectionDef::None => Projection::None,
+        };
+        Camera {
+            projection,
+            eye: self.eye.into(),
+            target: self.target.into(),
+            up: self.up.into(),
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TriangleDef {
+    vertices: [[f32; 3]; 3],
+    color: Option<Rgb>,
+    colors: Option<[Rgb; 3]>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(src: &str) -> String {
+        Scene::parse(src, "s.toml").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn parses_the_documented_example() {
+        let src = include_str!("../examples/scenes/triangle.toml");
+        let s = Scene::parse(src, "triangle.toml").unwrap();
+        assert_eq!(s.background, Some(Rgb::BLACK));
+        assert_eq!(s.triangles.len(), 1);
+        assert_eq!(
+            s.triangles[0].color,
+            TriangleColor::Flat(Rgb([0xff, 0x88, 0]))
+        );
+        assert_eq!(s.camera, Camera::default());
+    }
+
+    #[test]
+    fn defaults_and_per_vertex_colours() {
+        let s = Scene::parse(
+            "[[triangle]]\nvertices = [[0,0,0],[1,0,0],[0,1,0]]\ncolors = [\"#ff0000\", \"#00ff00\", \"#0000ff\"]\n",
+            "s",
+        );
+        // Integers are taken where floats are expected.
+        assert_eq!(s.unwrap().triangles[0].vertices[1], Vec3::X);
+        let s = Scene::parse(
+            "[[triangle]]\nvertices = [[0.0,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0]]\ncolors = [\"#ff0000\", \"#00ff00\", \"#0000ff\"]\n",
+            "s",
+        )
+        .unwrap();
+        assert_eq!(s.background, None);
+        assert!(matches!(s.triangles[0].color, TriangleColor::PerVertex(_)));
+    }
+
+    #[test]
+    fn errors_name_the_file_line_and_key() {
+        let e = err("background = \"#000000\"\nbogus = 1\n");
+        assert!(e.starts_with("s.toml:2:1: unknown field `bogus`"), "{e}");
+        let e = err("[camera]\nfov_y = \"wide\"\n");
+        assert!(e.starts_with("s.toml:2:9: "), "{e}");
+        let e = err("background = \"black\"\n");
+        assert!(e.contains("s.toml:1:14: invalid colour \"black\""), "{e}");
+        let e = err("[camera]\nprojection = \"fisheye\"\n");
+        assert!(
+            e.starts_with("s.toml:2:14: unknown variant `fisheye`"),
+            "{e}"
+        );
+        let e = err("[[triangle]]\nvertices = [[0.0,0.0,0.0],[1.0,0.0,0.0]]\n");
+        assert!(e.starts_with("s.toml:2:12: "), "{e}");
+        let e = err("x = [\n");
+        assert!(e.starts_with("s.toml:"), "{e}");
+    }
+
+    #[test]
+    fn semantic_errors_point_at_their_table() {
+        let e = err("# c\n[camera]\nnear = 0.0\n");
+        assert!(e.starts_with("s.toml:2:1: near must be > 0"), "{e}");
+        let e = err("[camera]\nfar = 0.05\n");
+        assert!(
+            e.contains("far (0.05) must be finite and greater than near (0.1)"),
+            "{e}"
+        );
+        let e = err("[camera]\nup = [0.0, 0.0, 1.0]\n");
+        assert!(e.contains("up must not be parallel"), "{e}");
+        let e = err("\n[[triangle]]\nvertices = [[nan,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0]]\n");
+        assert!(
+            e.starts_with("s.toml:2:1: triangle vertices must be finite"),
+            "{e}"
+        );
+        let e = err(
+            "[[triangle]]\nvertices = [[0.0,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0]]\ncolor = \"#ffffff\"\ncolors = [\"#ff0000\", \"#00ff00\", \"#0000ff\"]\n",
+        );
+        assert!(e.contains("not both"), "{e}");
+    }
+}

@@ -1,0 +1,272 @@
+//! Stage 2: the transforms of GAMES101 Lectures 4–5, written as the notes
+//! derive them: model, view, projection into the canonical cube
+//! [-1,1]^3, and the viewport onto the sample grid.
+//!
+//! Conventions (the lecture's): right-handed, the camera looks down −z, the
+//! near and far planes `n` and `f` are negative z values with `n > f`, and in
+//! the canonical cube a larger z is nearer.
+//!
+//! One departure in form, not in meaning: the notes' perspective matrix
+//! `M_ortho · M_persp→ortho` leaves `w = z`, which is negative in front of
+//! the camera. Multiplying a homogeneous matrix by −1 describes the same
+//! projective map, so [`perspective`] returns the negated matrix: then
+//! `w = −z_eye`, the distance in front of the eye, positive for everything
+//! visible, and clipping can ask for `w > 0` (see `clip`). The canonical-cube
+//! coordinates after the divide are identical.
+//!
+//! Matrices are `glam::Mat4` in f32: screen coordinates up to the guard band
+//! (2^21 samples) keep at least 1/8-sample precision in f32, and the snap to
+//! 1/256 of a sample in `raster` is exact for the ±2^12-sample screens a
+//! terminal has.
+
+use glam::{Mat4, Vec3, Vec4};
+
+/// The view frustum's planes as the notes name them: `l, r, b, t` on the
+/// near plane, `n` and `f` as (negative) z values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustum {
+    pub l: f32,
+    pub r: f32,
+    pub b: f32,
+    pub t: f32,
+    pub n: f32,
+    pub f: f32,
+}
+
+impl Frustum {
+    /// The symmetric frustum of a vertical field of view and an aspect
+    /// ratio, as the notes derive it: `tan(fovY/2) = t / |n|` and
+    /// `aspect = r / t`, with `l = −r`, `b = −t`. `near` and `far` are
+    /// distances in front of the eye (> 0); the planes sit at `z = −near` and
+    /// `z = −far`.
+    pub fn from_fov(fov_y_degrees: f32, aspect: f32, near: f32, far: f32) -> Self {
+        let n = -near;
+        let t = (fov_y_degrees.to_radians() / 2.0).tan() * n.abs();
+        let r = aspect * t;
+        Frustum {
+            l: -r,
+            r,
+            b: -t,
+            t,
+            n,
+            f: -far,
+        }
+    }
+
+    /// The orthographic box of a given height (`t − b`) and aspect.
+    pub fn orthographic_box(height: f32, aspect: f32, near: f32, far: f32) -> Self {
+        let t = height / 2.0;
+        let r = aspect * t;
+        Frustum {
+            l: -r,
+            r,
+            b: -t,
+            t,
+            n: -near,
+            f: -far,
+        }
+    }
+}
+
+/// A matrix written row by row, as the notes print it.
+fn rows(m: [[f32; 4]; 4]) -> Mat4 {
+    Mat4::from_cols_array_2d(&m).transpose()
+}
+
+/// `M_ortho`: translate the box's centre to the origin, then scale it to
+/// [-1,1]^3. `[l,r]×[b,t]×[f,n]` maps onto the canonical cube, `n ↦ 1`.
+pub fn orthographic(fr: &Frustum) -> Mat4 {
+    let Frustum { l, r, b, t, n, f } = *fr;
+    rows([
+        [2.0 / (r - l), 0.0, 0.0, -(r + l) / (r - l)],
+        [0.0, 2.0 / (t - b), 0.0, -(t + b) / (t - b)],
+        [0.0, 0.0, 2.0 / (n - f), -(n + f) / (n - f)],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+}
+
+/// `M_persp→ortho`: squeezes the frustum into the box `[l,r]×[b,t]×[f,n]`,
+/// keeping the near plane and the far plane's z.
+pub fn persp_to_ortho(n: f32, f: f32) -> Mat4 {
+    rows([
+        [n, 0.0, 0.0, 0.0],
+        [0.0, n, 0.0, 0.0],
+        [0.0, 0.0, n + f, -n * f],
+        [0.0, 0.0, 1.0, 0.0],
+    ])
+}
+
+/// `M_persp = M_ortho · M_persp→ortho`, negated so that `w = −z_eye > 0` in
+/// front of the camera (the same projective map; see the module doc).
+pub fn perspective(fr: &Frustum) -> Mat4 {
+    -(orthographic(fr) * persp_to_ortho(fr.n, fr.f))
+}
+
+/// `M_viewport`: [-1,1]^2 onto [0,width]×[0,height], z untouched.
+pub fn viewport(width: f32, height: f32) -> Mat4 {
+    rows([
+        [width / 2.0, 0.0, 0.0, width / 2.0],
+        [0.0, height / 2.0, 0.0, height / 2.0],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+}
+
+/// The view transform `M_view = R_view · T_view`: the eye to the origin,
+/// looking down −z with `up` along +y. This is exactly glam's right-handed
+/// `camera::rh::view::look_at_mat4`.
+pub fn view(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
+    glam::camera::rh::view::look_at_mat4(eye, target, up)
+}
+
+/// The model transform: scale, then rotate about x, then y, then z (degrees),
+/// then translate.
+pub fn model(scale: Vec3, rotate_degrees: Vec3, translate: Vec3) -> Mat4 {
+    Mat4::from_translation(translate) * rotation(rotate_degrees) * Mat4::from_scale(scale)
+}
+
+/// Rotation about x, then y, then z, in degrees: `Rz · Ry · Rx`.
+pub fn rotation(degrees: Vec3) -> Mat4 {
+    let r = degrees * (std::f32::consts::PI / 180.0);
+    Mat4::from_rotation_z(r.z) * Mat4::from_rotation_y(r.y) * Mat4::from_rotation_x(r.x)
+}
+
+/// The homogeneous divide: clip space to the canonical cube.
+pub fn divide(clip: Vec4) -> Vec3 {
+    clip.truncate() / clip.w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f32, b: f32) -> bool {
+        (a - b).abs() <= 1e-5 * (1.0 + a.abs().max(b.abs()))
+    }
+
+    fn close3(a: Vec3, b: Vec3) -> bool {
+        close(a.x, b.x) && close(a.y, b.y) && close(a.z, b.z)
+    }
+
+    #[test]
+    fn frustum_from_fov_and_aspect_follows_the_notes() {
+        // fovY = 90°: tan(45°) = 1, so t = |n|; aspect 2: r = 2t.
+        let fr = Frustum::from_fov(90.0, 2.0, 0.5, 10.0);
+        assert!(close(fr.t, 0.5));
+        assert!(close(fr.b, -0.5));
+        assert!(close(fr.r, 1.0));
+        assert!(close(fr.l, -1.0));
+        assert_eq!(fr.n, -0.5);
+        assert_eq!(fr.f, -10.0);
+        assert!(fr.n > fr.f, "n > f: both negative, n nearer");
+        // fovY = 60°: t = tan(30°)·|n|.
+        let fr = Frustum::from_fov(60.0, 1.5, 2.0, 10.0);
+        assert!(close(fr.t, (30f32).to_radians().tan() * 2.0));
+        assert!(close(fr.r / fr.t, 1.5));
+    }
+
+    #[test]
+    fn viewport_entries_are_the_notes() {
+        let m = viewport(80.0, 48.0);
+        let expected = [
+            [40.0, 0.0, 0.0, 40.0],
+            [0.0, 24.0, 0.0, 24.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ];
+        for (r, row) in expected.iter().enumerate() {
+            assert_eq!(m.row(r).to_array(), *row, "row {r}");
+        }
+        // Corners of [-1,1]^2 land on the corners of [0,W]×[0,H]; z untouched.
+        assert_eq!(
+            m.transform_point3(Vec3::new(-1.0, -1.0, 0.3)),
+            Vec3::new(0.0, 0.0, 0.3)
+        );
+        assert_eq!(
+            m.transform_point3(Vec3::new(1.0, 1.0, -0.7)),
+            Vec3::new(80.0, 48.0, -0.7)
+        );
+    }
+
+    #[test]
+    fn near_and_far_planes_map_to_the_cube_faces_larger_z_nearer() {
+        let fr = Frustum::from_fov(45.0, 1.0, 1.0, 50.0);
+        let p = perspective(&fr);
+        let near = divide(p * Vec4::new(0.0, 0.0, -1.0, 1.0));
+        let far = divide(p * Vec4::new(0.0, 0.0, -50.0, 1.0));
+        let mid = divide(p * Vec4::new(0.0, 0.0, -5.0, 1.0));
+        assert!(close(near.z, 1.0), "{near}");
+        assert!(close(far.z, -1.0), "{far}");
+        assert!(mid.z < near.z && mid.z > far.z);
+        // w is the distance in front of the eye.
+        assert!(close((p * Vec4::new(0.0, 0.0, -5.0, 1.0)).w, 5.0));
+
+        let o = orthographic(&Frustum::orthographic_box(2.0, 1.0, 1.0, 50.0));
+        assert!(close(o.transform_point3(Vec3::new(0.0, 0.0, -1.0)).z, 1.0));
+        assert!(close(
+            o.transform_point3(Vec3::new(0.0, 0.0, -50.0)).z,
+            -1.0
+        ));
+    }
+
+    #[test]
+    fn frustum_top_edge_lands_on_y_equals_height_and_centre_on_the_middle() {
+        let (w, h) = (80.0, 48.0);
+        let aspect = 1.7;
+        let fr = Frustum::from_fov(45.0, aspect, 0.1, 100.0);
+        let mvp = viewport(w, h) * perspective(&fr);
+        let screen = |p: Vec3| {
+            let c = mvp * p.extend(1.0);
+            c.truncate() / c.w
+        };
+        // A point on the frustum's top edge at depth d: y = t·d/|n|.
+        for d in [0.1f32, 1.0, 7.5, 99.0] {
+            let y = fr.t * d / fr.n.abs();
+            let x = fr.r * d / fr.n.abs();
+            let top = screen(Vec3::new(0.0, y, -d));
+            assert!(close(top.y, h), "depth {d}: {top}");
+            assert!(close(top.x, w / 2.0));
+            let corner = screen(Vec3::new(-x, -y, -d));
+            assert!(close3(corner, Vec3::new(0.0, 0.0, corner.z)), "{corner}");
+            let centre = screen(Vec3::new(0.0, 0.0, -d));
+            assert!(close(centre.x, w / 2.0) && close(centre.y, h / 2.0));
+        }
+    }
+
+    #[test]
+    fn view_puts_the_eye_at_the_origin_looking_down_minus_z() {
+        let v = view(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y);
+        assert!(close3(
+            v.transform_point3(Vec3::new(0.0, 0.0, 5.0)),
+            Vec3::ZERO
+        ));
+        assert!(close3(
+            v.transform_point3(Vec3::ZERO),
+            Vec3::new(0.0, 0.0, -5.0)
+        ));
+        let side = view(Vec3::new(3.0, 0.0, 0.0), Vec3::ZERO, Vec3::Y);
+        // Looking down −x from +x with y up, right is forward × up = −z:
+        // world +z is on the camera's left.
+        assert!(close3(
+            side.transform_point3(Vec3::Z),
+            Vec3::new(-1.0, 0.0, -3.0)
+        ));
+    }
+
+    #[test]
+    fn model_scales_then_rotates_then_translates() {
+        let m = model(
+            Vec3::splat(2.0),
+            Vec3::new(0.0, 0.0, 90.0),
+            Vec3::new(1.0, 0.0, 0.0),
+        );
+        // (1,0,0) → scaled (2,0,0) → rotated about z (0,2,0) → moved (1,2,0).
+        assert!(close3(
+            m.transform_point3(Vec3::X),
+            Vec3::new(1.0, 2.0, 0.0)
+        ));
+        // x first, then y: (0,1,0) → about x by 90° → (0,0,1) → about y by 90° → (1,0,0).
+        let r = rotation(Vec3::new(90.0, 90.0, 0.0));
+        assert!(close3(r.transform_point3(Vec3::Y), Vec3::X));
+    }
+}
