@@ -104,8 +104,8 @@ impl Clipper {
     pub fn outcode(&self, p: Vec4) -> u8 {
         let mut code = 0;
         for (i, plane) in self.planes.iter().enumerate() {
-            // `!(d >= 0)` so that NaN counts as outside.
-            if !(plane.dist(p) >= 0.0) {
+            let d = plane.dist(p);
+            if d.is_nan() || d < 0.0 {
                 code |= 1 << i;
             }
         }

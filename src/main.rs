@@ -6,13 +6,16 @@ mod cli;
 use std::io::{self, Write};
 use std::process::ExitCode;
 
-use clap::Parser;
+use clap::Parser as _;
 
 use cli::{Cli, Command, RenderArgs, ViewArgs};
 use rastty::{RenderOptions, Renderer, Scene, encode, terminal};
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(e),
+    };
     match try_main(cli) {
         Ok(()) => ExitCode::SUCCESS,
         // A closed pipe (`rastty render | head`) is not an error.
@@ -22,6 +25,23 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `--help` and `--version` print as clap has them; a usage error prints
+/// its first line only (`error: invalid value '0' for '--cols <N>': …`) and
+/// exits with 2.
+fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let text = e.render().to_string();
+    eprintln!(
+        "{}",
+        text.lines().next().unwrap_or("error: invalid arguments")
+    );
+    ExitCode::from(2)
 }
 
 fn is_broken_pipe(e: &rastty::Error) -> bool {

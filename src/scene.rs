@@ -144,7 +144,7 @@ impl Camera {
                         "fov_y must be between 0 and 180 degrees, not {fov_y}"
                     ));
                 }
-                if !(near > 0.0) {
+                if near.is_nan() || near <= 0.0 {
                     return Err(format!(
                         "near must be > 0 for a perspective camera, not {near}"
                     ));

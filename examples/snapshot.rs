@@ -1,0 +1,51 @@
+//! Render a scene with the library and print the frame as plain text: the
+//! same string a test would hand to `insta::assert_snapshot!`.
+//!
+//! ```text
+//! cargo run --example snapshot
+//! ```
+//!
+//! In a test of your own:
+//!
+//! ```ignore
+//! #[test]
+//! fn my_scene() {
+//!     let scene = rastty::Scene::load("scene.toml".as_ref()).unwrap();
+//!     let opts = rastty::RenderOptions { cols: 40, rows: 12, color: rastty::ColorDepth::None, ..Default::default() };
+//!     insta::assert_snapshot!(rastty::render(&scene, &opts).to_string());
+//! }
+//! ```
+
+use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
+
+fn main() {
+    // A scene built in code rather than read from TOML: two triangles that
+    // share an edge, straight in the canonical cube.
+    let v = glam::Vec3::new;
+    let scene = Scene {
+        background: None,
+        camera: Camera {
+            projection: Projection::None,
+            ..Camera::default()
+        },
+        triangles: vec![
+            Triangle {
+                vertices: [v(-0.9, -0.8, 0.0), v(0.9, -0.8, 0.0), v(0.9, 0.8, 0.0)],
+                color: TriangleColor::Flat(Rgb::WHITE),
+            },
+            Triangle {
+                vertices: [v(-0.9, -0.8, 0.0), v(0.9, 0.8, 0.0), v(-0.9, 0.8, 0.0)],
+                color: TriangleColor::Flat(Rgb::new(60, 60, 60)),
+            },
+        ],
+    };
+    let opts = RenderOptions {
+        cols: 32,
+        rows: 10,
+        glyphs: GlyphMode::Ascii,
+        color: ColorDepth::None,
+        ..RenderOptions::default()
+    };
+    print!("{}", render(&scene, &opts));
+}

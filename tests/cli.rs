@@ -1,0 +1,168 @@
+//! The `rastty` binary as a user meets it: frames on stdout, and for bad
+//! input one `error:` line on stderr naming the file (and line), a non-zero
+//! exit, and never a panic.
+
+use std::process::{Command, Output};
+
+fn rastty(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("NO_COLOR")
+        .output()
+        .expect("runs")
+}
+
+/// Runs a command that must fail; returns its stderr.
+fn fails(args: &[&str]) -> String {
+    let out = rastty(args);
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(!out.status.success(), "{args:?} succeeded");
+    assert!(out.stdout.is_empty(), "{args:?} printed a frame");
+    assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    stderr
+}
+
+fn stdout(args: &[&str]) -> String {
+    let out = rastty(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn render_prints_the_default_scene_80_by_24_when_piped() {
+    let text = stdout(&["render"]);
+    assert_eq!(text.lines().count(), 24);
+    assert!(text.lines().all(|l| l.chars().count() == 80));
+    // Piped, auto colour is none: plain text, no escape sequences.
+    assert!(!text.contains('\x1b'));
+    // No arguments at all renders the same frame.
+    assert_eq!(stdout(&[]), text);
+}
+
+#[test]
+fn render_a_scene_file_in_plain_text() {
+    insta::assert_snapshot!(stdout(&[
+        "render",
+        "examples/scenes/shared-edge.toml",
+        "--cols",
+        "30",
+        "--rows",
+        "10",
+        "--glyphs",
+        "ascii",
+        "--color",
+        "none"
+    ]));
+}
+
+#[test]
+fn explicit_truecolor_wins_over_a_pipe() {
+    let text = stdout(&[
+        "render",
+        "examples/scenes/triangle.toml",
+        "--color",
+        "truecolor",
+        "--cols",
+        "20",
+        "--rows",
+        "8",
+    ]);
+    assert!(text.contains("\x1b[48;2;255;136;0m"), "{text:?}");
+    assert!(text.lines().all(|l| l.ends_with("\x1b[m")));
+}
+
+#[test]
+fn the_three_traversals_print_the_same_frame() {
+    let base = [
+        "render",
+        "examples/scenes/perspective.toml",
+        "--cols",
+        "50",
+        "--rows",
+        "16",
+        "--color",
+        "none",
+    ];
+    let frames: Vec<String> = ["scan", "bounding-box", "incremental"]
+        .iter()
+        .map(|t| stdout(&[&base[..], &["--traversal", t]].concat()))
+        .collect();
+    assert_eq!(frames[0], frames[1]);
+    assert_eq!(frames[1], frames[2]);
+}
+
+#[test]
+fn cell_aspect_changes_the_projection() {
+    let args = |r| {
+        [
+            "render",
+            "examples/scenes/triangle.toml",
+            "--cols",
+            "40",
+            "--rows",
+            "12",
+            "--cell-aspect",
+            r,
+            "--color",
+            "none",
+        ]
+    };
+    let narrow = stdout(&args("0.5"));
+    let square = stdout(&args("1.0"));
+    // Square cells: the triangle needs half as many columns.
+    let width = |f: &str| f.lines().map(|l| l.trim().chars().count()).max().unwrap();
+    assert!(
+        width(&square) * 2 <= width(&narrow) + 2,
+        "{narrow}\n{square}"
+    );
+}
+
+#[test]
+fn missing_scene_file() {
+    insta::assert_snapshot!(fails(&["render", "no/such/scene.toml"]));
+}
+
+#[test]
+fn directory_instead_of_a_scene() {
+    insta::assert_snapshot!(fails(&["render", "examples"]));
+}
+
+#[test]
+fn wrong_type_names_file_line_and_column() {
+    insta::assert_snapshot!(fails(&["render", "tests/data/bad-type.toml"]));
+}
+
+#[test]
+fn unknown_key_names_the_key_and_line() {
+    insta::assert_snapshot!(fails(&["render", "tests/data/unknown-key.toml"]));
+}
+
+#[test]
+fn malformed_toml() {
+    insta::assert_snapshot!(fails(&["render", "tests/data/malformed.toml"]));
+}
+
+#[test]
+fn unknown_option_values_and_absurd_sizes() {
+    for args in [
+        &["render", "--glyphs", "bogus"][..],
+        &["render", "--color", "sepia"],
+        &["render", "--cols", "0"],
+        &["render", "--rows", "0"],
+        &["render", "--cols", "100000"],
+        &["render", "--cols", "-3"],
+        &["render", "--cell-aspect", "0"],
+        &["render", "--cell-aspect", "nan"],
+        &["render", "--frobnicate"],
+    ] {
+        let err = fails(args);
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+    insta::assert_snapshot!(fails(&["render", "--cols", "0"]));
+}
