@@ -2,18 +2,37 @@
 //!
 //! A [`GlyphMode`] fixes how many samples a cell holds (`w × h`) and how
 //! they become a [`Cell`]. Blitters know nothing of ANSI: they produce
-//! characters and full-precision colours, and the encoder decides how to
-//! send them.
+//! characters and full-precision colours; the encoder decides how to send
+//! them. The glyph tables live in [`glyphs`], which draws each one's bit
+//! layout: sample `i` of a cell is column `i % w`, row `i / w` counted from
+//! the top.
 //!
-//! Within a cell, samples are numbered row-major from the top-left:
-//! sample `i` is column `i % w`, row `i / w` counted from the top. Glyph
-//! tables index their patterns by that bit order.
+//! **Two colours per cell** (half, quadrant, sextant, octant). A cell of one
+//! colour is a space on that background. A cell of two colours is split
+//! exactly. A cell of more (an edge between two shaded faces, a smooth
+//! gradient) is split into a foreground set and a background set so as to
+//! minimise the squared colour error, each side drawn in its mean: every
+//! split is tried (at most 2^7 = 128 for 8 samples, stepped in Gray-code
+//! order so that each try updates the sums by one sample). Of the two ways
+//! to draw a split (a pattern or its complement with the colours swapped)
+//! the one whose background is the scene's background is taken, else the
+//! one whose background covers more samples, so that runs of cells share
+//! colours and the encoder writes fewer SGR sequences.
 //!
-//! Without colour ([`ColorDepth::None`]) the glyph alone carries the
-//! picture: `block` picks a shade from ` ░▒▓█` and `ascii` a character
-//! from ` .:-=+*#%@`, both by brightness; any drawn sample gets at least the
-//! first non-blank step, so a dark triangle on the terminal's background
-//! still shows.
+//! Undrawn samples show the scene's background; where the scene has none
+//! they keep the terminal's own, which only a cell's background can show,
+//! so the drawn samples become the foreground (in their mean colour).
+//!
+//! **Braille** is one colour per cell: dots where the samples differ from
+//! the background, in the mean of their colours.
+//!
+//! **Without colour** ([`ColorDepth::None`]) the glyph alone carries the
+//! picture: the sub-cell modes draw the drawn samples' pattern, `block`
+//! picks a shade from ` ░▒▓█` and `ascii` a character from
+//! ` .:-=+*#%@`, both by brightness; any drawn sample gets at least the
+//! first non-blank step, so a dark triangle still shows.
+
+pub mod glyphs;
 
 use crate::color::{ColorDepth, Rgb};
 use crate::frame::{Cell, Frame};
@@ -23,26 +42,49 @@ use crate::raster::Grid;
 /// How samples become glyphs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum GlyphMode {
-    /// One sample per cell, drawn as a character of a brightness ramp.
+    /// 1×1: a character of a brightness ramp.
     Ascii,
-    /// One sample per cell, the whole cell in its colour.
-    #[default]
+    /// 1×1: the whole cell in one colour.
     Block,
+    /// 1×2: `▀ ▄ █` and space, foreground and background.
+    #[default]
+    Half,
+    /// 2×2: the quadrant block elements.
+    Quadrant,
+    /// 2×3: the Unicode 13 sextants.
+    Sextant,
+    /// 2×4: the Unicode 16 octants.
+    Octant,
+    /// 2×4: braille dots, one colour per cell.
+    Braille,
 }
 
-/// The ascii brightness ramp, darkest first.
-pub const ASCII_RAMP: [char; 10] = [' ', '.', ':', '-', '=', '+', '*', '#', '%', '@'];
-/// The shade ramp `block` uses without colour, darkest first.
-pub const SHADE_RAMP: [char; 5] = [' ', '░', '▒', '▓', '█'];
-
 impl GlyphMode {
-    pub const ALL: [GlyphMode; 2] = [GlyphMode::Ascii, GlyphMode::Block];
+    pub const ALL: [GlyphMode; 7] = [
+        GlyphMode::Ascii,
+        GlyphMode::Block,
+        GlyphMode::Half,
+        GlyphMode::Quadrant,
+        GlyphMode::Sextant,
+        GlyphMode::Octant,
+        GlyphMode::Braille,
+    ];
 
     /// Samples per cell, `(w, h)`.
     pub const fn cell_size(self) -> (u32, u32) {
         match self {
             GlyphMode::Ascii | GlyphMode::Block => (1, 1),
+            GlyphMode::Half => (1, 2),
+            GlyphMode::Quadrant => (2, 2),
+            GlyphMode::Sextant => (2, 3),
+            GlyphMode::Octant | GlyphMode::Braille => (2, 4),
         }
+    }
+
+    /// Samples per cell.
+    pub const fn samples(self) -> usize {
+        let (w, h) = self.cell_size();
+        (w * h) as usize
     }
 
     /// The sample grid behind `cols × rows` cells.
@@ -51,32 +93,238 @@ impl GlyphMode {
         Grid::new(cols as u32 * w, rows as u32 * h)
     }
 
-    /// One cell from its samples (see the module doc for their order).
-    pub fn cell(self, samples: &[Option<Rgb>], depth: ColorDepth, background: Option<Rgb>) -> Cell {
-        let s = samples[0];
-        match (self, s) {
-            (_, None) => Cell {
-                ch: ' ',
-                fg: None,
-                bg: background.filter(|_| depth.has_color()),
-            },
-            (GlyphMode::Block, Some(c)) if depth.has_color() => Cell {
-                ch: ' ',
-                fg: None,
-                bg: Some(c),
-            },
-            (GlyphMode::Block, Some(c)) => Cell {
-                ch: ramp(&SHADE_RAMP, c),
-                fg: None,
-                bg: None,
-            },
-            (GlyphMode::Ascii, Some(c)) => Cell {
-                ch: ramp(&ASCII_RAMP, c),
-                fg: Some(c).filter(|_| depth.has_color()),
-                bg: background.filter(|_| depth.has_color()),
-            },
+    /// The glyph for a pattern of foreground samples.
+    pub fn glyph(self, mask: u8) -> char {
+        match self {
+            GlyphMode::Half => glyphs::HALF[(mask & 3) as usize],
+            GlyphMode::Quadrant => glyphs::QUADRANT[(mask & 15) as usize],
+            GlyphMode::Sextant => glyphs::sextant(mask),
+            GlyphMode::Octant => glyphs::octant(mask),
+            GlyphMode::Braille => glyphs::braille(mask),
+            GlyphMode::Ascii | GlyphMode::Block => {
+                if mask & 1 == 0 {
+                    ' '
+                } else {
+                    '█'
+                }
+            }
         }
     }
+
+    /// One cell from its samples (see the module doc for their order).
+    pub fn cell(self, samples: &[Option<Rgb>], depth: ColorDepth, background: Option<Rgb>) -> Cell {
+        let n = samples.len();
+        debug_assert_eq!(n, self.samples());
+        let drawn = samples
+            .iter()
+            .enumerate()
+            .fold(0u8, |m, (i, s)| m | ((s.is_some() as u8) << i));
+        if !depth.has_color() {
+            let ch = match self {
+                GlyphMode::Ascii => samples[0].map_or(' ', |c| ramp(&glyphs::ASCII_RAMP, c)),
+                GlyphMode::Block => samples[0].map_or(' ', |c| ramp(&glyphs::SHADE_RAMP, c)),
+                _ => self.glyph(drawn),
+            };
+            return Cell {
+                ch,
+                fg: None,
+                bg: None,
+            };
+        }
+        match self {
+            GlyphMode::Ascii => match samples[0] {
+                None => blank(background),
+                Some(c) => Cell {
+                    ch: ramp(&glyphs::ASCII_RAMP, c),
+                    fg: Some(c),
+                    bg: background,
+                },
+            },
+            GlyphMode::Block => blank(samples[0].or(background)),
+            GlyphMode::Braille => {
+                let mut dots = 0u8;
+                let mut sum = Sum::default();
+                for (i, s) in samples.iter().enumerate() {
+                    if let Some(c) = s.filter(|&c| Some(c) != background) {
+                        dots |= 1 << i;
+                        sum.add(c);
+                    }
+                }
+                if dots == 0 {
+                    blank(background)
+                } else {
+                    Cell {
+                        ch: self.glyph(dots),
+                        fg: Some(sum.mean()),
+                        bg: background,
+                    }
+                }
+            }
+            GlyphMode::Half | GlyphMode::Quadrant | GlyphMode::Sextant | GlyphMode::Octant => {
+                self.two_colour(samples, drawn, background)
+            }
+        }
+    }
+
+    fn two_colour(self, samples: &[Option<Rgb>], drawn: u8, background: Option<Rgb>) -> Cell {
+        let n = samples.len();
+        let full = ((1u16 << n) - 1) as u8;
+        let Some(bg_color) = background.or(if drawn == full { samples[0] } else { None }) else {
+            // No scene background and some samples undrawn: those keep the
+            // terminal's default, the drawn ones are the foreground.
+            if drawn == 0 {
+                return Cell::BLANK;
+            }
+            let mut sum = Sum::default();
+            samples.iter().flatten().for_each(|&c| sum.add(c));
+            return Cell {
+                ch: self.glyph(drawn),
+                fg: Some(sum.mean()),
+                bg: None,
+            };
+        };
+        let mut colors = [Rgb::BLACK; 8];
+        for (c, s) in colors.iter_mut().zip(samples) {
+            *c = s.unwrap_or(bg_color);
+        }
+        let colors = &colors[..n];
+        let mask = split(colors);
+        if mask == 0 {
+            return blank(Some(colors[0]));
+        }
+        let (mut fg_sum, mut bg_sum) = (Sum::default(), Sum::default());
+        for (i, &c) in colors.iter().enumerate() {
+            if mask >> i & 1 == 1 {
+                fg_sum.add(c)
+            } else {
+                bg_sum.add(c)
+            }
+        }
+        let (fg, bg) = (fg_sum.mean(), bg_sum.mean());
+        if fg == bg {
+            return blank(Some(bg));
+        }
+        // Orientation: the scene's background stays the cell's background;
+        // otherwise the larger side is.
+        let in_fg = background.is_some_and(|b| {
+            colors
+                .iter()
+                .enumerate()
+                .any(|(i, &c)| c == b && mask >> i & 1 == 1)
+        });
+        let in_bg = background.is_some_and(|b| {
+            colors
+                .iter()
+                .enumerate()
+                .any(|(i, &c)| c == b && mask >> i & 1 == 0)
+        });
+        let swap = match (in_fg, in_bg) {
+            (true, false) => true,
+            (false, true) => false,
+            _ => fg_sum.n > bg_sum.n,
+        };
+        if swap {
+            Cell {
+                ch: self.glyph(!mask & full),
+                fg: Some(bg),
+                bg: Some(fg),
+            }
+        } else {
+            Cell {
+                ch: self.glyph(mask),
+                fg: Some(fg),
+                bg: Some(bg),
+            }
+        }
+    }
+}
+
+fn blank(bg: Option<Rgb>) -> Cell {
+    Cell {
+        ch: ' ',
+        fg: None,
+        bg,
+    }
+}
+
+/// A running sum of colours.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sum {
+    rgb: [u32; 3],
+    n: u32,
+}
+
+impl Sum {
+    fn add(&mut self, c: Rgb) {
+        for (s, v) in self.rgb.iter_mut().zip(c.0) {
+            *s += v as u32;
+        }
+        self.n += 1;
+    }
+
+    /// The rounded mean.
+    fn mean(&self) -> Rgb {
+        let n = self.n.max(1);
+        Rgb(self.rgb.map(|s| ((s + n / 2) / n) as u8))
+    }
+}
+
+/// The split of `colors` into a foreground set (the returned mask) and a
+/// background set that minimises the total squared distance of each colour
+/// to its set's mean. 0 when all colours are equal. Exhaustive: the exact
+/// answer.
+pub fn split(colors: &[Rgb]) -> u8 {
+    let n = colors.len();
+    let first = colors[0];
+    let Some(other) = colors.iter().copied().find(|&c| c != first) else {
+        return 0;
+    };
+    if colors.iter().all(|&c| c == first || c == other) {
+        // Two colours: the split is exact.
+        return colors
+            .iter()
+            .enumerate()
+            .fold(0, |m, (i, &c)| m | (((c == other) as u8) << i));
+    }
+    // Minimising the squared error is maximising |S_fg|²/n_fg + |S_bg|²/n_bg
+    // (the sum of all |c|² is fixed). The last sample stays in the
+    // background (a split and its complement are the same split), and
+    // Gray-code order changes one sample per step.
+    let total = colors.iter().fold([0i64; 3], |mut s, c| {
+        for (a, v) in s.iter_mut().zip(c.0) {
+            *a += v as i64;
+        }
+        s
+    });
+    let mut fg = [0i64; 3];
+    let mut n_fg = 0i64;
+    let mut mask = 0u8;
+    let (mut best, mut best_num, mut best_den) = (0u8, -1i64, 1i64);
+    for k in 1u32..(1 << (n - 1)) {
+        // Gray code k ^ (k >> 1) differs from the previous one in the bit of
+        // k's lowest set bit.
+        let bit = k.trailing_zeros() as usize;
+        let c = colors[bit].0;
+        if mask >> bit & 1 == 0 {
+            mask |= 1 << bit;
+            n_fg += 1;
+            (0..3).for_each(|i| fg[i] += c[i] as i64);
+        } else {
+            mask &= !(1 << bit);
+            n_fg -= 1;
+            (0..3).for_each(|i| fg[i] -= c[i] as i64);
+        }
+        let n_bg = n as i64 - n_fg;
+        let sq = |s: [i64; 3]| s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+        let bg = [total[0] - fg[0], total[1] - fg[1], total[2] - fg[2]];
+        // score = sq(fg)/n_fg + sq(bg)/n_bg = num/den.
+        let num = sq(fg) * n_bg + sq(bg) * n_fg;
+        let den = n_fg * n_bg;
+        if num * best_den > best_num * den {
+            (best, best_num, best_den) = (mask, num, den);
+        }
+    }
+    best
 }
 
 /// The ramp step for a drawn sample: never the blank first step.
@@ -117,12 +365,15 @@ pub fn blit(
 mod tests {
     use super::*;
 
+    const RED: Rgb = Rgb::new(255, 0, 0);
+    const BLUE: Rgb = Rgb::new(0, 0, 255);
+
     #[test]
     fn ramps_skip_blank_for_drawn_samples() {
-        assert_eq!(ramp(&ASCII_RAMP, Rgb::BLACK), '.');
-        assert_eq!(ramp(&ASCII_RAMP, Rgb::WHITE), '@');
-        assert_eq!(ramp(&SHADE_RAMP, Rgb::BLACK), '░');
-        assert_eq!(ramp(&SHADE_RAMP, Rgb::WHITE), '█');
+        assert_eq!(ramp(&glyphs::ASCII_RAMP, Rgb::BLACK), '.');
+        assert_eq!(ramp(&glyphs::ASCII_RAMP, Rgb::WHITE), '@');
+        assert_eq!(ramp(&glyphs::SHADE_RAMP, Rgb::BLACK), '░');
+        assert_eq!(ramp(&glyphs::SHADE_RAMP, Rgb::WHITE), '█');
     }
 
     #[test]
@@ -133,23 +384,28 @@ mod tests {
         let mut frame = Frame::default();
         blit(&fb, GlyphMode::Ascii, ColorDepth::None, None, &mut frame);
         assert_eq!(frame.to_string(), "@ \n  \n @\n");
+        // Half blocks: the top sample of the cell is bit 0.
+        let mut fb = Framebuffer::new(Grid::new(1, 4));
+        fb.set(0, 3, Rgb::WHITE);
+        fb.set(0, 0, Rgb::WHITE);
+        blit(&fb, GlyphMode::Half, ColorDepth::None, None, &mut frame);
+        assert_eq!(frame.to_string(), "▀\n▄\n");
     }
 
     #[test]
-    fn colour_goes_to_the_right_plane() {
-        let red = Rgb::new(255, 0, 0);
+    fn one_sample_modes_put_colour_on_the_right_plane() {
         let bg = Some(Rgb::BLACK);
-        let block = GlyphMode::Block.cell(&[Some(red)], ColorDepth::TrueColor, bg);
+        let block = GlyphMode::Block.cell(&[Some(RED)], ColorDepth::TrueColor, bg);
         assert_eq!(
             block,
             Cell {
                 ch: ' ',
                 fg: None,
-                bg: Some(red)
+                bg: Some(RED)
             }
         );
-        let ascii = GlyphMode::Ascii.cell(&[Some(red)], ColorDepth::TrueColor, bg);
-        assert_eq!((ascii.fg, ascii.bg), (Some(red), bg));
+        let ascii = GlyphMode::Ascii.cell(&[Some(RED)], ColorDepth::TrueColor, bg);
+        assert_eq!((ascii.fg, ascii.bg), (Some(RED), bg));
         let empty = GlyphMode::Block.cell(&[None], ColorDepth::TrueColor, bg);
         assert_eq!(
             empty,
@@ -159,7 +415,105 @@ mod tests {
                 bg
             }
         );
-        let plain = GlyphMode::Ascii.cell(&[Some(red)], ColorDepth::None, bg);
+        let plain = GlyphMode::Ascii.cell(&[Some(RED)], ColorDepth::None, bg);
         assert_eq!((plain.fg, plain.bg), (None, None));
+    }
+
+    #[test]
+    fn half_blocks_two_colours_and_one() {
+        let bg = Some(Rgb::BLACK);
+        let c = GlyphMode::Half.cell(&[Some(RED), None], ColorDepth::TrueColor, bg);
+        assert_eq!(
+            c,
+            Cell {
+                ch: '▀',
+                fg: Some(RED),
+                bg
+            }
+        );
+        let c = GlyphMode::Half.cell(&[None, Some(RED)], ColorDepth::TrueColor, bg);
+        assert_eq!(
+            c,
+            Cell {
+                ch: '▄',
+                fg: Some(RED),
+                bg
+            }
+        );
+        let c = GlyphMode::Half.cell(&[Some(RED), Some(RED)], ColorDepth::TrueColor, bg);
+        assert_eq!(c, blank(Some(RED)));
+        let c = GlyphMode::Half.cell(&[Some(RED), Some(BLUE)], ColorDepth::TrueColor, bg);
+        assert!(
+            c == Cell {
+                ch: '▀',
+                fg: Some(RED),
+                bg: Some(BLUE)
+            } || c
+                == Cell {
+                    ch: '▄',
+                    fg: Some(BLUE),
+                    bg: Some(RED)
+                }
+        );
+        // Without a scene background, undrawn samples keep the terminal's.
+        let c = GlyphMode::Half.cell(&[None, Some(RED)], ColorDepth::TrueColor, None);
+        assert_eq!(
+            c,
+            Cell {
+                ch: '▄',
+                fg: Some(RED),
+                bg: None
+            }
+        );
+        assert_eq!(
+            GlyphMode::Half.cell(&[None, None], ColorDepth::TrueColor, None),
+            Cell::BLANK
+        );
+    }
+
+    #[test]
+    fn split_is_exact_for_two_colours_and_best_for_more() {
+        assert_eq!(split(&[RED, RED, RED, RED]), 0);
+        assert_eq!(split(&[RED, BLUE, BLUE, RED]), 0b0110);
+        // Three colours: the two near reds go together.
+        let near = Rgb::new(250, 10, 0);
+        let m = split(&[RED, near, BLUE, BLUE]);
+        assert!(m == 0b1100 || m == 0b0011, "{m:#b}");
+        // Brute force agrees on a gradient.
+        let grad: Vec<Rgb> = (0..8)
+            .map(|i| Rgb::new(i * 30, 255 - i * 20, i * i))
+            .collect();
+        let sse = |m: u8| {
+            let mut s = [Sum::default(), Sum::default()];
+            grad.iter()
+                .enumerate()
+                .for_each(|(i, &c)| s[(m >> i & 1) as usize].add(c));
+            grad.iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let sum = &s[(m >> i & 1) as usize];
+                    (0..3)
+                        .map(|k| {
+                            let mean = sum.rgb[k] as f64 / sum.n as f64;
+                            (c.0[k] as f64 - mean).powi(2)
+                        })
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
+        };
+        let best = (1u8..=255).map(sse).fold(f64::INFINITY, f64::min);
+        assert!((sse(split(&grad)) - best).abs() < 1e-9);
+    }
+
+    #[test]
+    fn braille_is_one_colour_dots_on_the_background() {
+        let bg = Some(Rgb::BLACK);
+        let mut s = [None; 8];
+        s[0] = Some(RED);
+        s[7] = Some(BLUE);
+        let c = GlyphMode::Braille.cell(&s, ColorDepth::TrueColor, bg);
+        assert_eq!(c.ch, '⢁');
+        assert_eq!(c.fg, Some(Rgb::new(128, 0, 128)));
+        assert_eq!(c.bg, bg);
     }
 }

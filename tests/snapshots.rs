@@ -63,6 +63,7 @@ fn default_scene_in_block_mode() {
     let opts = RenderOptions {
         cols: 40,
         rows: 14,
+        glyphs: GlyphMode::Block,
         color: ColorDepth::None,
         ..RenderOptions::default()
     };

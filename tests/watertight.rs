@@ -109,7 +109,9 @@ fn fan(centre: [i32; 2], cuts: Vec<i64>, flips: Vec<bool>, g: i32) -> Vec<[[f32;
 }
 
 /// A grid of quads over a rectangle enclosing the screen, each inner
-/// vertex jittered by up to a quarter of the spacing, each quad split along
+/// vertex jittered by less than a quarter of the spacing (so that every quad
+/// stays convex: at each corner the cross product of the two edges is at
+/// least (s/2)² − (s/2)² = 0), each quad split along
 /// a diagonal chosen by `diagonals` (either works: the quads stay convex),
 /// with windings flipped by `flips`.
 fn quad_grid(
@@ -134,10 +136,15 @@ fn quad_grid(
         }
         if i > 0 && i < nx && j > 0 && j < ny {
             let (jx, jy) = jitter[(j * (nx + 1) + i) % jitter.len()];
-            x = coarsen(x + jx * sx / 4 / 1000, g);
-            y = coarsen(y + jy * sy / 4 / 1000, g);
+            // Coarsening moves a vertex by up to `g` more; keeping the total
+            // under a quarter of the spacing keeps every quad convex.
+            let (ax, ay) = ((sx / 4 - g - 1).max(0), (sy / 4 - g - 1).max(0));
+            x += jx * ax / 1000;
+            y += jy * ay / 1000;
         }
-        [fx(x), fx(y)]
+        // Every vertex is coarsened, the outer ones too, so that a column
+        // (row) of unjittered vertices stays a straight line.
+        [fx(coarsen(x, g)), fx(coarsen(y, g))]
     };
     let mut tris = Vec::new();
     for j in 0..ny {
@@ -164,7 +171,10 @@ fn quad_grid(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+    // 200 cases by default; PROPTEST_CASES=N runs more.
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(200)
+    ))]
 
     #[test]
     fn fans_cover_every_sample_exactly_once(
