@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use rastty::encode::Rep;
 use rastty::{ColorDepth, GlyphMode, Traversal};
 
 /// Largest terminal side accepted, in cells.
@@ -44,25 +45,50 @@ pub struct ViewArgs {
     /// Height in cells [default: the terminal's less one, or 24]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
     pub rows: Option<u16>,
-    /// How samples become glyphs
-    #[arg(long, value_enum, default_value_t = GlyphArg::Block)]
+    /// How samples become glyphs (samples per cell: ascii and block 1,
+    /// half 2, quadrant 4, sextant 6, octant and braille 8)
+    #[arg(long, value_enum, default_value_t = GlyphArg::Half)]
     pub glyphs: GlyphArg,
-    /// Colour depth; auto looks at the terminal and NO_COLOR
+    /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
+    /// Send runs of identical cells with REP (CSI n b), for terminals that
+    /// have it
+    #[arg(long)]
+    pub rep: bool,
     /// A cell's width over its height [default: the terminal's, or 0.5]
     #[arg(long, value_name = "R", value_parser = parse_aspect)]
     pub cell_aspect: Option<f32>,
+    /// Turn the scene about the world's y axis, in degrees
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
+    pub yaw: f32,
+    /// Turn the scene about the world's x axis, in degrees
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
+    pub pitch: f32,
+    /// Turn the scene about the world's z axis, in degrees
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
+    pub roll: f32,
     /// How the rasterizer walks samples (all give the same picture)
     #[arg(long, value_enum, default_value_t = TraversalArg::Incremental)]
     pub traversal: TraversalArg,
 }
 
+impl ViewArgs {
+    pub fn rep(&self) -> Rep {
+        if self.rep { Rep::On } else { Rep::Off }
+    }
+}
+
 #[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GlyphArg {
     Ascii,
-    #[default]
     Block,
+    #[default]
+    Half,
+    Quadrant,
+    Sextant,
+    Octant,
+    Braille,
 }
 
 impl From<GlyphArg> for GlyphMode {
@@ -70,6 +96,11 @@ impl From<GlyphArg> for GlyphMode {
         match g {
             GlyphArg::Ascii => GlyphMode::Ascii,
             GlyphArg::Block => GlyphMode::Block,
+            GlyphArg::Half => GlyphMode::Half,
+            GlyphArg::Quadrant => GlyphMode::Quadrant,
+            GlyphArg::Sextant => GlyphMode::Sextant,
+            GlyphArg::Octant => GlyphMode::Octant,
+            GlyphArg::Braille => GlyphMode::Braille,
         }
     }
 }
@@ -79,6 +110,10 @@ pub enum ColorArg {
     #[default]
     Auto,
     None,
+    #[value(name = "16")]
+    Ansi16,
+    #[value(name = "256")]
+    Ansi256,
     Truecolor,
 }
 
@@ -88,6 +123,8 @@ impl ColorArg {
         match self {
             ColorArg::Auto => None,
             ColorArg::None => Some(ColorDepth::None),
+            ColorArg::Ansi16 => Some(ColorDepth::Ansi16),
+            ColorArg::Ansi256 => Some(ColorDepth::Ansi256),
             ColorArg::Truecolor => Some(ColorDepth::TrueColor),
         }
     }
@@ -108,6 +145,15 @@ impl From<TraversalArg> for Traversal {
             TraversalArg::BoundingBox => Traversal::BoundingBox,
             TraversalArg::Incremental => Traversal::Incremental,
         }
+    }
+}
+
+fn parse_angle(s: &str) -> Result<f32, String> {
+    let a: f32 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    if a.is_finite() {
+        Ok(a)
+    } else {
+        Err(format!("{s} is not a finite angle"))
     }
 }
 

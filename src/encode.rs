@@ -1,64 +1,142 @@
-//! Stage 7: the encoder, from a [`Frame`] to the bytes a terminal reads.
+//! Stage 7: the encoder, from a [`Frame`] to the bytes a terminal reads, for
+//! any `io::Write`.
 //!
-//! It writes to any `io::Write` and keeps track of the colours the terminal
-//! already has (the "pen"), so that an SGR sequence is written only where
-//! the next cell needs a different foreground or background, both changes
-//! in one sequence. A blank cell shows only its background, so its
-//! foreground never forces an SGR. Bytes are gathered in a buffer kept
-//! between frames and handed to the writer in one `write_all`.
+//! Colours are first mapped to what the terminal is told ([`Ink`]: 24-bit,
+//! a palette index, or its default) by a [`Quantizer`] for the colour
+//! depth. The encoder then keeps track of the terminal's state, its pen
+//! (current foreground and background) and its cursor, and writes the fewest
+//! bytes it can:
 //!
-//! [`write_lines`] prints a frame as lines of text, for `rastty render`:
-//! each row ends with an attribute reset (so no colour bleeds into the
-//! rest of the line or the shell prompt) and a newline. With
+//! * **SGR only where a colour changes**, foreground and background in one
+//!   sequence, and `CSI m` (3 bytes) to go back to the defaults. A blank cell
+//!   shows only its background, so its foreground never forces an SGR.
+//! * **The cheapest cursor move**: of CUP, CHA, CUF, CUB, CUD, CUU, VPA, CR
+//!   and CR LF (and their combinations), the shortest that reaches the next
+//!   cell to write; nothing at all when it is the adjacent one. A short gap
+//!   of unchanged cells that need no SGR is rewritten instead when that is
+//!   shorter than any move.
+//! * **Only what changed** ([`Encoder`]): the frame the terminal shows is
+//!   kept, and a new frame sends only the cells that differ (a diff
+//!   iterator over two slices, allocating nothing). The first frame, a
+//!   resize, a change of colour depth, or [`Encoder::invalidate`] give a
+//!   full redraw: the screen is cleared and the frame's non-blank cells
+//!   written.
+//! * **REP** (`CSI n b`, repeat the last character) for runs of identical
+//!   cells, off by default ([`Rep`]): not every terminal has it.
+//! * Every frame is bracketed in synchronized output (DEC mode 2026), so a
+//!   terminal that supports it shows it at once, and ends with the
+//!   attributes reset. A frame with nothing to change writes nothing.
+//!
+//! Bytes are gathered in a buffer kept between frames and written with one
+//! `write_all`.
+//!
+//! [`write_lines`] prints a frame as lines of text instead, for
+//! `rastty render`: each row ends with an attribute reset (so no colour
+//! bleeds into the rest of the line or the shell prompt) and a newline. With
 //! [`ColorDepth::None`] it writes the frame's plain text and no escape
 //! sequence at all.
 
 use std::io::{self, Write};
 
-use crate::color::{ColorDepth, Rgb};
-use crate::frame::{Cell, Frame};
+use crate::color::{ColorDepth, Ink, Metric, Quantizer, Rgb};
+use crate::frame::Frame;
 
-/// The colours the terminal currently draws with; `None` is its default.
+/// Synchronized output: begin and end.
+pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
+pub const SYNC_END: &[u8] = b"\x1b[?2026l";
+
+/// The colours the terminal currently draws with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pen {
-    pub fg: Option<Rgb>,
-    pub bg: Option<Rgb>,
+    pub fg: Ink,
+    pub bg: Ink,
 }
 
-impl Pen {
-    /// The pen a cell needs. A blank keeps whatever foreground is current.
-    fn for_cell(self, cell: &Cell) -> Pen {
+/// A cell as the terminal is told it: a character and two inks. A blank's
+/// foreground is always [`Ink::Default`] (it shows nothing).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TermCell {
+    pub ch: char,
+    pub fg: Ink,
+    pub bg: Ink,
+}
+
+impl TermCell {
+    pub const BLANK: TermCell = TermCell {
+        ch: ' ',
+        fg: Ink::Default,
+        bg: Ink::Default,
+    };
+
+    /// The pen this cell needs, given the current one: a blank keeps the
+    /// current foreground.
+    fn pen(&self, current: Pen) -> Pen {
         Pen {
-            fg: if cell.ch == ' ' { self.fg } else { cell.fg },
-            bg: cell.bg,
+            fg: if self.ch == ' ' { current.fg } else { self.fg },
+            bg: self.bg,
         }
     }
+
+    /// Whether the cell can be written with `pen` as it is.
+    fn fits(&self, pen: Pen) -> bool {
+        self.bg == pen.bg && (self.ch == ' ' || self.fg == pen.fg)
+    }
+}
+
+/// Whether runs of identical cells may be sent with REP (`CSI n b`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Rep {
+    #[default]
+    Off,
+    On,
 }
 
 /// Appends the decimal digits of `n`.
-fn push_u8(buf: &mut Vec<u8>, n: u8) {
-    if n >= 100 {
-        buf.push(b'0' + n / 100);
+fn push_num(buf: &mut Vec<u8>, n: u32) {
+    let mut digits = [0u8; 10];
+    let mut i = digits.len();
+    let mut n = n;
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
     }
-    if n >= 10 {
-        buf.push(b'0' + (n / 10) % 10);
-    }
-    buf.push(b'0' + n % 10);
+    buf.extend_from_slice(&digits[i..]);
 }
 
-/// Appends the SGR parameters of one colour plane: `base` is 38 for the
-/// foreground, 48 for the background.
-fn push_color(buf: &mut Vec<u8>, base: u8, c: Option<Rgb>) {
-    match c {
-        None => push_u8(buf, base + 1),
-        Some(Rgb([r, g, b])) => {
-            push_u8(buf, base);
+fn digits(n: u32) -> usize {
+    match n {
+        0..=9 => 1,
+        10..=99 => 2,
+        100..=999 => 3,
+        1000..=9999 => 4,
+        _ => 5 + digits(n / 100_000),
+    }
+}
+
+/// Appends the SGR parameters of one plane: `base` is 30 for the
+/// foreground, 40 for the background.
+fn push_ink(buf: &mut Vec<u8>, base: u32, ink: Ink) {
+    match ink {
+        Ink::Default => push_num(buf, base + 9),
+        Ink::Indexed(i @ 0..=7) => push_num(buf, base + i as u32),
+        Ink::Indexed(i @ 8..=15) => push_num(buf, base + 60 + (i - 8) as u32),
+        Ink::Indexed(i) => {
+            push_num(buf, base + 8);
+            buf.extend_from_slice(b";5;");
+            push_num(buf, i as u32);
+        }
+        Ink::Rgb(Rgb([r, g, b])) => {
+            push_num(buf, base + 8);
             buf.extend_from_slice(b";2;");
-            push_u8(buf, r);
+            push_num(buf, r as u32);
             buf.push(b';');
-            push_u8(buf, g);
+            push_num(buf, g as u32);
             buf.push(b';');
-            push_u8(buf, b);
+            push_num(buf, b as u32);
         }
     }
 }
@@ -77,13 +155,13 @@ pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
     }
     let fg = from.fg != to.fg;
     if fg {
-        push_color(buf, 38, to.fg);
+        push_ink(buf, 30, to.fg);
     }
     if from.bg != to.bg {
         if fg {
             buf.push(b';');
         }
-        push_color(buf, 48, to.bg);
+        push_ink(buf, 40, to.bg);
     }
     buf.push(b'm');
 }
@@ -94,24 +172,73 @@ pub fn push_char(buf: &mut Vec<u8>, ch: char) {
     buf.extend_from_slice(ch.encode_utf8(&mut utf8).as_bytes());
 }
 
+/// Maps a frame's cells to terminal cells for one depth, into `out`.
+fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
+    out.clear();
+    out.extend(frame.cells().iter().map(|c| TermCell {
+        ch: c.ch,
+        fg: if c.ch == ' ' {
+            Ink::Default
+        } else {
+            q.ink(c.fg)
+        },
+        bg: q.ink(c.bg),
+    }));
+}
+
+/// Appends `cell` written `count` times (at least once) from pen `pen`,
+/// with the SGR it needs (when `color`) and, when allowed and shorter, REP
+/// for the repeats. Returns the pen afterwards.
+fn push_run(
+    buf: &mut Vec<u8>,
+    pen: Pen,
+    cell: &TermCell,
+    count: usize,
+    rep: Rep,
+    color: bool,
+) -> Pen {
+    let pen = if color {
+        let want = cell.pen(pen);
+        push_sgr(buf, pen, want);
+        want
+    } else {
+        pen
+    };
+    push_char(buf, cell.ch);
+    let repeats = count.saturating_sub(1);
+    if repeats > 0 && rep == Rep::On && csi_cost(repeats as u32) < repeats * cell.ch.len_utf8() {
+        push_csi(buf, repeats as u32, b'b');
+    } else {
+        (0..repeats).for_each(|_| push_char(buf, cell.ch));
+    }
+    pen
+}
+
 /// Writes `frame` as lines of text (see the module doc). `buf` is scratch
 /// space, cleared first and kept for the next call.
 pub fn write_lines(
     frame: &Frame,
     depth: ColorDepth,
+    rep: Rep,
     buf: &mut Vec<u8>,
     out: &mut impl Write,
 ) -> io::Result<()> {
+    let mut q = Quantizer::new(depth, Metric::Oklab);
+    let mut cells = Vec::with_capacity(frame.cells().len());
+    quantize(frame, &mut q, &mut cells);
+    // Plain text means no escape sequence at all, REP included.
+    let rep = if depth.has_color() { rep } else { Rep::Off };
     buf.clear();
-    for r in 0..frame.rows() {
+    for row in cells
+        .chunks(frame.cols().max(1) as usize)
+        .take(frame.rows() as usize)
+    {
         let mut pen = Pen::default();
-        for cell in frame.row(r) {
-            if depth.has_color() {
-                let next = pen.for_cell(cell);
-                push_sgr(buf, pen, next);
-                pen = next;
-            }
-            push_char(buf, cell.ch);
+        let mut rest = row;
+        while let Some(cell) = rest.first() {
+            let run = rest.iter().take_while(|c| *c == cell).count();
+            pen = push_run(buf, pen, cell, run, rep, depth.has_color());
+            rest = &rest[run..];
         }
         push_sgr(buf, pen, Pen::default());
         buf.push(b'\n');
@@ -120,9 +247,299 @@ pub fn write_lines(
     out.flush()
 }
 
+/// Where the cursor is: a cell, or just past the last column of a row (the
+/// "pending wrap" state, where only absolute horizontal moves are safe).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Cursor {
+    row: u16,
+    col: u16,
+}
+
+/// The vertical part of a cursor move.
+#[derive(Clone, Copy, Debug)]
+enum Vertical {
+    Stay,
+    /// `\r\n` repeated: down `n` rows to column 0.
+    CrLf(u16),
+    /// CUD or CUU by `n` rows (column kept).
+    Relative(i32),
+    /// VPA to the row (column kept).
+    Absolute(u16),
+}
+
+/// The horizontal part of a cursor move.
+#[derive(Clone, Copy, Debug)]
+enum Horizontal {
+    Stay,
+    Cr,
+    /// CUF or CUB.
+    Relative(i32),
+    /// CHA.
+    Absolute(u16),
+}
+
+/// The length of `CSI n X`, where n = 1 is left out.
+fn csi_cost(n: u32) -> usize {
+    3 + if n == 1 { 0 } else { digits(n) }
+}
+
+fn horizontal(from: Option<u16>, to: u16, cols: u16) -> (usize, Horizontal) {
+    let mut best = (csi_cost(to as u32 + 1), Horizontal::Absolute(to));
+    if to == 0 {
+        best = (1, Horizontal::Cr);
+    }
+    if let Some(c) = from.filter(|&c| c < cols) {
+        if c == to {
+            return (0, Horizontal::Stay);
+        }
+        let d = to as i32 - c as i32;
+        let cost = csi_cost(d.unsigned_abs());
+        if cost < best.0 {
+            best = (cost, Horizontal::Relative(d));
+        }
+    }
+    best
+}
+
+/// The cheapest way from `from` (unknown: `None`) to `to`, and its length;
+/// `None` as the plan means CUP.
+fn plan_move(
+    from: Option<Cursor>,
+    to: Cursor,
+    cols: u16,
+) -> (usize, Option<(Vertical, Horizontal)>) {
+    // CUP: `CSI row ; col H`, with `; 1` and a lone `1` left out.
+    let cup = 3 + match (to.row, to.col) {
+        (0, 0) => 0,
+        (r, 0) => digits(r as u32 + 1),
+        (r, c) => digits(r as u32 + 1) + 1 + digits(c as u32 + 1),
+    };
+    let Some(from) = from else {
+        return (cup, None);
+    };
+    let mut best = (cup, None);
+    let mut consider = |v: Vertical, v_cost: usize, col_after: Option<u16>| {
+        let (h_cost, h) = horizontal(col_after, to.col, cols);
+        if v_cost + h_cost < best.0 {
+            best = (v_cost + h_cost, Some((v, h)));
+        }
+    };
+    let dr = to.row as i32 - from.row as i32;
+    if dr == 0 {
+        consider(Vertical::Stay, 0, Some(from.col));
+    } else {
+        if dr > 0 && dr <= 4 {
+            consider(Vertical::CrLf(dr as u16), 2 * dr as usize, Some(0));
+        }
+        // From the pending-wrap position only absolute columns are safe.
+        let col = Some(from.col).filter(|&c| c < cols);
+        consider(Vertical::Relative(dr), csi_cost(dr.unsigned_abs()), col);
+        consider(Vertical::Absolute(to.row), csi_cost(to.row as u32 + 1), col);
+    }
+    best
+}
+
+fn push_csi(buf: &mut Vec<u8>, n: u32, end: u8) {
+    buf.extend_from_slice(b"\x1b[");
+    if n != 1 {
+        push_num(buf, n);
+    }
+    buf.push(end);
+}
+
+fn push_move(buf: &mut Vec<u8>, plan: Option<(Vertical, Horizontal)>, to: Cursor) {
+    let Some((v, h)) = plan else {
+        buf.extend_from_slice(b"\x1b[");
+        if to.row > 0 || to.col > 0 {
+            push_num(buf, to.row as u32 + 1);
+        }
+        if to.col > 0 {
+            buf.push(b';');
+            push_num(buf, to.col as u32 + 1);
+        }
+        buf.push(b'H');
+        return;
+    };
+    match v {
+        Vertical::Stay => {}
+        Vertical::CrLf(n) => (0..n).for_each(|_| buf.extend_from_slice(b"\r\n")),
+        Vertical::Relative(d) => push_csi(buf, d.unsigned_abs(), if d > 0 { b'B' } else { b'A' }),
+        Vertical::Absolute(r) => push_csi(buf, r as u32 + 1, b'd'),
+    }
+    match h {
+        Horizontal::Stay => {}
+        Horizontal::Cr => buf.push(b'\r'),
+        Horizontal::Relative(d) => push_csi(buf, d.unsigned_abs(), if d > 0 { b'C' } else { b'D' }),
+        Horizontal::Absolute(c) => push_csi(buf, c as u32 + 1, b'G'),
+    }
+}
+
+/// The cells of `next` that differ from `prev`, as `(index, cell)`, in
+/// order. Allocates nothing.
+pub fn diff<'a>(
+    prev: &'a [TermCell],
+    next: &'a [TermCell],
+) -> impl Iterator<Item = (usize, &'a TermCell)> + 'a {
+    prev.iter()
+        .zip(next)
+        .enumerate()
+        .filter(|(_, (p, n))| p != n)
+        .map(|(i, (_, n))| (i, n))
+}
+
+/// Sends frames to a terminal, each as the difference from the last.
+#[derive(Debug)]
+pub struct Encoder {
+    quantizer: Quantizer,
+    rep: Rep,
+    cols: u16,
+    rows: u16,
+    /// What the terminal shows, when `synced`.
+    shown: Vec<TermCell>,
+    next: Vec<TermCell>,
+    synced: bool,
+    buf: Vec<u8>,
+}
+
+impl Encoder {
+    pub fn new(depth: ColorDepth) -> Encoder {
+        Encoder {
+            quantizer: Quantizer::new(depth, Metric::Oklab),
+            rep: Rep::Off,
+            cols: 0,
+            rows: 0,
+            shown: Vec::new(),
+            next: Vec::new(),
+            synced: false,
+            buf: Vec::new(),
+        }
+    }
+
+    pub fn with_rep(mut self, rep: Rep) -> Encoder {
+        self.rep = rep;
+        self
+    }
+
+    pub fn depth(&self) -> ColorDepth {
+        self.quantizer.depth()
+    }
+
+    /// Changes the colour depth; the next frame is a full redraw.
+    pub fn set_depth(&mut self, depth: ColorDepth) {
+        if depth != self.depth() {
+            self.quantizer = Quantizer::new(depth, Metric::Oklab);
+            self.invalidate();
+        }
+    }
+
+    /// Forgets what the terminal shows: the next frame is a full redraw.
+    pub fn invalidate(&mut self) {
+        self.synced = false;
+    }
+
+    /// The bytes of the last frame encoded.
+    pub fn last_bytes(&self) -> &[u8] {
+        &self.buf
+    }
+
+    /// Encodes `frame` and writes it; returns the number of bytes written.
+    pub fn encode(&mut self, frame: &Frame, out: &mut impl Write) -> io::Result<usize> {
+        self.prepare(frame);
+        out.write_all(&self.buf)?;
+        out.flush()?;
+        Ok(self.buf.len())
+    }
+
+    /// Encodes `frame` into [`Encoder::last_bytes`] without writing it, and
+    /// takes it as shown.
+    pub fn prepare(&mut self, frame: &Frame) {
+        quantize(frame, &mut self.quantizer, &mut self.next);
+        self.buf.clear();
+        self.buf.extend_from_slice(SYNC_BEGIN);
+        let full = !self.synced || frame.cols() != self.cols || frame.rows() != self.rows;
+        let mut cursor = None;
+        if full {
+            self.cols = frame.cols();
+            self.rows = frame.rows();
+            self.shown.clear();
+            self.shown.resize(self.next.len(), TermCell::BLANK);
+            // Home, default colours, clear: the screen is now all blanks.
+            self.buf.extend_from_slice(b"\x1b[H\x1b[m\x1b[2J");
+            cursor = Some(Cursor { row: 0, col: 0 });
+        }
+        let start = self.buf.len();
+        self.write_changes(cursor);
+        if self.buf.len() == start && !full {
+            // Nothing changed: nothing to send.
+            self.buf.clear();
+        } else {
+            self.buf.extend_from_slice(SYNC_END);
+        }
+        std::mem::swap(&mut self.shown, &mut self.next);
+        self.synced = true;
+    }
+
+    /// Appends the changed cells to the buffer, ending with the pen reset.
+    fn write_changes(&mut self, mut cursor: Option<Cursor>) {
+        let cols = self.cols as usize;
+        let buf = &mut self.buf;
+        let (shown, next) = (&self.shown, &self.next);
+        let mut pen = Pen::default();
+        // Index of the first cell not yet written (REP runs write ahead).
+        let mut done = 0usize;
+        for (i, cell) in diff(shown, next) {
+            if i < done {
+                continue;
+            }
+            let to = Cursor {
+                row: (i / cols) as u16,
+                col: (i % cols) as u16,
+            };
+            let (move_cost, plan) = plan_move(cursor, to, self.cols);
+            // Rewriting a short gap of unchanged cells on the same row can be
+            // cheaper than moving over it.
+            let gap = match cursor {
+                Some(c) if c.row == to.row && c.col < to.col && move_cost > 0 => {
+                    let cells = &next[i - (to.col - c.col) as usize..i];
+                    let cost: usize = cells.iter().map(|c| c.ch.len_utf8()).sum();
+                    (cost < move_cost && cells.iter().all(|c| c.fits(pen))).then_some(cells)
+                }
+                _ => None,
+            };
+            match gap {
+                Some(cells) => cells.iter().for_each(|c| push_char(buf, c.ch)),
+                None => push_move(buf, plan, to),
+            }
+            // With REP, identical cells that follow on the row are sent as
+            // one run, up to the last changed one among them.
+            let run = if self.rep == Rep::On {
+                let row_end = (to.row as usize + 1) * cols;
+                let same = next[i + 1..row_end]
+                    .iter()
+                    .take_while(|c| *c == cell)
+                    .count();
+                1 + (0..same)
+                    .rev()
+                    .find(|&k| shown[i + 1 + k] != next[i + 1 + k])
+                    .map_or(0, |k| k + 1)
+            } else {
+                1
+            };
+            pen = push_run(buf, pen, cell, run, self.rep, true);
+            done = i + run;
+            cursor = Some(Cursor {
+                row: to.row,
+                col: to.col + run as u16,
+            });
+        }
+        push_sgr(buf, pen, Pen::default());
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frame::Cell;
 
     fn sgr(from: Pen, to: Pen) -> String {
         let mut b = Vec::new();
@@ -132,18 +549,27 @@ mod tests {
 
     #[test]
     fn sgr_writes_only_what_changes() {
-        let red = Some(Rgb::new(255, 0, 0));
-        let blue = Some(Rgb::new(0, 0, 255));
+        let red = Ink::Rgb(Rgb::new(255, 0, 0));
+        let blue = Ink::Rgb(Rgb::new(0, 0, 255));
+        let d = Ink::Default;
         let p = |fg, bg| Pen { fg, bg };
         assert_eq!(sgr(p(red, blue), p(red, blue)), "");
-        assert_eq!(sgr(p(None, None), p(red, None)), "\x1b[38;2;255;0;0m");
-        assert_eq!(sgr(p(red, None), p(red, blue)), "\x1b[48;2;0;0;255m");
+        assert_eq!(sgr(p(d, d), p(red, d)), "\x1b[38;2;255;0;0m");
+        assert_eq!(sgr(p(red, d), p(red, blue)), "\x1b[48;2;0;0;255m");
         assert_eq!(
-            sgr(p(None, None), p(red, blue)),
+            sgr(p(d, d), p(red, blue)),
             "\x1b[38;2;255;0;0;48;2;0;0;255m"
         );
-        assert_eq!(sgr(p(red, blue), p(red, None)), "\x1b[49m");
-        assert_eq!(sgr(p(red, blue), p(None, None)), "\x1b[m");
+        assert_eq!(sgr(p(red, blue), p(red, d)), "\x1b[49m");
+        assert_eq!(sgr(p(red, blue), p(d, d)), "\x1b[m");
+        assert_eq!(
+            sgr(p(d, d), p(Ink::Indexed(196), Ink::Indexed(3))),
+            "\x1b[38;5;196;43m"
+        );
+        assert_eq!(
+            sgr(p(d, d), p(Ink::Indexed(9), Ink::Indexed(12))),
+            "\x1b[91;104m"
+        );
     }
 
     #[test]
@@ -179,13 +605,136 @@ mod tests {
         );
         let mut buf = Vec::new();
         let mut out = Vec::new();
-        write_lines(&f, ColorDepth::TrueColor, &mut buf, &mut out).unwrap();
+        write_lines(&f, ColorDepth::TrueColor, Rep::Off, &mut buf, &mut out).unwrap();
         assert_eq!(
             String::from_utf8(out).unwrap(),
             " \x1b[48;2;255;0;0m  \x1b[m\n\x1b[38;2;255;0;0m@  \x1b[m\n"
         );
         let mut out = Vec::new();
-        write_lines(&f, ColorDepth::None, &mut buf, &mut out).unwrap();
+        write_lines(&f, ColorDepth::None, Rep::On, &mut buf, &mut out).unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), f.to_string());
+    }
+
+    #[test]
+    fn rep_replaces_long_runs_only() {
+        let mut f = Frame::new(12, 1);
+        for c in 0..12 {
+            f.set(
+                c,
+                0,
+                Cell {
+                    ch: '▀',
+                    fg: Some(Rgb::WHITE),
+                    bg: None,
+                },
+            );
+        }
+        let mut out = Vec::new();
+        write_lines(
+            &f,
+            ColorDepth::TrueColor,
+            Rep::On,
+            &mut Vec::new(),
+            &mut out,
+        )
+        .unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\x1b[38;2;255;255;255m▀\x1b[11b\x1b[m\n"
+        );
+        let mut f = Frame::new(2, 1);
+        f.set(
+            0,
+            0,
+            Cell {
+                ch: 'x',
+                fg: None,
+                bg: None,
+            },
+        );
+        f.set(
+            1,
+            0,
+            Cell {
+                ch: 'x',
+                fg: None,
+                bg: None,
+            },
+        );
+        let mut out = Vec::new();
+        write_lines(
+            &f,
+            ColorDepth::TrueColor,
+            Rep::On,
+            &mut Vec::new(),
+            &mut out,
+        )
+        .unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), "xx\n");
+    }
+
+    #[test]
+    fn moves_are_the_shortest_form() {
+        let mv = |from: Option<(u16, u16)>, to: (u16, u16)| {
+            let from = from.map(|(row, col)| Cursor { row, col });
+            let to = Cursor {
+                row: to.0,
+                col: to.1,
+            };
+            let (cost, plan) = plan_move(from, to, 80);
+            let mut b = Vec::new();
+            push_move(&mut b, plan, to);
+            assert_eq!(b.len(), cost);
+            String::from_utf8(b).unwrap()
+        };
+        assert_eq!(mv(None, (0, 0)), "\x1b[H");
+        assert_eq!(mv(None, (4, 0)), "\x1b[5H");
+        assert_eq!(mv(None, (4, 9)), "\x1b[5;10H");
+        assert_eq!(mv(Some((3, 5)), (3, 5)), "");
+        assert_eq!(mv(Some((3, 5)), (3, 6)), "\x1b[C");
+        // CHA and CUF cost the same here; CHA is taken.
+        assert_eq!(mv(Some((3, 5)), (3, 17)), "\x1b[18G");
+        assert_eq!(mv(Some((3, 5)), (3, 9)), "\x1b[4C");
+        assert_eq!(mv(Some((3, 5)), (3, 0)), "\r");
+        assert_eq!(mv(Some((3, 50)), (3, 1)), "\x1b[2G");
+        assert_eq!(mv(Some((3, 50)), (4, 0)), "\r\n");
+        assert_eq!(mv(Some((3, 50)), (4, 50)), "\x1b[B");
+        // Past the last column only absolute columns are safe.
+        assert_eq!(mv(Some((3, 80)), (4, 79)), "\x1b[5;80H");
+        assert_eq!(mv(Some((3, 80)), (3, 2)), "\x1b[3G");
+        assert_eq!(mv(Some((20, 5)), (2, 5)), "\x1b[3d");
+        assert_eq!(mv(Some((20, 5)), (18, 5)), "\x1b[2A");
+    }
+
+    #[test]
+    fn an_unchanged_frame_sends_nothing_and_a_change_sends_one_cell() {
+        let mut e = Encoder::new(ColorDepth::TrueColor);
+        let mut f = Frame::new(4, 2);
+        let first = e.encode(&f, &mut Vec::new()).unwrap();
+        assert_eq!(
+            &e.last_bytes()[..first],
+            b"\x1b[?2026h\x1b[H\x1b[m\x1b[2J\x1b[?2026l"
+        );
+        assert_eq!(e.encode(&f, &mut Vec::new()).unwrap(), 0);
+        f.set(
+            2,
+            1,
+            Cell {
+                ch: 'x',
+                fg: Some(Rgb::WHITE),
+                bg: None,
+            },
+        );
+        let mut out = Vec::new();
+        e.encode(&f, &mut out).unwrap();
+        let s = String::from_utf8(out).unwrap();
+        assert_eq!(
+            s,
+            "\x1b[?2026h\x1b[2;3H\x1b[38;2;255;255;255mx\x1b[m\x1b[?2026l"
+        );
+        // A resize redraws in full.
+        let f = Frame::new(5, 2);
+        e.encode(&f, &mut Vec::new()).unwrap();
+        assert!(e.last_bytes().windows(4).any(|w| w == b"\x1b[2J"));
     }
 }

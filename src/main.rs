@@ -65,7 +65,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     let frame = renderer.render(&scene, &opts);
     let mut stdout = io::stdout().lock();
     let mut buf = Vec::new();
-    encode::write_lines(frame, opts.color, &mut buf, &mut stdout)
+    encode::write_lines(frame, opts.color, args.view.rep(), &mut buf, &mut stdout)
         .and_then(|()| stdout.flush())
         .map_err(|e| rastty::Error::io("<stdout>".as_ref(), e))
 }
@@ -101,5 +101,6 @@ fn options(view: &ViewArgs) -> RenderOptions {
         color,
         cell_aspect,
         traversal: view.traversal.into(),
+        turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
     }
 }

@@ -32,6 +32,9 @@ pub struct RenderOptions {
     /// terminals).
     pub cell_aspect: f32,
     pub traversal: Traversal,
+    /// Turns the whole scene about the world origin: degrees about x
+    /// (pitch), then y (yaw), then z (roll). What `spin` animates.
+    pub turn: Vec3,
 }
 
 impl Default for RenderOptions {
@@ -43,6 +46,7 @@ impl Default for RenderOptions {
             color: ColorDepth::default(),
             cell_aspect: 0.5,
             traversal: Traversal::default(),
+            turn: Vec3::ZERO,
         }
     }
 }
@@ -104,7 +108,7 @@ impl Renderer {
         self.fb.reset(grid);
         self.stats = FrameStats::default();
 
-        let vp = scene.camera.view_projection(opts.aspect());
+        let vp = scene.camera.view_projection(opts.aspect()) * transform::rotation(opts.turn);
         let viewport = transform::viewport(grid.width as f32, grid.height as f32);
         let clipper = Clipper::new(grid.width, grid.height);
         let mut poly = Polygon::default();

@@ -29,16 +29,41 @@ pub fn cell_aspect() -> Option<f32> {
     Some(cell_w / cell_h).filter(|a| a.is_finite() && *a > 0.0)
 }
 
-/// The colour depth `--color auto` picks: none when `NO_COLOR` is set and
-/// non-empty or stdout is not a terminal, truecolor otherwise. `env` looks
-/// up an environment variable (a parameter so that tests need not touch the
-/// process's environment).
+/// The colour depth `--color auto` picks, first rule that applies:
+///
+/// 1. `NO_COLOR` set and non-empty: none;
+/// 2. stdout not a terminal: none;
+/// 3. `TERM` unset or `dumb`: none;
+/// 4. `COLORTERM` is `truecolor` or `24bit`, or `TERM` ends in `-direct` or
+///    `-truecolor`: truecolor;
+/// 5. `TERM` contains `256color`: 256;
+/// 6. otherwise: 16.
+///
+/// ssh forwards `TERM` but not `COLORTERM`, so over ssh a truecolor
+/// terminal shows as 256 colours unless the client sends it
+/// (`SendEnv COLORTERM`, with `AcceptEnv COLORTERM` on the server) or
+/// `--color truecolor` is given. `env` looks up a variable (a parameter so
+/// that tests need not touch the process's environment).
 pub fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -> ColorDepth {
-    let no_color = env("NO_COLOR").is_some_and(|v| !v.is_empty());
-    if no_color || !stdout_is_tty {
-        ColorDepth::None
-    } else {
+    let set = |k: &str| env(k).filter(|v| !v.is_empty());
+    if set("NO_COLOR").is_some() || !stdout_is_tty {
+        return ColorDepth::None;
+    }
+    let term = set("TERM").unwrap_or_default();
+    if term.is_empty() || term == "dumb" {
+        return ColorDepth::None;
+    }
+    let colorterm = set("COLORTERM").unwrap_or_default().to_ascii_lowercase();
+    if colorterm == "truecolor"
+        || colorterm == "24bit"
+        || term.ends_with("-direct")
+        || term.ends_with("-truecolor")
+    {
         ColorDepth::TrueColor
+    } else if term.contains("256color") {
+        ColorDepth::Ansi256
+    } else {
+        ColorDepth::Ansi16
     }
 }
 
@@ -46,14 +71,61 @@ pub fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -
 mod tests {
     use super::*;
 
+    fn env<'a>(vars: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
+        move |k| {
+            vars.iter()
+                .find(|(n, _)| *n == k)
+                .map(|(_, v)| v.to_string())
+        }
+    }
+
     #[test]
-    fn auto_colour_rules() {
-        let none = |_: &str| None;
-        let no_color = |k: &str| (k == "NO_COLOR").then(|| "1".to_string());
-        let empty_no_color = |k: &str| (k == "NO_COLOR").then(String::new);
-        assert_eq!(detect_color(false, none), ColorDepth::None);
-        assert_eq!(detect_color(true, no_color), ColorDepth::None);
-        assert_eq!(detect_color(true, empty_no_color), ColorDepth::TrueColor);
-        assert_eq!(detect_color(true, none), ColorDepth::TrueColor);
+    fn auto_colour_rules_in_order() {
+        let xterm = ("TERM", "xterm-256color");
+        assert_eq!(
+            detect_color(true, env(&[("NO_COLOR", "1"), xterm])),
+            ColorDepth::None
+        );
+        assert_eq!(
+            detect_color(false, env(&[xterm, ("COLORTERM", "truecolor")])),
+            ColorDepth::None
+        );
+        assert_eq!(detect_color(true, env(&[])), ColorDepth::None);
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "dumb")])),
+            ColorDepth::None
+        );
+        assert_eq!(
+            detect_color(true, env(&[("NO_COLOR", ""), xterm])),
+            ColorDepth::Ansi256
+        );
+        assert_eq!(
+            detect_color(true, env(&[xterm, ("COLORTERM", "truecolor")])),
+            ColorDepth::TrueColor
+        );
+        assert_eq!(
+            detect_color(true, env(&[xterm, ("COLORTERM", "24bit")])),
+            ColorDepth::TrueColor
+        );
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "xterm-direct")])),
+            ColorDepth::TrueColor
+        );
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "foot-truecolor")])),
+            ColorDepth::TrueColor
+        );
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "screen-256color")])),
+            ColorDepth::Ansi256
+        );
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "xterm")])),
+            ColorDepth::Ansi16
+        );
+        assert_eq!(
+            detect_color(true, env(&[("TERM", "linux"), ("COLORTERM", "yes")])),
+            ColorDepth::Ansi16
+        );
     }
 }
