@@ -8,42 +8,36 @@
 //! cargo run --release --example bytes_per_frame
 //! ```
 
+use rastty::animate::{self, Axis, Spin};
 use rastty::encode::{Encoder, Rep};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene};
 
 fn main() {
     let path = format!("{}/examples/scenes/square.toml", env!("CARGO_MANIFEST_DIR"));
     let scene = Scene::load(path.as_ref()).expect("the square scene");
-    println!(
-        "| glyphs | first frame (bytes) | later frames, mean (bytes) | later frames, mean, with REP (bytes) |"
-    );
+    println!("| glyphs | first frame | later frames, mean | later frames, mean, with `--rep` |");
     println!("|---|---:|---:|---:|");
-    for mode in GlyphMode::ALL {
-        let [plain, rep] = [Rep::Off, Rep::On].map(|r| measure(&scene, mode, r));
-        println!("| {mode:?} | {} | {:.0} | {:.0} |", plain.0, plain.1, rep.1);
+    for glyphs in GlyphMode::ALL {
+        let [plain, rep] = [Rep::Off, Rep::On].map(|rep| {
+            let opts = RenderOptions {
+                cols: 80,
+                rows: 24,
+                glyphs,
+                color: ColorDepth::TrueColor,
+                ..RenderOptions::default()
+            };
+            let mut encoder = Encoder::new(ColorDepth::TrueColor).with_rep(rep);
+            let spin = Spin {
+                axis: Axis::Z,
+                step: 6.0,
+            };
+            let sizes =
+                animate::play(&scene, &opts, spin, 60, &mut encoder, &mut std::io::sink()).unwrap();
+            (sizes[0], sizes[1..].iter().sum::<usize>() as f64 / 59.0)
+        });
+        println!(
+            "| {glyphs:?} | {} | {:.0} | {:.0} |",
+            plain.0, plain.1, rep.1
+        );
     }
-}
-
-/// The first frame's bytes and the mean of the 59 later frames.
-fn measure(scene: &Scene, glyphs: GlyphMode, rep: Rep) -> (usize, f64) {
-    let mut renderer = Renderer::new();
-    let mut encoder = Encoder::new(ColorDepth::TrueColor).with_rep(rep);
-    let mut sizes = Vec::new();
-    for k in 0..60 {
-        let opts = RenderOptions {
-            cols: 80,
-            rows: 24,
-            glyphs,
-            color: ColorDepth::TrueColor,
-            turn: glam::Vec3::new(0.0, 0.0, k as f32 * 6.0),
-            ..RenderOptions::default()
-        };
-        let frame = renderer.render(scene, &opts);
-        sizes.push(encoder.encode(frame, &mut std::io::sink()).unwrap());
-    }
-    let later = &sizes[1..];
-    (
-        sizes[0],
-        later.iter().sum::<usize>() as f64 / later.len() as f64,
-    )
 }

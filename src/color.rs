@@ -174,12 +174,10 @@ fn oklab(c: Rgb) -> [f32; 3] {
     [l.l, l.a, l.b]
 }
 
-fn distance(metric: Metric, a: Rgb, b: Rgb) -> f32 {
-    let (p, q) = match metric {
-        Metric::Rgb => (a.to_f32(), b.to_f32()),
-        Metric::Oklab => (oklab(a), oklab(b)),
-    };
-    (0..3).map(|i| (p[i] - q[i]) * (p[i] - q[i])).sum()
+/// The 256 palette colours in OKLab, computed once.
+fn palette_oklab() -> &'static [[f32; 3]; 256] {
+    static TABLE: std::sync::OnceLock<[[f32; 3]; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|i| oklab(xterm256(i as u8))))
 }
 
 /// The palette index nearest to `c`: among the cube and greys (16–255) for
@@ -190,9 +188,18 @@ pub fn nearest(depth: ColorDepth, metric: Metric, c: Rgb) -> u8 {
         ColorDepth::Ansi16 => 0..=15u8,
         _ => 16..=255u8,
     };
+    let table = palette_oklab();
+    let p = match metric {
+        Metric::Rgb => c.to_f32(),
+        Metric::Oklab => oklab(c),
+    };
     let mut best = (f32::INFINITY, *range.start());
     for i in range {
-        let d = distance(metric, c, xterm256(i));
+        let q = match metric {
+            Metric::Rgb => xterm256(i).to_f32(),
+            Metric::Oklab => table[i as usize],
+        };
+        let d = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2);
         if d < best.0 {
             best = (d, i);
         }

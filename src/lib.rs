@@ -14,6 +14,9 @@
 //! | 7 | [`encode`] | a frame → ANSI bytes for any `io::Write` |
 //! | 8 | [`terminal`] | the terminal's size, cell shape and colours |
 //!
+//! [`animate`] turns a scene frame after frame through stages 1–7, with or
+//! without a terminal.
+//!
 //! [`render`](render::render) runs stages 1–6 and returns a [`Frame`] whose
 //! `Display` is plain text, ready for a snapshot:
 //!
@@ -38,6 +41,7 @@
 //! and the projection is given the physical aspect of the view
 //! ([`RenderOptions::aspect`]), since cells are not square.
 
+pub mod animate;
 pub mod blit;
 pub mod clip;
 pub mod color;

@@ -166,3 +166,29 @@ fn unknown_option_values_and_absurd_sizes() {
     }
     insta::assert_snapshot!(fails(&["render", "--cols", "0"]));
 }
+
+#[test]
+fn every_glyph_mode_with_every_colour_depth() {
+    for glyphs in [
+        "ascii", "block", "half", "quadrant", "sextant", "octant", "braille",
+    ] {
+        for color in ["none", "16", "256", "truecolor"] {
+            let text = stdout(&[
+                "render", "--glyphs", glyphs, "--color", color, "--cols", "24", "--rows", "8",
+            ]);
+            assert_eq!(text.lines().count(), 8, "{glyphs} {color}");
+            assert_eq!(color == "none", !text.contains('\x1b'), "{glyphs} {color}");
+        }
+    }
+}
+
+#[test]
+fn auto_colour_is_none_when_piped_even_with_colorterm() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .args(["render", "--cols", "10", "--rows", "3"])
+        .env("COLORTERM", "truecolor")
+        .env("TERM", "xterm-256color")
+        .output()
+        .unwrap();
+    assert!(!out.stdout.contains(&0x1b));
+}

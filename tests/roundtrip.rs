@@ -206,3 +206,41 @@ proptest! {
         }
     }
 }
+
+/// The README's byte table, half mode: the spinning square's later frames
+/// stay within the 1,400-byte budget (ratatui's Canvas sends about 2,830),
+/// and replaying every frame in the emulator ends on the last frame.
+#[test]
+fn spinning_square_in_half_mode_stays_within_budget() {
+    use rastty::animate::{self, Axis, Spin};
+    let scene = scene("square");
+    let o = opts(80, 24, GlyphMode::Half, ColorDepth::TrueColor);
+    let spin = Spin {
+        axis: Axis::Z,
+        step: 6.0,
+    };
+    let mut bytes = Vec::new();
+    let sizes = animate::play(
+        &scene,
+        &o,
+        spin,
+        60,
+        &mut Encoder::new(ColorDepth::TrueColor),
+        &mut bytes,
+    )
+    .unwrap();
+    let later = sizes[1..].iter().sum::<usize>() as f64 / 59.0;
+    assert!(later <= 1400.0, "{later:.0} bytes per later frame");
+    let mut vt = terminal(24, 80);
+    vt.process(&bytes);
+    let last = RenderOptions {
+        turn: spin.turn(o.turn, 59),
+        ..o
+    };
+    assert_screen(
+        vt.screen(),
+        &rastty::render(&scene, &last),
+        ColorDepth::TrueColor,
+    )
+    .unwrap();
+}

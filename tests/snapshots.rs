@@ -4,6 +4,10 @@
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene, render};
 
 fn frame(scene: &str, cols: u16, rows: u16) -> String {
+    frame_in(scene, cols, rows, GlyphMode::Ascii)
+}
+
+fn frame_in(scene: &str, cols: u16, rows: u16, glyphs: GlyphMode) -> String {
     let path = format!(
         "{}/examples/scenes/{scene}.toml",
         env!("CARGO_MANIFEST_DIR")
@@ -12,7 +16,7 @@ fn frame(scene: &str, cols: u16, rows: u16) -> String {
     let opts = RenderOptions {
         cols,
         rows,
-        glyphs: GlyphMode::Ascii,
+        glyphs,
         color: ColorDepth::None,
         ..RenderOptions::default()
     };
@@ -68,4 +72,15 @@ fn default_scene_in_block_mode() {
         ..RenderOptions::default()
     };
     insta::assert_snapshot!(render(&rastty::default_scene(), &opts).to_string());
+}
+
+/// The reference triangle in every glyph mode, as `--color none` prints it.
+#[test]
+fn every_glyph_mode() {
+    for mode in GlyphMode::ALL {
+        insta::assert_snapshot!(
+            format!("glyphs_{mode:?}"),
+            frame_in("notes-triangle", 24, 8, mode)
+        );
+    }
 }
