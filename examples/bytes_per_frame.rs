@@ -26,13 +26,13 @@ fn main() {
                 color: ColorDepth::TrueColor,
                 ..RenderOptions::default()
             };
-            let mut encoder = Encoder::new(ColorDepth::TrueColor).with_rep(rep);
+            let encoder = Encoder::new(ColorDepth::TrueColor).with_rep(rep);
             let spin = Spin {
                 axis: Axis::Z,
                 step: 6.0,
             };
             let sizes =
-                animate::play(&scene, &opts, spin, 60, &mut encoder, &mut std::io::sink()).unwrap();
+                animate::play(&scene, &opts, spin, 60, encoder, &mut std::io::sink()).unwrap();
             (sizes[0], sizes[1..].iter().sum::<usize>() as f64 / 59.0)
         });
         println!(

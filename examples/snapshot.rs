@@ -39,6 +39,7 @@ fn main() {
                 color: TriangleColor::Flat(Rgb::new(60, 60, 60)),
             },
         ],
+        ..Scene::default()
     };
     let opts = RenderOptions {
         cols: 32,

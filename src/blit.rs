@@ -40,7 +40,7 @@ use crate::framebuffer::Framebuffer;
 use crate::raster::Grid;
 
 /// How samples become glyphs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum GlyphMode {
     /// 1×1: a character of a brightness ramp.
     Ascii,

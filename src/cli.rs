@@ -1,11 +1,15 @@
-//! The command line: clap's derive structs and their conversion into
-//! library settings. Nothing here renders.
+//! The command line: clap's derive structs. The settings themselves are the
+//! library's enums (they derive `clap::ValueEnum`); only `--color auto` is
+//! the command line's own. Nothing here renders.
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use rastty::animate::Axis;
 use rastty::encode::Rep;
+use rastty::raster::Cull;
+use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, Traversal};
 
 /// Largest terminal side accepted, in cells.
@@ -24,31 +28,59 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Print one frame of a scene to stdout.
+    /// Print one frame of a scene or model to stdout.
     Render(RenderArgs),
+    /// Spin a scene or model in the terminal (q quits).
+    Spin(SpinArgs),
 }
 
 #[derive(Args, Debug, Default)]
 pub struct RenderArgs {
-    /// A scene file (TOML); without it, the built-in default scene.
+    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
+    /// sphere, torus); without it, the built-in default scene.
     pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
 }
 
-/// How a frame is laid out on the terminal.
+#[derive(Args, Debug, Default)]
+pub struct SpinArgs {
+    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
+    /// sphere, torus); without it, the built-in default scene.
+    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// The world axis to turn about
+    #[arg(long, value_enum, default_value_t = Axis::Y)]
+    pub axis: Axis,
+    /// Degrees turned per frame
+    #[arg(long, value_name = "DEG", default_value_t = 3.0, allow_negative_numbers = true, value_parser = parse_angle)]
+    pub step: f32,
+    /// Frames per second
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
+    /// Stop after N frames (needed when stdout is not a terminal: the frames
+    /// are then written as one ANSI stream)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub frames: Option<u64>,
+    /// Show a status line: fps, triangles drawn, bytes per frame
+    #[arg(long)]
+    pub hud: bool,
+}
+
+/// How a frame is laid out and drawn.
 #[derive(Args, Debug, Default)]
 pub struct ViewArgs {
     /// Width in cells [default: the terminal's, or 80]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
     pub cols: Option<u16>,
-    /// Height in cells [default: the terminal's less one, or 24]
+    /// Height in cells [default: the terminal's (less one for render), or 24]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
     pub rows: Option<u16>,
     /// How samples become glyphs (samples per cell: ascii and block 1,
     /// half 2, quadrant 4, sextant 6, octant and braille 8)
-    #[arg(long, value_enum, default_value_t = GlyphArg::Half)]
-    pub glyphs: GlyphArg,
+    #[arg(long, value_enum, default_value_t = GlyphMode::Half)]
+    pub glyphs: GlyphMode,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -59,6 +91,13 @@ pub struct ViewArgs {
     /// A cell's width over its height [default: the terminal's, or 0.5]
     #[arg(long, value_name = "R", value_parser = parse_aspect)]
     pub cell_aspect: Option<f32>,
+    /// How surfaces are lit (by the scene's lights)
+    #[arg(long, value_enum, default_value_t = Shading::Smooth)]
+    pub shading: Shading,
+    /// Which faces to discard [default: back faces of meshes, none of loose
+    /// triangles]
+    #[arg(long, value_enum)]
+    pub cull: Option<Cull>,
     /// Turn the scene about the world's y axis, in degrees
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub yaw: f32,
@@ -69,39 +108,13 @@ pub struct ViewArgs {
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub roll: f32,
     /// How the rasterizer walks samples (all give the same picture)
-    #[arg(long, value_enum, default_value_t = TraversalArg::Incremental)]
-    pub traversal: TraversalArg,
+    #[arg(long, value_enum, default_value_t = Traversal::Incremental)]
+    pub traversal: Traversal,
 }
 
 impl ViewArgs {
     pub fn rep(&self) -> Rep {
         if self.rep { Rep::On } else { Rep::Off }
-    }
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum GlyphArg {
-    Ascii,
-    Block,
-    #[default]
-    Half,
-    Quadrant,
-    Sextant,
-    Octant,
-    Braille,
-}
-
-impl From<GlyphArg> for GlyphMode {
-    fn from(g: GlyphArg) -> Self {
-        match g {
-            GlyphArg::Ascii => GlyphMode::Ascii,
-            GlyphArg::Block => GlyphMode::Block,
-            GlyphArg::Half => GlyphMode::Half,
-            GlyphArg::Quadrant => GlyphMode::Quadrant,
-            GlyphArg::Sextant => GlyphMode::Sextant,
-            GlyphArg::Octant => GlyphMode::Octant,
-            GlyphArg::Braille => GlyphMode::Braille,
-        }
     }
 }
 
@@ -126,24 +139,6 @@ impl ColorArg {
             ColorArg::Ansi16 => Some(ColorDepth::Ansi16),
             ColorArg::Ansi256 => Some(ColorDepth::Ansi256),
             ColorArg::Truecolor => Some(ColorDepth::TrueColor),
-        }
-    }
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum TraversalArg {
-    Scan,
-    BoundingBox,
-    #[default]
-    Incremental,
-}
-
-impl From<TraversalArg> for Traversal {
-    fn from(t: TraversalArg) -> Self {
-        match t {
-            TraversalArg::Scan => Traversal::Scan,
-            TraversalArg::BoundingBox => Traversal::BoundingBox,
-            TraversalArg::Incremental => Traversal::Incremental,
         }
     }
 }

@@ -84,7 +84,7 @@ impl TermCell {
 }
 
 /// Whether runs of identical cells may be sent with REP (`CSI n b`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum Rep {
     #[default]
     Off,

@@ -1,20 +1,22 @@
-//! Stage 5: the framebuffer, one colour per sample.
+//! Stage 5: the framebuffer, one colour and one depth per sample.
 //!
 //! A sample holds `Some(colour)` once something was drawn on it and `None`
 //! while it shows the background. Keeping "nothing drawn" apart from any
 //! colour lets the blitters draw shapes even where a triangle has the
 //! background's colour, and lets a scene without a background keep the
-//! terminal's own. Rows are stored bottom to top (y up, as the notes have
+//! terminal's own. Depth is the canonical cube's z (larger is nearer),
+//! cleared to −∞. Rows are stored bottom to top (y up, as the notes have
 //! it); the blitters turn them over.
 
 use crate::color::Rgb;
 use crate::raster::Grid;
 
 /// A `width × height` grid of samples.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Framebuffer {
     grid: Grid,
     samples: Vec<Option<Rgb>>,
+    depth: Vec<f32>,
 }
 
 impl Framebuffer {
@@ -22,6 +24,7 @@ impl Framebuffer {
         Framebuffer {
             grid,
             samples: vec![None; grid.len()],
+            depth: vec![f32::NEG_INFINITY; grid.len()],
         }
     }
 
@@ -29,16 +32,18 @@ impl Framebuffer {
         self.grid
     }
 
-    /// Clears every sample to the background, resizing if the grid changed
-    /// (the only time it allocates).
+    /// Clears every sample to the background and every depth to −∞,
+    /// resizing if the grid changed (the only time it allocates).
     pub fn reset(&mut self, grid: Grid) {
         self.grid = grid;
         self.samples.clear();
         self.samples.resize(grid.len(), None);
+        self.depth.clear();
+        self.depth.resize(grid.len(), f32::NEG_INFINITY);
     }
 
     #[inline(always)]
-    fn index(&self, x: u32, y: u32) -> usize {
+    pub fn index(&self, x: u32, y: u32) -> usize {
         debug_assert!(x < self.grid.width && y < self.grid.height);
         y as usize * self.grid.width as usize + x as usize
     }
@@ -49,14 +54,40 @@ impl Framebuffer {
         self.samples[i] = Some(c);
     }
 
+    /// Writes `c` at depth `z` if `z` is nearer than what the sample holds
+    /// (strictly: of two equal depths the first drawn stays). Returns
+    /// whether it was written.
+    #[inline(always)]
+    pub fn set_if_nearer(&mut self, x: u32, y: u32, z: f32, c: Rgb) -> bool {
+        let i = self.index(x, y);
+        if z > self.depth[i] {
+            self.depth[i] = z;
+            self.samples[i] = Some(c);
+            true
+        } else {
+            false
+        }
+    }
+
     #[inline(always)]
     pub fn get(&self, x: u32, y: u32) -> Option<Rgb> {
         self.samples[self.index(x, y)]
+    }
+
+    /// The depth at a sample (−∞ where nothing was depth-tested).
+    #[inline(always)]
+    pub fn depth(&self, x: u32, y: u32) -> f32 {
+        self.depth[self.index(x, y)]
     }
 
     /// Sample row `y` (y up: row 0 is the bottom of the screen).
     pub fn row(&self, y: u32) -> &[Option<Rgb>] {
         let w = self.grid.width as usize;
         &self.samples[y as usize * w..(y as usize + 1) * w]
+    }
+
+    /// All samples, row by row from the bottom.
+    pub fn samples(&self) -> &[Option<Rgb>] {
+        &self.samples
     }
 }

@@ -52,6 +52,7 @@ pub mod framebuffer;
 pub mod raster;
 pub mod render;
 pub mod scene;
+pub mod shade;
 pub mod terminal;
 pub mod transform;
 

@@ -8,8 +8,11 @@ use std::process::ExitCode;
 
 use clap::Parser as _;
 
-use cli::{Cli, Command, RenderArgs, ViewArgs};
-use rastty::{RenderOptions, Renderer, Scene, encode, terminal};
+use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
+use rastty::animate::{self, Player, Spin};
+use rastty::encode::Encoder;
+use rastty::terminal::{self, Exit};
+use rastty::{RenderOptions, Renderer, Scene, encode};
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -17,7 +20,7 @@ fn main() -> ExitCode {
         Err(e) => return usage_error(e),
     };
     match try_main(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         // A closed pipe (`rastty render | head`) is not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
@@ -48,30 +51,82 @@ fn is_broken_pipe(e: &rastty::Error) -> bool {
     matches!(e, rastty::Error::Io { source, .. } if source.kind() == io::ErrorKind::BrokenPipe)
 }
 
-fn try_main(cli: Cli) -> rastty::Result<()> {
-    match cli.command {
-        Some(Command::Render(args)) => render(&args),
-        None => render(&RenderArgs::default()),
+fn stdout_error(e: io::Error) -> rastty::Error {
+    rastty::Error::io("<stdout>".as_ref(), e)
+}
+
+fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
+    let command = match cli.command {
+        Some(c) => c,
+        // Bare `rastty`: spin in a terminal, one frame otherwise, with every
+        // option at its default.
+        None => {
+            let sub = if terminal::stdout_is_terminal() {
+                "spin"
+            } else {
+                "render"
+            };
+            Cli::try_parse_from(["rastty", sub])
+                .ok()
+                .and_then(|c| c.command)
+                .expect("the defaults parse")
+        }
+    };
+    match command {
+        Command::Render(args) => render(&args).map(|()| ExitCode::SUCCESS),
+        Command::Spin(args) => spin(&args),
+    }
+}
+
+fn scene(path: Option<&std::path::Path>) -> rastty::Result<Scene> {
+    match path {
+        Some(p) => Scene::open(p),
+        None => Ok(rastty::default_scene()),
     }
 }
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
-    let scene = match &args.scene {
-        Some(path) => Scene::load(path)?,
-        None => rastty::default_scene(),
-    };
-    let opts = options(&args.view);
+    let scene = scene(args.scene.as_deref())?;
+    let opts = options(&args.view, 1);
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
     let mut stdout = io::stdout().lock();
     let mut buf = Vec::new();
     encode::write_lines(frame, opts.color, args.view.rep(), &mut buf, &mut stdout)
         .and_then(|()| stdout.flush())
-        .map_err(|e| rastty::Error::io("<stdout>".as_ref(), e))
+        .map_err(stdout_error)
 }
 
-/// Resolves sizes and colour against the terminal.
-fn options(view: &ViewArgs) -> RenderOptions {
+fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
+    let scene = scene(args.scene.as_deref())?;
+    let opts = options(&args.view, 0);
+    let spin = Spin {
+        axis: args.axis,
+        step: args.step,
+    };
+    let encoder = Encoder::new(opts.color).with_rep(args.view.rep());
+    if !terminal::stdout_is_terminal() {
+        // Not a terminal: the frames as one deterministic ANSI stream.
+        let Some(frames) = args.frames else {
+            return Err(rastty::Error::Invalid(
+                "spin: stdout is not a terminal; give --frames N to write N frames, or use `rastty render`".into(),
+            ));
+        };
+        let mut out = io::stdout().lock();
+        animate::play(&scene, &opts, spin, frames, encoder, &mut out).map_err(stdout_error)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    terminal::install_panic_hook();
+    let mut player = Player::new(scene, opts, spin, encoder).with_hud(args.hud);
+    match terminal::run(&mut player, args.fps, args.frames).map_err(stdout_error)? {
+        Exit::Quit | Exit::Done => Ok(ExitCode::SUCCESS),
+        Exit::Signal(sig) => Ok(ExitCode::from((128 + sig).clamp(0, 255) as u8)),
+    }
+}
+
+/// Resolves sizes and colour against the terminal; `spare_rows` are left
+/// free below the frame (for the shell prompt after `render`).
+fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
     let tty = terminal::stdout_is_terminal();
     let term = if tty { terminal::size() } else { None };
     let cols = view
@@ -79,11 +134,9 @@ fn options(view: &ViewArgs) -> RenderOptions {
         .or(term.map(|t| t.0))
         .unwrap_or(80)
         .min(cli::MAX_CELLS);
-    // One row fewer than the terminal's, so the prompt does not scroll the
-    // top row away.
     let rows = view
         .rows
-        .or(term.map(|t| t.1.saturating_sub(1).max(1)))
+        .or(term.map(|t| t.1.saturating_sub(spare_rows).max(1)))
         .unwrap_or(24)
         .min(cli::MAX_CELLS);
     let color = view
@@ -97,10 +150,12 @@ fn options(view: &ViewArgs) -> RenderOptions {
     RenderOptions {
         cols,
         rows,
-        glyphs: view.glyphs.into(),
+        glyphs: view.glyphs,
         color,
         cell_aspect,
-        traversal: view.traversal.into(),
+        traversal: view.traversal,
         turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
+        shading: view.shading,
+        cull: view.cull,
     }
 }

@@ -98,7 +98,7 @@ impl FixedPoint {
 }
 
 /// How the rasterizer walks the samples. All give identical coverage.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum Traversal {
     /// Every sample of the grid.
     Scan,
@@ -120,7 +120,7 @@ impl Traversal {
 
 /// Which triangles to discard by their winding on screen (y up;
 /// counter-clockwise faces the viewer, as in OpenGL).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum Cull {
     /// Draw both windings.
     #[default]

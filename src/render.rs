@@ -1,16 +1,31 @@
 //! The pipeline, end to end: scene → transform → clip → raster →
 //! framebuffer → blit, into a [`Frame`].
 //!
-//! A [`Renderer`] owns the framebuffer and the frame and reuses them, so
-//! rendering frame after frame allocates nothing once the size is stable.
-//! [`render`] is the one-call form for tests and tools.
+//! A [`Renderer`] owns the framebuffer, the frame and a per-vertex scratch
+//! buffer and reuses them, so rendering frame after frame allocates nothing
+//! once the sizes are stable. [`render`] is the one-call form for tests and
+//! tools.
 //!
-//! Per-vertex colours are interpolated perspective-correctly: the
-//! rasterizer's screen-space weights `e_i` are divided by each vertex's `w`
-//! and renormalised. A triangle of one colour is written without any
+//! **Vertex stage.** Each mesh vertex is transformed once per frame (not
+//! once per face that uses it): clip-space position, world position and
+//! normal, its clip outcode, and, when it is inside every clip plane, its
+//! screen position, depth and `1/w`. Lighting ([`crate::shade`]) is
+//! evaluated per vertex for smooth shading, per face for flat.
+//!
+//! **Triangles.** A triangle whose three vertices are inside every clip
+//! plane goes straight to the rasterizer; one that is not is clipped in
+//! homogeneous space first ([`crate::clip`]). Culling is decided on the
+//! snapped screen-space winding, exactly.
+//!
+//! **Fragments.** Depth is the canonical cube's z, interpolated in screen
+//! space (where it is linear), clamped to its vertices' range, and tested
+//! per sample: larger is nearer, and of equal depths the first drawn wins.
+//! Colours are interpolated perspective-correctly: the rasterizer's
+//! screen-space weights `e_i` are divided by each vertex's `w` and
+//! renormalised. A triangle of one colour is written without any
 //! interpolation.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat3, Mat4, Vec3, Vec4};
 
 use crate::blit::{self, GlyphMode};
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon};
@@ -18,7 +33,8 @@ use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
 use crate::raster::{Cull, Grid, RasterStats, Setup, Traversal};
-use crate::scene::Scene;
+use crate::scene::{Light, Projection, Scene};
+use crate::shade::{self, Shading};
 use crate::transform;
 
 /// Everything about a frame that is not the scene.
@@ -33,8 +49,13 @@ pub struct RenderOptions {
     pub cell_aspect: f32,
     pub traversal: Traversal,
     /// Turns the whole scene about the world origin: degrees about x
-    /// (pitch), then y (yaw), then z (roll). What `spin` animates.
+    /// (pitch), then y (yaw), then z (roll). What `spin` animates. Lights
+    /// and camera stay put.
     pub turn: Vec3,
+    pub shading: Shading,
+    /// Culling for everything, overriding each mesh's own (`None`: meshes
+    /// cull as their scene says, loose triangles never).
+    pub cull: Option<Cull>,
 }
 
 impl Default for RenderOptions {
@@ -47,6 +68,8 @@ impl Default for RenderOptions {
             cell_aspect: 0.5,
             traversal: Traversal::default(),
             turn: Vec3::ZERO,
+            shading: Shading::default(),
+            cull: None,
         }
     }
 }
@@ -64,11 +87,70 @@ impl RenderOptions {
 pub struct FrameStats {
     /// Triangles handed to the pipeline.
     pub triangles_in: u64,
+    /// Vertices transformed.
+    pub vertices: u64,
     /// Triangles the clip stage cut.
     pub clipped: u64,
     /// Triangles the clip stage removed entirely (outside, or not finite).
     pub clip_rejected: u64,
+    /// Lambert evaluations (per vertex or per face).
+    pub lighting_evaluations: u64,
+    /// Per-sample depth comparisons.
+    pub depth_tests: u64,
+    /// Samples whose colour was interpolated (not a flat write).
+    pub interpolated_samples: u64,
     pub raster: RasterStats,
+}
+
+/// A vertex after the vertex stage.
+#[derive(Clone, Copy, Debug, Default)]
+struct Vert {
+    clip: Vec4,
+    /// Position and unit normal in the turned world (where lights live).
+    world: Vec3,
+    normal: Vec3,
+    /// Clip outcode: 0 when inside every plane (then the fields below are
+    /// valid).
+    code: u8,
+    xy: [f32; 2],
+    z: f32,
+    inv_w: f32,
+}
+
+/// A triangle after the divide: screen positions in samples, depth, `1/w`,
+/// colours.
+struct ScreenTriangle {
+    xy: [[f32; 2]; 3],
+    z: [f32; 3],
+    inv_w: [f32; 3],
+    color: [Vec3; 3],
+}
+
+/// Per-frame constants of the vertex and triangle stages.
+struct Stage<'a> {
+    clipper: Clipper,
+    viewport: Mat4,
+    lights: &'a [Light],
+    shading: Shading,
+    traversal: Traversal,
+    /// Where the viewer is, to tell which side of a face is seen: a point
+    /// (perspective) or a direction towards the viewer (parallel views).
+    eye: Eye,
+}
+
+#[derive(Clone, Copy)]
+enum Eye {
+    At(Vec3),
+    Towards(Vec3),
+}
+
+impl Eye {
+    fn to_eye(self, p: Vec3) -> Vec3 {
+        match self {
+            Eye::At(e) => e - p,
+            Eye::Towards(d) => d,
+        }
+    }
 }
 
 /// A reusable renderer.
@@ -76,6 +158,8 @@ pub struct FrameStats {
 pub struct Renderer {
     fb: Framebuffer,
     frame: Frame,
+    verts: Vec<Vert>,
+    poly: Polygon,
     stats: FrameStats,
 }
 
@@ -85,19 +169,13 @@ impl Default for Renderer {
     }
 }
 
-/// A triangle after the divide: screen positions in samples, `1/w`, and
-/// colours.
-struct ScreenTriangle {
-    xy: [[f32; 2]; 3],
-    inv_w: [f32; 3],
-    color: [Vec3; 3],
-}
-
 impl Renderer {
     pub fn new() -> Renderer {
         Renderer {
             fb: Framebuffer::new(Grid::new(0, 0)),
             frame: Frame::default(),
+            verts: Vec::new(),
+            poly: Polygon::default(),
             stats: FrameStats::default(),
         }
     }
@@ -108,24 +186,45 @@ impl Renderer {
         self.fb.reset(grid);
         self.stats = FrameStats::default();
 
-        let vp = scene.camera.view_projection(opts.aspect()) * transform::rotation(opts.turn);
-        let viewport = transform::viewport(grid.width as f32, grid.height as f32);
-        let clipper = Clipper::new(grid.width, grid.height);
-        let mut poly = Polygon::default();
+        let turn = transform::rotation(opts.turn);
+        let vp = scene.camera.view_projection(opts.aspect());
+        let cam = &scene.camera;
+        let eye = match cam.projection {
+            Projection::Perspective { .. } => Eye::At(cam.eye),
+            Projection::Orthographic { .. } => Eye::Towards(cam.eye - cam.target),
+            Projection::None => Eye::Towards(Vec3::Z),
+        };
+        let lit = opts.shading != Shading::None && !scene.lights.is_empty();
+        let stage = Stage {
+            clipper: Clipper::new(grid.width, grid.height),
+            viewport: transform::viewport(grid.width as f32, grid.height as f32),
+            lights: if lit { &scene.lights } else { &[] },
+            shading: if lit { opts.shading } else { Shading::None },
+            traversal: opts.traversal,
+            eye,
+        };
+
+        for mesh in &scene.meshes {
+            let model = turn * mesh.model;
+            self.vertex_stage(&stage, vp * model, model, &mesh.positions, &mesh.normals);
+            let cull = opts.cull.unwrap_or(mesh.cull);
+            for (f, face) in mesh.faces.iter().enumerate() {
+                let v = face.map(|i| self.verts[i as usize]);
+                let base = match &mesh.colors {
+                    Some(c) => face.map(|i| c[i as usize]),
+                    None => [mesh.face_colors[f]; 3],
+                };
+                self.triangle(&stage, v, base, cull);
+            }
+        }
+        let cull = opts.cull.unwrap_or(Cull::None);
         for tri in &scene.triangles {
-            let colors = tri.color.at_vertices();
-            let verts = [0, 1, 2].map(|i| ClipVertex {
-                pos: vp * tri.vertices[i].extend(1.0),
-                color: Vec3::from(colors[i].to_f32()),
-            });
-            self.draw(
-                &verts,
-                &clipper,
-                &viewport,
-                &mut poly,
-                Cull::None,
-                opts.traversal,
-            );
+            let normal = (tri.vertices[1] - tri.vertices[0])
+                .cross(tri.vertices[2] - tri.vertices[0])
+                .normalize_or_zero();
+            self.vertex_stage(&stage, vp * turn, turn, &tri.vertices, &[normal; 3]);
+            let v = [self.verts[0], self.verts[1], self.verts[2]];
+            self.triangle(&stage, v, tri.color.at_vertices(), cull);
         }
         blit::blit(
             &self.fb,
@@ -137,29 +236,96 @@ impl Renderer {
         &self.frame
     }
 
-    /// Clips, divides and rasterizes one clip-space triangle.
-    fn draw(
+    /// Transforms `positions` (with `normals`) into `self.verts`.
+    fn vertex_stage(
         &mut self,
-        verts: &[ClipVertex; 3],
-        clipper: &Clipper,
-        viewport: &Mat4,
-        poly: &mut Polygon,
-        cull: Cull,
-        traversal: Traversal,
+        stage: &Stage,
+        mvp: Mat4,
+        model: Mat4,
+        positions: &[Vec3],
+        normals: &[Vec3],
     ) {
+        let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
+        self.verts.clear();
+        self.stats.vertices += positions.len() as u64;
+        self.verts
+            .extend(positions.iter().zip(normals).map(|(&p, &n)| {
+                let clip = mvp * p.extend(1.0);
+                let code = stage.clipper.outcode(clip);
+                let mut v = Vert {
+                    clip,
+                    world: model.transform_point3(p),
+                    normal: (normal_matrix * n).normalize_or_zero(),
+                    code,
+                    ..Vert::default()
+                };
+                if code == 0 {
+                    v.inv_w = 1.0 / clip.w;
+                    let s =
+                        stage.viewport * Vec4::new(clip.x * v.inv_w, clip.y * v.inv_w, 0.0, 1.0);
+                    v.xy = [s.x, s.y];
+                    v.z = clip.z * v.inv_w;
+                }
+                v
+            }));
+    }
+
+    /// Lights, clips if it must, and rasterizes one triangle.
+    fn triangle(&mut self, stage: &Stage, v: [Vert; 3], base: [Rgb; 3], cull: Cull) {
         self.stats.triangles_in += 1;
-        match clipper.clip(verts, poly) {
-            Clipped::Rejected => {
-                self.stats.clip_rejected += 1;
-                return;
+        if v[0].code & v[1].code & v[2].code != 0 {
+            self.stats.clip_rejected += 1;
+            return;
+        }
+        let base = base.map(|c| Vec3::from(c.to_f32()));
+        let color = match stage.shading {
+            Shading::None => base,
+            shading => {
+                let face = (v[1].world - v[0].world)
+                    .cross(v[2].world - v[0].world)
+                    .normalize_or_zero();
+                // Two-sided: light the side that is seen.
+                let side = if face.dot(stage.eye.to_eye(v[0].world)) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                if shading == Shading::Flat {
+                    self.stats.lighting_evaluations += 1;
+                    let light = shade::lambert(face * side, stage.lights);
+                    base.map(|b| b * light)
+                } else {
+                    self.stats.lighting_evaluations += 3;
+                    [0, 1, 2].map(|i| base[i] * shade::lambert(v[i].normal * side, stage.lights))
+                }
             }
-            Clipped::Clipped => self.stats.clipped += 1,
-            Clipped::Inside => {}
+        };
+        if v[0].code | v[1].code | v[2].code == 0 {
+            let screen = ScreenTriangle {
+                xy: v.map(|v| v.xy),
+                z: v.map(|v| v.z),
+                inv_w: v.map(|v| v.inv_w),
+                color,
+            };
+            self.raster(&screen, cull, stage.traversal);
+            return;
         }
-        for tri in poly.triangles() {
-            let screen = to_screen(&tri, viewport);
-            self.raster(&screen, cull, traversal);
+        let verts = [0, 1, 2].map(|i| ClipVertex {
+            pos: v[i].clip,
+            color: color[i],
+        });
+        let mut poly = self.poly;
+        match stage.clipper.clip(&verts, &mut poly) {
+            Clipped::Rejected => self.stats.clip_rejected += 1,
+            Clipped::Clipped | Clipped::Inside => {
+                self.stats.clipped += 1;
+                for tri in poly.triangles() {
+                    let screen = to_screen(&tri, &stage.viewport);
+                    self.raster(&screen, cull, stage.traversal);
+                }
+            }
         }
+        self.poly = poly;
     }
 
     fn raster(&mut self, t: &ScreenTriangle, cull: Cull, traversal: Traversal) {
@@ -171,16 +337,23 @@ impl Renderer {
                 return;
             }
         };
-        let stats = &mut self.stats.raster;
-        stats.triangles_drawn += 1;
+        let stats = &mut self.stats;
+        stats.raster.triangles_drawn += 1;
         let fb = &mut self.fb;
         let mut covered = 0u64;
+        let inv_area = 1.0 / setup.area2 as f32;
+        let [z0, z1, z2] = t.z;
+        let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
+        let depth = move |e: [i64; 3]| {
+            let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
+            z.clamp(z_lo, z_hi)
+        };
         let flat = t.color[0] == t.color[1] && t.color[1] == t.color[2];
         let tested = if flat {
             let c = Rgb::from_f32(t.color[0].to_array());
-            setup.walk(grid, traversal, |x, y, _| {
+            setup.walk(grid, traversal, |x, y, e| {
                 covered += 1;
-                fb.set(x, y, c);
+                fb.set_if_nearer(x, y, depth(e), c);
             })
         } else {
             // Perspective-correct weights: e_i / w_i, renormalised.
@@ -190,15 +363,24 @@ impl Renderer {
                 covered += 1;
                 let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
                 let col = (ca * wa + cb * wb + cc * wc) / (wa + wb + wc);
-                fb.set(x, y, Rgb::from_f32(col.to_array()));
+                fb.set_if_nearer(x, y, depth(e), Rgb::from_f32(col.to_array()));
             })
         };
-        stats.samples_tested += tested;
-        stats.samples_covered += covered;
+        stats.depth_tests += covered;
+        if !flat {
+            stats.interpolated_samples += covered;
+        }
+        stats.raster.samples_tested += tested;
+        stats.raster.samples_covered += covered;
     }
 
     pub fn frame(&self) -> &Frame {
         &self.frame
+    }
+
+    /// The last frame, to draw over (a status line, say).
+    pub fn frame_mut(&mut self) -> &mut Frame {
+        &mut self.frame
     }
 
     pub fn framebuffer(&self) -> &Framebuffer {
@@ -212,15 +394,18 @@ impl Renderer {
 
 fn to_screen(tri: &[ClipVertex; 3], viewport: &Mat4) -> ScreenTriangle {
     let mut xy = [[0.0; 2]; 3];
+    let mut z = [0.0; 3];
     let mut inv_w = [0.0; 3];
     for (i, v) in tri.iter().enumerate() {
-        let (x, y, w) = (v.pos.x, v.pos.y, v.pos.w);
-        inv_w[i] = 1.0 / w;
-        let s = *viewport * Vec4::new(x * inv_w[i], y * inv_w[i], 0.0, 1.0);
+        let p = v.pos;
+        inv_w[i] = 1.0 / p.w;
+        let s = *viewport * Vec4::new(p.x * inv_w[i], p.y * inv_w[i], 0.0, 1.0);
         xy[i] = [s.x, s.y];
+        z[i] = p.z * inv_w[i];
     }
     ScreenTriangle {
         xy,
+        z,
         inv_w,
         color: tri.map(|v| v.color),
     }

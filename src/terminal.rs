@@ -1,8 +1,22 @@
 //! Stage 8: the terminal, through crossterm: its size, its cells' shape,
-//! and what colour it can show.
+//! what colour it can show, and the interactive animation loop.
+//!
+//! [`run`] puts the terminal in raw mode on the alternate screen with the
+//! cursor hidden, and restores it on every way out: `q`, Esc, Ctrl-C, an
+//! error (the [`Session`] guard's `Drop`), a panic ([`install_panic_hook`]),
+//! and SIGTERM, SIGHUP (a dropped ssh link) and SIGINT, which set a flag the
+//! loop checks at least once a frame. Frames are paced by the clock: frame
+//! `k` is due at `k / fps` seconds; when the terminal is slow, the frames
+//! it missed are skipped (the angle jumps ahead) rather than queued.
 
-use std::io::IsTerminal;
+use std::io::{self, IsTerminal, Write};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
+use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use crate::animate::{Command, Player};
 use crate::color::ColorDepth;
 
 /// Whether stdout is a terminal.
@@ -67,9 +81,203 @@ pub fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -
     }
 }
 
+/// The terminal in raw mode, on the alternate screen, cursor hidden, until
+/// dropped.
+pub struct Session(());
+
+impl Session {
+    pub fn enter() -> io::Result<Session> {
+        crossterm::terminal::enable_raw_mode()?;
+        let session = Session(());
+        let mut out = io::stdout();
+        crossterm::execute!(
+            out,
+            crossterm::terminal::EnterAlternateScreen,
+            crossterm::cursor::Hide
+        )?;
+        Ok(session)
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        restore();
+    }
+}
+
+/// Puts the terminal back: colours reset, cursor shown, main screen, cooked
+/// mode. Safe to call more than once, and when the terminal is gone.
+pub fn restore() {
+    let mut out = io::stdout();
+    let _ = out.write_all(b"\x1b[m");
+    let _ = crossterm::execute!(
+        out,
+        crossterm::cursor::Show,
+        crossterm::terminal::LeaveAlternateScreen
+    );
+    let _ = crossterm::terminal::disable_raw_mode();
+}
+
+/// Restores the terminal before a panic's message is printed.
+pub fn install_panic_hook() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        restore();
+        previous(info);
+    }));
+}
+
+/// How the loop ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exit {
+    /// A key asked to quit.
+    Quit,
+    /// The last of `--frames` was shown.
+    Done,
+    /// A signal (its number) asked to stop.
+    Signal(i32),
+}
+
+/// The command a key asks for.
+pub fn command_for(key: KeyEvent) -> Option<Command> {
+    if key.kind != KeyEventKind::Press {
+        return None;
+    }
+    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
+    Some(match key.code {
+        KeyCode::Char('c') if ctrl => Command::Quit,
+        KeyCode::Char('l') if ctrl => Command::Redraw,
+        KeyCode::Char('q') | KeyCode::Esc => Command::Quit,
+        KeyCode::Char(' ') => Command::TogglePause,
+        KeyCode::Left => Command::Orbit {
+            yaw: -5.0,
+            pitch: 0.0,
+        },
+        KeyCode::Right => Command::Orbit {
+            yaw: 5.0,
+            pitch: 0.0,
+        },
+        KeyCode::Up => Command::Orbit {
+            yaw: 0.0,
+            pitch: 5.0,
+        },
+        KeyCode::Down => Command::Orbit {
+            yaw: 0.0,
+            pitch: -5.0,
+        },
+        KeyCode::Char('+') | KeyCode::Char('=') => Command::Zoom(0.9),
+        KeyCode::Char('-') | KeyCode::Char('_') => Command::Zoom(1.0 / 0.9),
+        KeyCode::Char('m') => Command::NextGlyphs,
+        KeyCode::Char('c') => Command::NextColor,
+        KeyCode::Char('s') => Command::NextShading,
+        _ => return None,
+    })
+}
+
+/// Spins `player` in the terminal at `fps` until a key, a signal, or (with
+/// `frames`) the last frame. The terminal is restored before it returns.
+pub fn run(player: &mut Player, fps: u32, frames: Option<u64>) -> io::Result<Exit> {
+    let signal = Arc::new(AtomicUsize::new(0));
+    for sig in [
+        signal_hook::consts::SIGTERM,
+        signal_hook::consts::SIGHUP,
+        signal_hook::consts::SIGINT,
+    ] {
+        signal_hook::flag::register_usize(sig, Arc::clone(&signal), sig as usize)?;
+    }
+    let _session = Session::enter()?;
+    let mut out = io::stdout().lock();
+    let fps = fps.max(1) as f64;
+    let start = Instant::now();
+    let mut shown: Option<u64> = None;
+    let mut last_show = Instant::now();
+    let mut measured = fps as f32;
+    loop {
+        match signal.load(Ordering::Relaxed) {
+            0 => {}
+            sig => return Ok(Exit::Signal(sig as i32)),
+        }
+        let tick = (start.elapsed().as_secs_f64() * fps) as u64;
+        if shown != Some(tick) {
+            // Frames the terminal was too slow for are skipped, not queued.
+            let mut step = shown.map_or(0, |s| tick - s);
+            if let Some(n) = frames {
+                step = step.min((n - 1).saturating_sub(player.frame_number()));
+            }
+            player.advance(step);
+            let now = Instant::now();
+            let dt = now.duration_since(last_show).as_secs_f32();
+            if shown.is_some() && dt > 0.0 {
+                measured = 0.9 * measured + 0.1 / dt;
+            }
+            last_show = now;
+            player.show(&mut out, measured)?;
+            shown = Some(tick);
+            if frames.is_some_and(|n| player.frame_number() + 1 >= n && !player.is_paused()) {
+                return Ok(Exit::Done);
+            }
+        }
+        let next = start + Duration::from_secs_f64((tick + 1) as f64 / fps);
+        let wait = next.saturating_duration_since(Instant::now());
+        if event::poll(wait)? {
+            let cmd = match event::read()? {
+                Event::Key(key) => command_for(key),
+                Event::Resize(cols, rows) => Some(Command::Resize { cols, rows }),
+                _ => None,
+            };
+            if let Some(cmd) = cmd {
+                if !player.apply(cmd) {
+                    return Ok(Exit::Quit);
+                }
+                // Show the change at once, at the same angle.
+                player.show(&mut out, measured)?;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn keys_map_to_commands() {
+        let key = |code| KeyEvent::new(code, KeyModifiers::NONE);
+        assert_eq!(command_for(key(KeyCode::Char('q'))), Some(Command::Quit));
+        assert_eq!(command_for(key(KeyCode::Esc)), Some(Command::Quit));
+        assert_eq!(
+            command_for(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL)),
+            Some(Command::Quit)
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Char('c'))),
+            Some(Command::NextColor)
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Char(' '))),
+            Some(Command::TogglePause)
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Char('m'))),
+            Some(Command::NextGlyphs)
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Char('s'))),
+            Some(Command::NextShading)
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Left)),
+            Some(Command::Orbit {
+                yaw: -5.0,
+                pitch: 0.0
+            })
+        );
+        assert_eq!(
+            command_for(key(KeyCode::Char('+'))),
+            Some(Command::Zoom(0.9))
+        );
+        assert_eq!(command_for(key(KeyCode::Char('x'))), None);
+    }
 
     fn env<'a>(vars: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
         move |k| {

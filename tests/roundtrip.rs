@@ -188,6 +188,7 @@ proptest! {
                 background,
                 camera: Camera { projection: Projection::None, ..Camera::default() },
                 triangles,
+                ..Scene::default()
             };
             let frame = renderer.render(&scene, &opts(cols, rows, glyphs, depth)).clone();
             // A resize: the terminal changes size first, as a real one does.
@@ -225,7 +226,7 @@ fn spinning_square_in_half_mode_stays_within_budget() {
         &o,
         spin,
         60,
-        &mut Encoder::new(ColorDepth::TrueColor),
+        Encoder::new(ColorDepth::TrueColor),
         &mut bytes,
     )
     .unwrap();

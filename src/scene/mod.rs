@@ -26,9 +26,33 @@
 //! colour is white. With `projection = "none"` vertices are already in the
 //! canonical cube (x right, y up, larger z nearer).
 //!
+//! Meshes and lights:
+//!
+//! ```toml
+//! [[mesh]]
+//! path = "models/fox.obj"         # .obj (with its .mtl) or .stl, relative to the scene file
+//! # shape = "torus"               # or a built-in shape instead of a path
+//! color = "#cccccc"               # used where the file gives no colour
+//! translate = [0.0, 0.0, 0.0]
+//! rotate = [0.0, 30.0, 0.0]       # degrees about x, y, z
+//! scale = 1.0
+//! cull = "back"                   # "none" | "back" | "front"
+//!
+//! [[light]]
+//! direction = [-1.0, -1.0, -1.0]  # the direction the light travels
+//! color = "#ffffff"
+//! ambient = 0.15
+//! ```
+//!
 //! Parsing is strict: unknown keys, wrong types, a colour that is not
 //! `#rrggbb`, non-finite numbers and impossible cameras are errors that
-//! name the file, line and column.
+//! name the file, line and column. Mesh files' own errors name their file
+//! and line.
+
+pub mod mesh;
+pub mod obj;
+pub mod shapes;
+pub mod stl;
 
 use std::path::Path;
 
@@ -36,18 +60,25 @@ use glam::{Mat4, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
 
+pub use mesh::{Light, Mesh};
+pub use shapes::Shape;
+
 use crate::color::Rgb;
 use crate::error::{Error, Result};
+use crate::raster::Cull;
 use crate::transform::{self, Frustum};
 
-/// Everything there is to draw, in world coordinates.
-#[derive(Clone, Debug, PartialEq)]
+/// Everything there is to draw, in world coordinates. `Scene::default()`
+/// is empty, seen by the default camera.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     /// The colour of uncovered samples; `None` keeps the terminal's own.
     pub background: Option<Rgb>,
     pub camera: Camera,
-    /// Loose triangles, drawn in order (later over earlier).
+    /// Loose triangles, never culled.
     pub triangles: Vec<Triangle>,
+    pub meshes: Vec<Mesh>,
+    pub lights: Vec<Light>,
 }
 
 /// A triangle and its colouring.
@@ -176,15 +207,76 @@ impl Camera {
     }
 }
 
+/// The colour of a mesh whose file gives none.
+pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);
+
 impl Scene {
+    /// A scene of one model, centred and scaled to fit the view, lit from
+    /// the upper right: what `rastty spin MODEL` shows.
+    pub fn of_mesh(mut mesh: Mesh) -> Scene {
+        mesh.fit_unit_sphere();
+        Scene {
+            background: None,
+            camera: Camera {
+                eye: Vec3::new(0.0, 0.0, 3.2),
+                ..Camera::default()
+            },
+            triangles: Vec::new(),
+            meshes: vec![mesh],
+            lights: vec![Light::default()],
+        }
+    }
+
+    /// A model file (`.obj` or `.stl`) or, when `name` is one, a built-in
+    /// shape, as [`Scene::of_mesh`].
+    pub fn of_model(name: &Path) -> Result<Scene> {
+        Ok(Scene::of_mesh(load_mesh(name, DEFAULT_MESH_COLOR)?))
+    }
+
+    /// Whether `path` names a model rather than a scene file: an `.obj` or
+    /// `.stl` extension, or a built-in shape's name.
+    pub fn is_model(path: &Path) -> bool {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        matches!(ext.as_deref(), Some("obj" | "stl"))
+            || (!path.exists() && path.to_str().and_then(Shape::from_name).is_some())
+    }
+
+    /// A scene file or a model, told apart by [`Scene::is_model`].
+    pub fn open(path: &Path) -> Result<Scene> {
+        if Scene::is_model(path) {
+            Scene::of_model(path)
+        } else {
+            Scene::load(path)
+        }
+    }
+
+    /// The number of triangles, loose and in meshes.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len() + self.meshes.iter().map(|m| m.faces.len()).sum::<usize>()
+    }
+
     /// Reads and parses a scene file.
     pub fn load(path: &Path) -> Result<Scene> {
-        let src = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        Scene::parse(&src, &path.display().to_string())
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        let name = path.display().to_string();
+        let src = String::from_utf8(bytes).map_err(|e| {
+            let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            Error::parse_at(&name, &text, e.utf8_error().valid_up_to(), "not UTF-8 text")
+        })?;
+        Scene::parse_in(&src, &name, path.parent())
     }
 
     /// Parses a scene from TOML text; `name` is used in error messages.
+    /// Mesh paths are taken relative to the current directory.
     pub fn parse(src: &str, name: &str) -> Result<Scene> {
+        Scene::parse_in(src, name, None)
+    }
+
+    /// Parses a scene whose mesh paths are relative to `dir`.
+    pub fn parse_in(src: &str, name: &str, dir: Option<&Path>) -> Result<Scene> {
         let def: SceneDef = toml::from_str(src).map_err(|e| {
             let offset = e.span().map_or(0, |s| s.start);
             Error::parse_at(name, src, offset, e.message().trim_end())
@@ -224,11 +316,96 @@ impl Scene {
                 color,
             });
         }
+        let mut meshes = Vec::with_capacity(def.mesh.len());
+        for m in def.mesh {
+            let span = m.span();
+            let m = m.into_inner();
+            let finite = Vec3::from(m.translate).is_finite()
+                && Vec3::from(m.rotate).is_finite()
+                && m.scale.vec().is_finite();
+            if !finite {
+                return Err(at(
+                    span,
+                    "mesh translate, rotate and scale must be finite numbers".into(),
+                ));
+            }
+            let color = m.color.unwrap_or(DEFAULT_MESH_COLOR);
+            let mut mesh = match (&m.path, &m.shape) {
+                (Some(p), None) => {
+                    let p = dir.map_or_else(|| Path::new(p).to_path_buf(), |d| d.join(p));
+                    load_mesh(&p, color)?
+                }
+                (None, Some(s)) => Shape::from_name(s)
+                    .ok_or_else(|| {
+                        at(
+                            span.clone(),
+                            format!(
+                                "unknown shape {s:?}: expected \"cube\", \"sphere\" or \"torus\""
+                            ),
+                        )
+                    })?
+                    .mesh(color),
+                _ => {
+                    return Err(at(
+                        span,
+                        "a mesh takes `path` or `shape`, exactly one".into(),
+                    ));
+                }
+            };
+            mesh.model =
+                transform::model(m.scale.vec(), Vec3::from(m.rotate), Vec3::from(m.translate));
+            mesh.cull = m.cull.into();
+            meshes.push(mesh);
+        }
+        let mut lights = Vec::with_capacity(def.light.len());
+        for l in def.light {
+            let span = l.span();
+            let l = l.into_inner();
+            let d = Vec3::from(l.direction);
+            if !d.is_finite() || d.length_squared() == 0.0 {
+                return Err(at(
+                    span,
+                    "light direction must be a finite, non-zero vector".into(),
+                ));
+            }
+            if !(0.0..=1.0).contains(&l.ambient) {
+                return Err(at(
+                    span,
+                    format!("light ambient must be between 0 and 1, not {}", l.ambient),
+                ));
+            }
+            lights.push(Light {
+                direction: d.normalize(),
+                color: l.color,
+                ambient: l.ambient,
+            });
+        }
         Ok(Scene {
             background: def.background,
             camera,
             triangles,
+            meshes,
+            lights,
         })
+    }
+}
+
+/// Loads a mesh file by its extension, or a built-in shape by its name.
+pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("obj") => obj::load(path, color),
+        Some("stl") => stl::load(path, color),
+        _ => match path.to_str().and_then(Shape::from_name) {
+            Some(shape) if !path.exists() => Ok(shape.mesh(color)),
+            _ => Err(Error::Invalid(format!(
+                "{}: not a model: expected a .obj or .stl file, or one of cube, sphere, torus",
+                path.display()
+            ))),
+        },
     }
 }
 
@@ -239,6 +416,86 @@ struct SceneDef {
     camera: Option<Spanned<CameraDef>>,
     #[serde(default)]
     triangle: Vec<Spanned<TriangleDef>>,
+    #[serde(default)]
+    mesh: Vec<Spanned<MeshDef>>,
+    #[serde(default)]
+    light: Vec<Spanned<LightDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshDef {
+    path: Option<String>,
+    shape: Option<String>,
+    color: Option<Rgb>,
+    #[serde(default)]
+    translate: [f32; 3],
+    #[serde(default)]
+    rotate: [f32; 3],
+    #[serde(default)]
+    scale: ScaleDef,
+    #[serde(default)]
+    cull: CullDef,
+}
+
+/// `scale = 2.0` or `scale = [1.0, 2.0, 1.0]`.
+#[derive(Deserialize, Clone, Copy)]
+#[serde(untagged)]
+enum ScaleDef {
+    Uniform(f32),
+    Axes([f32; 3]),
+}
+
+impl Default for ScaleDef {
+    fn default() -> Self {
+        ScaleDef::Uniform(1.0)
+    }
+}
+
+impl ScaleDef {
+    fn vec(self) -> Vec3 {
+        match self {
+            ScaleDef::Uniform(s) => Vec3::splat(s),
+            ScaleDef::Axes(a) => Vec3::from(a),
+        }
+    }
+}
+
+#[derive(Deserialize, Clone, Copy, Default)]
+#[serde(rename_all = "lowercase")]
+enum CullDef {
+    None,
+    #[default]
+    Back,
+    Front,
+}
+
+impl From<CullDef> for Cull {
+    fn from(c: CullDef) -> Cull {
+        match c {
+            CullDef::None => Cull::None,
+            CullDef::Back => Cull::Back,
+            CullDef::Front => Cull::Front,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDef {
+    direction: [f32; 3],
+    #[serde(default = "white")]
+    color: Rgb,
+    #[serde(default = "default_ambient")]
+    ambient: f32,
+}
+
+fn white() -> Rgb {
+    Rgb::WHITE
+}
+
+fn default_ambient() -> f32 {
+    0.15
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -319,7 +576,7 @@ mod tests {
 
     #[test]
     fn parses_the_documented_example() {
-        let src = include_str!("../examples/scenes/triangle.toml");
+        let src = include_str!("../../examples/scenes/triangle.toml");
         let s = Scene::parse(src, "triangle.toml").unwrap();
         assert_eq!(s.background, Some(Rgb::BLACK));
         assert_eq!(s.triangles.len(), 1);

@@ -1,0 +1,149 @@
+//! Built-in shapes, counter-clockwise seen from outside, unit-sized.
+
+use std::f32::consts::TAU;
+
+use glam::Vec3;
+
+use super::mesh::Mesh;
+use crate::color::Rgb;
+
+/// A built-in shape.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// A cube with edges of length 1.2, each face its own four vertices (so
+    /// its normals stay sharp).
+    Cube,
+    /// A UV sphere of radius 1.
+    Sphere,
+    /// A torus of radii 0.7 and 0.3 about the y axis: the default model.
+    #[default]
+    Torus,
+}
+
+impl Shape {
+    pub const ALL: [Shape; 3] = [Shape::Cube, Shape::Sphere, Shape::Torus];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Cube => "cube",
+            Shape::Sphere => "sphere",
+            Shape::Torus => "torus",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Shape> {
+        Shape::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    pub fn mesh(self, color: Rgb) -> Mesh {
+        let (positions, faces) = match self {
+            Shape::Cube => cube(),
+            Shape::Sphere => grid(48, 24, |u, v| {
+                let (theta, phi) = (u * TAU, v * std::f32::consts::PI);
+                // Exactly on the poles (sin π is not 0 in f32), so that the
+                // pole triangles are exactly degenerate and dropped below.
+                let ring = if v == 0.0 || v == 1.0 { 0.0 } else { phi.sin() };
+                Vec3::new(ring * theta.cos(), -phi.cos(), -ring * theta.sin())
+            }),
+            Shape::Torus => grid(64, 32, |u, v| {
+                let (theta, phi) = (u * TAU, v * TAU);
+                let r = 0.7 + 0.3 * phi.cos();
+                Vec3::new(r * theta.cos(), 0.3 * phi.sin(), -r * theta.sin())
+            }),
+        };
+        Mesh::new(self.name(), positions, faces, color)
+    }
+}
+
+fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let h = 0.6;
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    // Each face: its normal and two in-plane axes (u × v = normal).
+    for n in [
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::Y,
+        Vec3::NEG_Y,
+        Vec3::Z,
+        Vec3::NEG_Z,
+    ] {
+        let u = if n.x != 0.0 {
+            Vec3::Y
+        } else {
+            Vec3::X * n.y.abs() + Vec3::Y * n.z.abs()
+        };
+        let u = if n.y != 0.0 { Vec3::Z } else { u };
+        let v = n.cross(u);
+        let base = positions.len() as u32;
+        for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            positions.push((n + u * a + v * b) * h);
+        }
+        faces.push([base, base + 1, base + 2]);
+        faces.push([base, base + 2, base + 3]);
+    }
+    (positions, faces)
+}
+
+/// A `nu × nv` grid of quads wrapped by `f(u, v)` over [0,1)², with the seam
+/// (and, for the sphere, the poles) sharing vertices.
+fn grid(nu: u32, nv: u32, f: impl Fn(f32, f32) -> Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    for j in 0..=nv {
+        for i in 0..nu {
+            positions.push(f(i as f32 / nu as f32, j as f32 / nv as f32));
+        }
+    }
+    let at = |i: u32, j: u32| j * nu + i % nu;
+    let mut faces = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            faces.push([a, b, c]);
+            faces.push([a, c, d]);
+        }
+    }
+    // Triangles with two corners on a pole have no area: leave them out.
+    let p = &positions;
+    faces.retain(|f| {
+        let [a, b, c] = f.map(|i| p[i as usize]);
+        a != b && b != c && c != a
+    });
+    (positions, faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_face_outwards() {
+        for shape in Shape::ALL {
+            let m = shape.mesh(Rgb::WHITE);
+            let mut outward = 0;
+            let mut total = 0;
+            for f in &m.faces {
+                let [a, b, c] = f.map(|i| m.positions[i as usize]);
+                let n = (b - a).cross(c - a);
+                assert!(n.length() > 1e-6, "{shape:?}: a degenerate face");
+                total += 1;
+                let centre = (a + b + c) / 3.0;
+                // Outward: away from the centre of the cube and sphere, away
+                // from the torus's core circle.
+                let core = if shape == Shape::Torus {
+                    Vec3::new(centre.x, 0.0, centre.z).normalize() * 0.7
+                } else {
+                    Vec3::ZERO
+                };
+                if n.dot(centre - core) > 0.0 {
+                    outward += 1;
+                }
+            }
+            assert_eq!(outward, total, "{shape:?}");
+            assert!(
+                m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4),
+                "{shape:?}"
+            );
+        }
+    }
+}
