@@ -62,8 +62,7 @@ impl Fixed {
     /// zero). `None` for NaN, infinity, or a magnitude beyond [`MAX_COORD`].
     pub fn snap(v: f32) -> Option<Fixed> {
         if v.is_finite() && v.abs() <= MAX_COORD {
-            // v·256 is exact in f32 (a power-of-two scale, no overflow).
-            Some(Fixed((v * ONE as f32).round() as i64))
+            Some(Fixed(round_half_away(v * ONE as f32)))
         } else {
             None
         }
@@ -77,6 +76,18 @@ impl Fixed {
     pub fn to_f32(self) -> f32 {
         self.0 as f32 / ONE as f32
     }
+}
+
+/// `s` rounded to the nearest integer, ties away from zero, as
+/// `f32::round` does but without its library call (x86-64's baseline has no
+/// rounding instruction). Exact: `s · 256` is exact in f32 (a power-of-two
+/// scale), truncation is exact, and so is `s − trunc(s)`, a difference of
+/// two floats less than 1 apart in the same binade or below.
+#[inline(always)]
+fn round_half_away(s: f32) -> i64 {
+    let t = s as i64;
+    let frac = s - t as f32;
+    t + (frac >= 0.5) as i64 - (frac <= -0.5) as i64
 }
 
 /// A snapped point on the sample grid.
@@ -450,6 +461,26 @@ mod tests {
             out[(y * grid.width + x) as usize] += 1
         });
         out
+    }
+
+    #[test]
+    fn fast_rounding_is_f32_round() {
+        let mut x = 0x1234_5678u32;
+        for _ in 0..100_000 {
+            // xorshift over coordinates within the accepted range.
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let v = (x as f32 / u32::MAX as f32 - 0.5) * 2.0 * MAX_COORD;
+            for s in [v * ONE as f32, (v * 8.0).round() / 16.0] {
+                assert_eq!(round_half_away(s), s.round() as i64, "{s}");
+            }
+        }
+        for s in [
+            0.5f32, -0.5, 1.5, -1.5, 2.4999998, -2.4999998, 8388607.5, -8388607.5, 0.0, -0.0,
+        ] {
+            assert_eq!(round_half_away(s), s.round() as i64, "{s}");
+        }
     }
 
     #[test]

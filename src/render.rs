@@ -32,7 +32,7 @@ use crate::clip::{ClipVertex, Clipped, Clipper, Polygon};
 use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
-use crate::raster::{Cull, Grid, RasterStats, Setup, Traversal};
+use crate::raster::{Cull, FixedPoint, Grid, RasterStats, Rejected, Setup, Traversal};
 use crate::scene::{Light, Projection, Scene};
 use crate::shade::{self, Shading};
 use crate::transform;
@@ -109,13 +109,21 @@ struct Vert {
     /// Position and unit normal in the turned world (where lights live).
     world: Vec3,
     normal: Vec3,
+    /// The light reaching the front of the vertex (smooth shading only).
+    light: Vec3,
     /// Clip outcode: 0 when inside every plane (then the fields below are
     /// valid).
     code: u8,
     xy: [f32; 2],
+    /// `xy` snapped, once per vertex rather than once per triangle.
+    fixed: FixedPoint,
     z: f32,
     inv_w: f32,
 }
+
+/// An outcode bit of no clip plane: the vertex is inside them all but its
+/// screen position could not be snapped, so it takes the clip path.
+const UNSNAPPED: u8 = 1 << 7;
 
 /// A triangle after the divide: screen positions in samples, depth, `1/w`,
 /// colours.
@@ -129,7 +137,7 @@ struct ScreenTriangle {
 /// Per-frame constants of the vertex and triangle stages.
 struct Stage<'a> {
     clipper: Clipper,
-    viewport: Mat4,
+    viewport: transform::Viewport,
     lights: &'a [Light],
     shading: Shading,
     traversal: Traversal,
@@ -197,7 +205,7 @@ impl Renderer {
         let lit = opts.shading != Shading::None && !scene.lights.is_empty();
         let stage = Stage {
             clipper: Clipper::new(grid.width, grid.height),
-            viewport: transform::viewport(grid.width as f32, grid.height as f32),
+            viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
             lights: if lit { &scene.lights } else { &[] },
             shading: if lit { opts.shading } else { Shading::None },
             traversal: opts.traversal,
@@ -208,14 +216,17 @@ impl Renderer {
             let model = turn * mesh.model;
             self.vertex_stage(&stage, vp * model, model, &mesh.positions, &mesh.normals);
             let cull = opts.cull.unwrap_or(mesh.cull);
+            // Borrowed out of `self` for the loop, and put back.
+            let verts = std::mem::take(&mut self.verts);
             for (f, face) in mesh.faces.iter().enumerate() {
-                let v = face.map(|i| self.verts[i as usize]);
+                let v = face.map(|i| &verts[i as usize]);
                 let base = match &mesh.colors {
                     Some(c) => face.map(|i| c[i as usize]),
                     None => [mesh.face_colors[f]; 3],
                 };
                 self.triangle(&stage, v, base, cull);
             }
+            self.verts = verts;
         }
         let cull = opts.cull.unwrap_or(Cull::None);
         for tri in &scene.triangles {
@@ -223,8 +234,14 @@ impl Renderer {
                 .cross(tri.vertices[2] - tri.vertices[0])
                 .normalize_or_zero();
             self.vertex_stage(&stage, vp * turn, turn, &tri.vertices, &[normal; 3]);
-            let v = [self.verts[0], self.verts[1], self.verts[2]];
-            self.triangle(&stage, v, tri.color.at_vertices(), cull);
+            let verts = std::mem::take(&mut self.verts);
+            self.triangle(
+                &stage,
+                [&verts[0], &verts[1], &verts[2]],
+                tri.color.at_vertices(),
+                cull,
+            );
+            self.verts = verts;
         }
         blit::blit(
             &self.fb,
@@ -246,70 +263,71 @@ impl Renderer {
         normals: &[Vec3],
     ) {
         let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
+        let smooth = stage.shading == Shading::Smooth;
         self.verts.clear();
         self.stats.vertices += positions.len() as u64;
+        if smooth {
+            self.stats.lighting_evaluations += positions.len() as u64;
+        }
         self.verts
             .extend(positions.iter().zip(normals).map(|(&p, &n)| {
                 let clip = mvp * p.extend(1.0);
                 let code = stage.clipper.outcode(clip);
+                let normal = (normal_matrix * n).normalize_or_zero();
                 let mut v = Vert {
                     clip,
                     world: model.transform_point3(p),
-                    normal: (normal_matrix * n).normalize_or_zero(),
+                    normal,
                     code,
                     ..Vert::default()
                 };
+                if smooth {
+                    v.light = shade::lambert(normal, stage.lights);
+                }
                 if code == 0 {
                     v.inv_w = 1.0 / clip.w;
-                    let s =
-                        stage.viewport * Vec4::new(clip.x * v.inv_w, clip.y * v.inv_w, 0.0, 1.0);
-                    v.xy = [s.x, s.y];
+                    v.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
                     v.z = clip.z * v.inv_w;
+                    match FixedPoint::snap(v.xy) {
+                        Some(f) => v.fixed = f,
+                        // Cannot happen inside the guard band; if it did, the
+                        // clip path deals with it.
+                        None => v.code = UNSNAPPED,
+                    }
                 }
                 v
             }));
     }
 
-    /// Lights, clips if it must, and rasterizes one triangle.
-    fn triangle(&mut self, stage: &Stage, v: [Vert; 3], base: [Rgb; 3], cull: Cull) {
+    /// Sets up, lights, clips if it must, and rasterizes one triangle.
+    fn triangle(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], cull: Cull) {
         self.stats.triangles_in += 1;
         if v[0].code & v[1].code & v[2].code != 0 {
             self.stats.clip_rejected += 1;
             return;
         }
-        let base = base.map(|c| Vec3::from(c.to_f32()));
-        let color = match stage.shading {
-            Shading::None => base,
-            shading => {
-                let face = (v[1].world - v[0].world)
-                    .cross(v[2].world - v[0].world)
-                    .normalize_or_zero();
-                // Two-sided: light the side that is seen.
-                let side = if face.dot(stage.eye.to_eye(v[0].world)) < 0.0 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                if shading == Shading::Flat {
-                    self.stats.lighting_evaluations += 1;
-                    let light = shade::lambert(face * side, stage.lights);
-                    base.map(|b| b * light)
-                } else {
-                    self.stats.lighting_evaluations += 3;
-                    [0, 1, 2].map(|i| base[i] * shade::lambert(v[i].normal * side, stage.lights))
-                }
-            }
-        };
         if v[0].code | v[1].code | v[2].code == 0 {
+            // Inside every clip plane: set up first, so that culled
+            // triangles and those covering no sample are never lit.
+            let Some(setup) =
+                self.setup(Setup::from_fixed(v.map(|v| v.fixed), self.fb.grid(), cull))
+            else {
+                return;
+            };
             let screen = ScreenTriangle {
                 xy: v.map(|v| v.xy),
                 z: v.map(|v| v.z),
                 inv_w: v.map(|v| v.inv_w),
-                color,
+                color: self.shade(stage, v, base, !setup.ccw),
             };
-            self.raster(&screen, cull, stage.traversal);
+            self.fill(&setup, &screen, stage.traversal);
             return;
         }
+        // Clipped: lit before clipping (colours are interpolated along the
+        // cut edges), facing told in the world.
+        let face = (v[1].world - v[0].world).cross(v[2].world - v[0].world);
+        let back = face.dot(stage.eye.to_eye(v[0].world)) < 0.0;
+        let color = self.shade(stage, v, base, back);
         let verts = [0, 1, 2].map(|i| ClipVertex {
             pos: v[i].clip,
             color: color[i],
@@ -321,24 +339,57 @@ impl Renderer {
                 self.stats.clipped += 1;
                 for tri in poly.triangles() {
                     let screen = to_screen(&tri, &stage.viewport);
-                    self.raster(&screen, cull, stage.traversal);
+                    if let Some(setup) = self.setup(Setup::new(screen.xy, self.fb.grid(), cull)) {
+                        self.fill(&setup, &screen, stage.traversal);
+                    }
                 }
             }
         }
         self.poly = poly;
     }
 
-    fn raster(&mut self, t: &ScreenTriangle, cull: Cull, traversal: Traversal) {
-        let grid = self.fb.grid();
-        let setup = match Setup::new(t.xy, grid, cull) {
-            Ok(s) => s,
+    /// The triangle's colour at each vertex. `back`: seen from behind, so
+    /// lit on its other side (two-sided lighting).
+    fn shade(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], back: bool) -> [Vec3; 3] {
+        let base = base.map(|c| Vec3::from(c.to_f32()));
+        let side = if back { -1.0 } else { 1.0 };
+        match stage.shading {
+            Shading::None => base,
+            Shading::Flat => {
+                self.stats.lighting_evaluations += 1;
+                let face = (v[1].world - v[0].world)
+                    .cross(v[2].world - v[0].world)
+                    .normalize_or_zero();
+                let light = shade::lambert(face * side, stage.lights);
+                base.map(|b| b * light)
+            }
+            Shading::Smooth if back => {
+                self.stats.lighting_evaluations += 3;
+                [0, 1, 2].map(|i| base[i] * shade::lambert(-v[i].normal, stage.lights))
+            }
+            Shading::Smooth => [0, 1, 2].map(|i| base[i] * v[i].light),
+        }
+    }
+
+    /// A set-up screen triangle, counted; `None` when it was rejected or
+    /// covers no sample.
+    fn setup(&mut self, setup: Result<Setup, Rejected>) -> Option<Setup> {
+        match setup {
+            Ok(s) => {
+                self.stats.raster.triangles_drawn += 1;
+                (s.bbox_samples() > 0).then_some(s)
+            }
             Err(r) => {
                 self.stats.raster.count_rejected(r);
-                return;
+                None
             }
-        };
+        }
+    }
+
+    /// Walks a set-up triangle, depth-testing and writing its samples.
+    fn fill(&mut self, setup: &Setup, t: &ScreenTriangle, traversal: Traversal) {
+        let grid = self.fb.grid();
         let stats = &mut self.stats;
-        stats.raster.triangles_drawn += 1;
         let fb = &mut self.fb;
         let mut covered = 0u64;
         let inv_area = 1.0 / setup.area2 as f32;
@@ -392,15 +443,14 @@ impl Renderer {
     }
 }
 
-fn to_screen(tri: &[ClipVertex; 3], viewport: &Mat4) -> ScreenTriangle {
+fn to_screen(tri: &[ClipVertex; 3], viewport: &transform::Viewport) -> ScreenTriangle {
     let mut xy = [[0.0; 2]; 3];
     let mut z = [0.0; 3];
     let mut inv_w = [0.0; 3];
     for (i, v) in tri.iter().enumerate() {
         let p = v.pos;
         inv_w[i] = 1.0 / p.w;
-        let s = *viewport * Vec4::new(p.x * inv_w[i], p.y * inv_w[i], 0.0, 1.0);
-        xy[i] = [s.x, s.y];
+        xy[i] = viewport.apply(p.x * inv_w[i], p.y * inv_w[i]);
         z[i] = p.z * inv_w[i];
     }
     ScreenTriangle {

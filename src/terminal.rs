@@ -138,6 +138,20 @@ pub enum Exit {
     Signal(i32),
 }
 
+/// Whether stdin has hung up (its terminal closed). crossterm (read through
+/// `/dev/tty`, its `use-dev-tty` source, which at least returns on an end
+/// of file) does not report it, so the loop asks once a frame.
+fn input_hung_up() -> bool {
+    let mut fd = libc::pollfd {
+        fd: libc::STDIN_FILENO,
+        events: libc::POLLIN,
+        revents: 0,
+    };
+    // SAFETY: one valid pollfd, a zero timeout.
+    let n = unsafe { libc::poll(&mut fd, 1, 0) };
+    n > 0 && fd.revents & (libc::POLLHUP | libc::POLLERR | libc::POLLNVAL) != 0
+}
+
 /// The command a key asks for.
 pub fn command_for(key: KeyEvent) -> Option<Command> {
     if key.kind != KeyEventKind::Press {
@@ -219,6 +233,11 @@ pub fn run(player: &mut Player, fps: u32, frames: Option<u64>) -> io::Result<Exi
         }
         let next = start + Duration::from_secs_f64((tick + 1) as f64 / fps);
         let wait = next.saturating_duration_since(Instant::now());
+        if input_hung_up() {
+            // The terminal is gone (a closed ssh link, a killed tmux) and
+            // no SIGHUP came.
+            return Ok(Exit::Signal(signal_hook::consts::SIGHUP));
+        }
         if event::poll(wait)? {
             let cmd = match event::read()? {
                 Event::Key(key) => command_for(key),

@@ -112,6 +112,30 @@ pub fn viewport(width: f32, height: f32) -> Mat4 {
     ])
 }
 
+/// `M_viewport` applied to a point of the canonical square, without the
+/// matrix product: the same sums (`width/2 · x + width/2`), so the result is
+/// bit for bit what the matrix gives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewport {
+    half_w: f32,
+    half_h: f32,
+}
+
+impl Viewport {
+    pub fn new(width: f32, height: f32) -> Viewport {
+        Viewport {
+            half_w: width / 2.0,
+            half_h: height / 2.0,
+        }
+    }
+
+    /// Canonical `(x, y)` to samples.
+    #[inline(always)]
+    pub fn apply(&self, x: f32, y: f32) -> [f32; 2] {
+        [self.half_w * x + self.half_w, self.half_h * y + self.half_h]
+    }
+}
+
 /// The view transform `M_view = R_view · T_view`: the eye to the origin,
 /// looking down −z with `up` along +y. This is exactly glam's right-handed
 /// `camera::rh::view::look_at_mat4`.
@@ -186,6 +210,21 @@ mod tests {
             m.transform_point3(Vec3::new(1.0, 1.0, -0.7)),
             Vec3::new(80.0, 48.0, -0.7)
         );
+    }
+
+    #[test]
+    fn viewport_struct_is_the_matrix_bit_for_bit() {
+        let m = viewport(83.0, 47.0);
+        let v = Viewport::new(83.0, 47.0);
+        for (x, y) in [
+            (-1.0, -1.0),
+            (0.3, -0.71),
+            (0.999_999, 0.123_456_7),
+            (1.7, -2.5),
+        ] {
+            let p = m * Vec4::new(x, y, 0.0, 1.0);
+            assert_eq!(v.apply(x, y), [p.x, p.y]);
+        }
     }
 
     #[test]
