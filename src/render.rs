@@ -33,8 +33,8 @@ use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
 use crate::raster::{Cull, FixedPoint, Grid, RasterStats, Rejected, Setup, Traversal};
-use crate::scene::{Light, Projection, Scene};
-use crate::shade::{self, Shading};
+use crate::scene::{Projection, Scene};
+use crate::shade::{Lights, Shading};
 use crate::transform;
 
 /// Everything about a frame that is not the scene.
@@ -135,10 +135,10 @@ struct ScreenTriangle {
 }
 
 /// Per-frame constants of the vertex and triangle stages.
-struct Stage<'a> {
+struct Stage {
     clipper: Clipper,
     viewport: transform::Viewport,
-    lights: &'a [Light],
+    lights: Lights,
     shading: Shading,
     traversal: Traversal,
     /// Where the viewer is, to tell which side of a face is seen: a point
@@ -206,7 +206,7 @@ impl Renderer {
         let stage = Stage {
             clipper: Clipper::new(grid.width, grid.height),
             viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
-            lights: if lit { &scene.lights } else { &[] },
+            lights: Lights::new(if lit { &scene.lights } else { &[] }),
             shading: if lit { opts.shading } else { Shading::None },
             traversal: opts.traversal,
             eye,
@@ -282,7 +282,7 @@ impl Renderer {
                     ..Vert::default()
                 };
                 if smooth {
-                    v.light = shade::lambert(normal, stage.lights);
+                    v.light = stage.lights.lambert(normal);
                 }
                 if code == 0 {
                     v.inv_w = 1.0 / clip.w;
@@ -360,12 +360,12 @@ impl Renderer {
                 let face = (v[1].world - v[0].world)
                     .cross(v[2].world - v[0].world)
                     .normalize_or_zero();
-                let light = shade::lambert(face * side, stage.lights);
+                let light = stage.lights.lambert(face * side);
                 base.map(|b| b * light)
             }
             Shading::Smooth if back => {
                 self.stats.lighting_evaluations += 3;
-                [0, 1, 2].map(|i| base[i] * shade::lambert(-v[i].normal, stage.lights))
+                [0, 1, 2].map(|i| base[i] * stage.lights.lambert(-v[i].normal))
             }
             Shading::Smooth => [0, 1, 2].map(|i| base[i] * v[i].light),
         }

@@ -27,17 +27,47 @@ impl Shading {
     pub const ALL: [Shading; 3] = [Shading::None, Shading::Flat, Shading::Smooth];
 }
 
-/// The light reaching a surface of unit normal `n`, per channel (1.0 is
-/// the full colour of one white light).
-#[inline]
-pub fn lambert(n: Vec3, lights: &[Light]) -> Vec3 {
-    let mut sum = Vec3::ZERO;
-    for l in lights {
-        let c = Vec3::from(l.color.to_f32()) / 255.0;
-        let direct = n.dot(-l.direction).max(0.0);
-        sum += c * (l.ambient + (1.0 - l.ambient) * direct);
+/// Most lights a scene may have.
+pub const MAX_LIGHTS: usize = 8;
+
+/// A scene's lights, ready for shading: towards the light, colour in
+/// [0, 1]. Fixed-size, so a frame sets it up without allocating.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Lights {
+    towards: [Vec3; MAX_LIGHTS],
+    color: [Vec3; MAX_LIGHTS],
+    ambient: [f32; MAX_LIGHTS],
+    len: usize,
+}
+
+impl Lights {
+    /// The first [`MAX_LIGHTS`] of `lights`.
+    pub fn new(lights: &[Light]) -> Lights {
+        let mut l = Lights::default();
+        for (i, light) in lights.iter().take(MAX_LIGHTS).enumerate() {
+            l.towards[i] = -light.direction;
+            l.color[i] = Vec3::from(light.color.to_f32()) / 255.0;
+            l.ambient[i] = light.ambient;
+        }
+        l.len = lights.len().min(MAX_LIGHTS);
+        l
     }
-    sum
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The light reaching a surface of unit normal `n`, per channel (1.0 is
+    /// the full colour of one white light).
+    #[inline]
+    pub fn lambert(&self, n: Vec3) -> Vec3 {
+        let mut sum = Vec3::ZERO;
+        for i in 0..self.len {
+            let direct = n.dot(self.towards[i]).max(0.0);
+            sum += self.color[i] * (self.ambient[i] + (1.0 - self.ambient[i]) * direct);
+        }
+        sum
+    }
 }
 
 #[cfg(test)]
@@ -52,10 +82,11 @@ mod tests {
             color: Rgb::WHITE,
             ambient: 0.2,
         };
-        assert_eq!(lambert(Vec3::Z, &[light]), Vec3::ONE);
-        assert_eq!(lambert(Vec3::NEG_Z, &[light]), Vec3::splat(0.2));
-        let half = lambert(Vec3::new(0.0, 0.6, 0.8), &[light]);
+        let lights = Lights::new(&[light]);
+        assert_eq!(lights.lambert(Vec3::Z), Vec3::ONE);
+        assert_eq!(lights.lambert(Vec3::NEG_Z), Vec3::splat(0.2));
+        let half = lights.lambert(Vec3::new(0.0, 0.6, 0.8));
         assert!((half.x - (0.2 + 0.8 * 0.8)).abs() < 1e-6);
-        assert_eq!(lambert(Vec3::Z, &[]), Vec3::ZERO);
+        assert_eq!(Lights::new(&[]).lambert(Vec3::Z), Vec3::ZERO);
     }
 }

@@ -357,6 +357,12 @@ impl Scene {
             mesh.cull = m.cull.into();
             meshes.push(mesh);
         }
+        if let Some(extra) = def.light.get(crate::shade::MAX_LIGHTS) {
+            return Err(at(
+                extra.span(),
+                format!("at most {} lights", crate::shade::MAX_LIGHTS),
+            ));
+        }
         let mut lights = Vec::with_capacity(def.light.len());
         for l in def.light {
             let span = l.span();
