@@ -41,6 +41,10 @@ pub struct RenderArgs {
     pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
+    /// After the frame, print the plan to stderr: each stage, run or
+    /// skipped, why, what it did and how long it took
+    #[arg(long)]
+    pub explain: bool,
 }
 
 #[derive(Args, Debug, Default)]
@@ -110,6 +114,10 @@ pub struct ViewArgs {
     /// How the rasterizer walks samples (all give the same picture)
     #[arg(long, value_enum, default_value_t = Traversal::Incremental)]
     pub traversal: Traversal,
+    /// Run every pipeline stage on every primitive, even those the scene
+    /// does not need (the same picture, slower: for comparison)
+    #[arg(long)]
+    pub full_pipeline: bool,
 }
 
 impl ViewArgs {

@@ -32,14 +32,17 @@ impl Framebuffer {
         self.grid
     }
 
-    /// Clears every sample to the background and every depth to −∞,
-    /// resizing if the grid changed (the only time it allocates).
-    pub fn reset(&mut self, grid: Grid) {
+    /// Clears every sample to the background and, with `depth`, every depth
+    /// to −∞ (a frame without a depth test leaves the depth buffer alone);
+    /// resizes if the grid changed (the only time it allocates).
+    pub fn reset(&mut self, grid: Grid, depth: bool) {
         self.grid = grid;
         self.samples.clear();
         self.samples.resize(grid.len(), None);
-        self.depth.clear();
-        self.depth.resize(grid.len(), f32::NEG_INFINITY);
+        if depth || self.depth.len() != grid.len() {
+            self.depth.clear();
+            self.depth.resize(grid.len(), f32::NEG_INFINITY);
+        }
     }
 
     #[inline(always)]
@@ -67,6 +70,18 @@ impl Framebuffer {
         } else {
             false
         }
+    }
+
+    /// Writes `c` if nothing was drawn on the sample yet: what the depth
+    /// test does for primitives of equal depth. Returns whether it wrote.
+    #[inline(always)]
+    pub fn set_if_empty(&mut self, x: u32, y: u32, c: Rgb) -> bool {
+        let i = self.index(x, y);
+        let empty = self.samples[i].is_none();
+        if empty {
+            self.samples[i] = Some(c);
+        }
+        empty
     }
 
     #[inline(always)]

@@ -49,6 +49,7 @@ pub mod encode;
 pub mod error;
 pub mod frame;
 pub mod framebuffer;
+pub mod plan;
 pub mod raster;
 pub mod render;
 pub mod scene;

@@ -11,6 +11,7 @@ use clap::Parser as _;
 use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
 use rastty::animate::{self, Player, Spin};
 use rastty::encode::Encoder;
+use rastty::plan::Pipeline;
 use rastty::terminal::{self, Exit};
 use rastty::{RenderOptions, Renderer, Scene, encode};
 
@@ -92,9 +93,18 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     let frame = renderer.render(&scene, &opts);
     let mut stdout = io::stdout().lock();
     let mut buf = Vec::new();
+    let start = std::time::Instant::now();
     encode::write_lines(frame, opts.color, args.view.rep(), &mut buf, &mut stdout)
         .and_then(|()| stdout.flush())
-        .map_err(stdout_error)
+        .map_err(stdout_error)?;
+    if args.explain {
+        let encode = start.elapsed();
+        eprint!(
+            "{}",
+            rastty::plan::explain(&scene, &opts, &renderer, encode, buf.len())
+        );
+    }
+    Ok(())
 }
 
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
@@ -157,5 +167,10 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
         shading: view.shading,
         cull: view.cull,
+        pipeline: if view.full_pipeline {
+            Pipeline::Full
+        } else {
+            Pipeline::Planned
+        },
     }
 }

@@ -25,6 +25,8 @@
 //! renormalised. A triangle of one colour is written without any
 //! interpolation.
 
+use std::time::{Duration, Instant};
+
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
 use crate::blit::{self, GlyphMode};
@@ -32,6 +34,7 @@ use crate::clip::{ClipVertex, Clipped, Clipper, Polygon};
 use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
+use crate::plan::{self, Pipeline, Plan};
 use crate::raster::{Cull, FixedPoint, Grid, RasterStats, Rejected, Setup, Traversal};
 use crate::scene::{Projection, Scene};
 use crate::shade::{Lights, Shading};
@@ -56,6 +59,8 @@ pub struct RenderOptions {
     /// Culling for everything, overriding each mesh's own (`None`: meshes
     /// cull as their scene says, loose triangles never).
     pub cull: Option<Cull>,
+    /// Whether the planner may skip stages the scene does not need.
+    pub pipeline: Pipeline,
 }
 
 impl Default for RenderOptions {
@@ -70,6 +75,7 @@ impl Default for RenderOptions {
             turn: Vec3::ZERO,
             shading: Shading::default(),
             cull: None,
+            pipeline: Pipeline::default(),
         }
     }
 }
@@ -99,7 +105,24 @@ pub struct FrameStats {
     pub depth_tests: u64,
     /// Samples whose colour was interpolated (not a flat write).
     pub interpolated_samples: u64,
+    /// Of those, samples interpolated through `1/w`.
+    pub perspective_samples: u64,
+    /// Vertices tested against the clip planes.
+    pub clip_tests: u64,
     pub raster: RasterStats,
+}
+
+/// Where one frame's time went (wall clock; kept apart from
+/// [`FrameStats`], which is deterministic).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameTimes {
+    pub plan: Duration,
+    /// Transforms, clip tests and per-vertex lighting.
+    pub vertices: Duration,
+    /// Setup, clipping, per-face lighting, traversal, depth tests,
+    /// interpolation and writes.
+    pub triangles: Duration,
+    pub blit: Duration,
 }
 
 /// A vertex after the vertex stage.
@@ -141,6 +164,11 @@ struct Stage {
     lights: Lights,
     shading: Shading,
     traversal: Traversal,
+    /// From the plan: depth-test; interpolate through 1/w; the full
+    /// pipeline (light before culling, interpolate one-colour triangles).
+    depth: bool,
+    perspective: bool,
+    full: bool,
     /// Where the viewer is, to tell which side of a face is seen: a point
     /// (perspective) or a direction towards the viewer (parallel views).
     eye: Eye,
@@ -169,6 +197,8 @@ pub struct Renderer {
     verts: Vec<Vert>,
     poly: Polygon,
     stats: FrameStats,
+    plan: Option<Plan>,
+    times: FrameTimes,
 }
 
 impl Default for Renderer {
@@ -185,17 +215,30 @@ impl Renderer {
             verts: Vec::new(),
             poly: Polygon::default(),
             stats: FrameStats::default(),
+            plan: None,
+            times: FrameTimes::default(),
         }
     }
 
     /// Renders `scene` and returns the frame.
     pub fn render(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
         let grid = opts.glyphs.grid(opts.cols, opts.rows);
-        self.fb.reset(grid);
         self.stats = FrameStats::default();
+        self.times = FrameTimes::default();
+        let mut clock = Instant::now();
+        let mut lap = move || {
+            let now = Instant::now();
+            let t = now - clock;
+            clock = now;
+            t
+        };
 
         let turn = transform::rotation(opts.turn);
         let vp = scene.camera.view_projection(opts.aspect());
+        let clipper = Clipper::new(grid.width, grid.height);
+        let p = plan::plan(scene, opts, vp, turn, &clipper);
+        self.plan = Some(p);
+        self.fb.reset(grid, p.depth.run);
         let cam = &scene.camera;
         let eye = match cam.projection {
             Projection::Perspective { .. } => Eye::At(cam.eye),
@@ -204,7 +247,10 @@ impl Renderer {
         };
         let lit = opts.shading != Shading::None && !scene.lights.is_empty();
         let stage = Stage {
-            clipper: Clipper::new(grid.width, grid.height),
+            clipper,
+            depth: p.depth.run,
+            perspective: p.perspective.run,
+            full: p.full,
             viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
             lights: Lights::new(if lit { &scene.lights } else { &[] }),
             shading: if lit { opts.shading } else { Shading::None },
@@ -212,9 +258,20 @@ impl Renderer {
             eye,
         };
 
+        self.times.plan += lap();
         for mesh in &scene.meshes {
             let model = turn * mesh.model;
-            self.vertex_stage(&stage, vp * model, model, &mesh.positions, &mesh.normals);
+            let tests =
+                p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.shape.bounds);
+            self.vertex_stage(
+                &stage,
+                vp * model,
+                model,
+                &mesh.positions,
+                &mesh.normals,
+                tests,
+            );
+            self.times.vertices += lap();
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
@@ -227,13 +284,21 @@ impl Renderer {
                 self.triangle(&stage, v, base, cull);
             }
             self.verts = verts;
+            self.times.triangles += lap();
         }
         let cull = opts.cull.unwrap_or(Cull::None);
         for tri in &scene.triangles {
             let normal = (tri.vertices[1] - tri.vertices[0])
                 .cross(tri.vertices[2] - tri.vertices[0])
                 .normalize_or_zero();
-            self.vertex_stage(&stage, vp * turn, turn, &tri.vertices, &[normal; 3]);
+            self.vertex_stage(
+                &stage,
+                vp * turn,
+                turn,
+                &tri.vertices,
+                &[normal; 3],
+                p.clip.run,
+            );
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
                 &stage,
@@ -243,6 +308,7 @@ impl Renderer {
             );
             self.verts = verts;
         }
+        self.times.triangles += lap();
         blit::blit(
             &self.fb,
             opts.glyphs,
@@ -250,6 +316,7 @@ impl Renderer {
             scene.background,
             &mut self.frame,
         );
+        self.times.blit += lap();
         &self.frame
     }
 
@@ -261,6 +328,7 @@ impl Renderer {
         model: Mat4,
         positions: &[Vec3],
         normals: &[Vec3],
+        clip_tests: bool,
     ) {
         let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
         let smooth = stage.shading == Shading::Smooth;
@@ -269,10 +337,18 @@ impl Renderer {
         if smooth {
             self.stats.lighting_evaluations += positions.len() as u64;
         }
+        if clip_tests {
+            self.stats.clip_tests += positions.len() as u64;
+        }
         self.verts
             .extend(positions.iter().zip(normals).map(|(&p, &n)| {
                 let clip = mvp * p.extend(1.0);
-                let code = stage.clipper.outcode(clip);
+                // Inside bounds need no test: every plane's code is 0.
+                let code = if clip_tests {
+                    stage.clipper.outcode(clip)
+                } else {
+                    0
+                };
                 let normal = (normal_matrix * n).normalize_or_zero();
                 let mut v = Vert {
                     clip,
@@ -308,7 +384,11 @@ impl Renderer {
         }
         if v[0].code | v[1].code | v[2].code == 0 {
             // Inside every clip plane: set up first, so that culled
-            // triangles and those covering no sample are never lit.
+            // triangles and those covering no sample are never lit (the
+            // full pipeline lights them all, first).
+            let early = stage
+                .full
+                .then(|| self.shade(stage, v, base, !front_facing(v)));
             let Some(setup) =
                 self.setup(Setup::from_fixed(v.map(|v| v.fixed), self.fb.grid(), cull))
             else {
@@ -318,9 +398,9 @@ impl Renderer {
                 xy: v.map(|v| v.xy),
                 z: v.map(|v| v.z),
                 inv_w: v.map(|v| v.inv_w),
-                color: self.shade(stage, v, base, !setup.ccw),
+                color: early.unwrap_or_else(|| self.shade(stage, v, base, !setup.ccw)),
             };
-            self.fill(&setup, &screen, stage.traversal);
+            self.fill(&setup, &screen, stage);
             return;
         }
         // Clipped: lit before clipping (colours are interpolated along the
@@ -340,7 +420,7 @@ impl Renderer {
                 for tri in poly.triangles() {
                     let screen = to_screen(&tri, &stage.viewport);
                     if let Some(setup) = self.setup(Setup::new(screen.xy, self.fb.grid(), cull)) {
-                        self.fill(&setup, &screen, stage.traversal);
+                        self.fill(&setup, &screen, stage);
                     }
                 }
             }
@@ -350,7 +430,16 @@ impl Renderer {
 
     /// The triangle's colour at each vertex. `back`: seen from behind, so
     /// lit on its other side (two-sided lighting).
+    /// Colours come out rounded to whole 8-bit values, so that interpolating
+    /// three equal colours gives back exactly that colour (the full
+    /// pipeline's interpolation of a one-colour triangle then matches the
+    /// planned pipeline's plain write, bit for bit).
     fn shade(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], back: bool) -> [Vec3; 3] {
+        self.light(stage, v, base, back)
+            .map(|c| Vec3::from(Rgb::from_f32(c.to_array()).to_f32()))
+    }
+
+    fn light(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], back: bool) -> [Vec3; 3] {
         let base = base.map(|c| Vec3::from(c.to_f32()));
         let side = if back { -1.0 } else { 1.0 };
         match stage.shading {
@@ -386,8 +475,10 @@ impl Renderer {
         }
     }
 
-    /// Walks a set-up triangle, depth-testing and writing its samples.
-    fn fill(&mut self, setup: &Setup, t: &ScreenTriangle, traversal: Traversal) {
+    /// Walks a set-up triangle and writes its samples: depth-tested, or
+    /// (when the plan skips depth) only where still empty; one colour, or
+    /// interpolated, through `1/w` where the plan asks for it.
+    fn fill(&mut self, setup: &Setup, t: &ScreenTriangle, stage: &Stage) {
         let grid = self.fb.grid();
         let stats = &mut self.stats;
         let fb = &mut self.fb;
@@ -395,31 +486,42 @@ impl Renderer {
         let inv_area = 1.0 / setup.area2 as f32;
         let [z0, z1, z2] = t.z;
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
-        let depth = move |e: [i64; 3]| {
-            let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
-            z.clamp(z_lo, z_hi)
+        let use_depth = stage.depth;
+        let mut write = move |x: u32, y: u32, e: [i64; 3], c: Rgb| {
+            if use_depth {
+                let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
+                fb.set_if_nearer(x, y, z.clamp(z_lo, z_hi), c);
+            } else {
+                fb.set_if_empty(x, y, c);
+            }
         };
-        let flat = t.color[0] == t.color[1] && t.color[1] == t.color[2];
+        let flat = !stage.full && t.color[0] == t.color[1] && t.color[1] == t.color[2];
         let tested = if flat {
             let c = Rgb::from_f32(t.color[0].to_array());
-            setup.walk(grid, traversal, |x, y, e| {
+            setup.walk(grid, stage.traversal, |x, y, e| {
                 covered += 1;
-                fb.set_if_nearer(x, y, depth(e), c);
+                write(x, y, e, c);
             })
         } else {
-            // Perspective-correct weights: e_i / w_i, renormalised.
-            let [a, b, c] = t.inv_w;
+            // Weights e_i, or e_i / w_i for perspective correction,
+            // renormalised.
+            let [a, b, c] = if stage.perspective { t.inv_w } else { [1.0; 3] };
             let [ca, cb, cc] = t.color;
-            setup.walk(grid, traversal, |x, y, e| {
+            setup.walk(grid, stage.traversal, |x, y, e| {
                 covered += 1;
                 let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
                 let col = (ca * wa + cb * wb + cc * wc) / (wa + wb + wc);
-                fb.set_if_nearer(x, y, depth(e), Rgb::from_f32(col.to_array()));
+                write(x, y, e, Rgb::from_f32(col.to_array()));
             })
         };
-        stats.depth_tests += covered;
+        if use_depth {
+            stats.depth_tests += covered;
+        }
         if !flat {
             stats.interpolated_samples += covered;
+            if stage.perspective {
+                stats.perspective_samples += covered;
+            }
         }
         stats.raster.samples_tested += tested;
         stats.raster.samples_covered += covered;
@@ -441,6 +543,23 @@ impl Renderer {
     pub fn stats(&self) -> &FrameStats {
         &self.stats
     }
+
+    /// The plan of the last frame.
+    pub fn plan(&self) -> Option<&Plan> {
+        self.plan.as_ref()
+    }
+
+    /// Where the last frame's time went.
+    pub fn times(&self) -> &FrameTimes {
+        &self.times
+    }
+}
+
+/// Whether the snapped screen triangle is counter-clockwise (the same
+/// test `Setup` makes).
+fn front_facing(v: [&Vert; 3]) -> bool {
+    let [a, b, c] = v.map(|v| v.fixed);
+    (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0) > 0
 }
 
 fn to_screen(tri: &[ClipVertex; 3], viewport: &transform::Viewport) -> ScreenTriangle {

@@ -31,6 +31,23 @@ pub struct Mesh {
     pub model: Mat4,
     /// Which windings to discard.
     pub cull: Cull,
+    /// What [`Mesh::analyze`] found: computed once, read by the planner
+    /// every frame.
+    pub shape: MeshShape,
+}
+
+/// Facts about a mesh's geometry that do not change from frame to frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeshShape {
+    /// The bounding box of the finite positions, `[min, max]` (`None`
+    /// when a position is not finite, or there are none).
+    pub bounds: Option<[Vec3; 2]>,
+    /// Closed (every edge shared by exactly two faces, walked in opposite
+    /// directions), consistently wound, and convex (every position on the
+    /// inner side of every face's plane). Its faces seen from one side then
+    /// never overlap on screen, which lets the planner skip the depth
+    /// buffer. `false` when unsure (including meshes too big to check).
+    pub closed_convex: bool,
 }
 
 /// A directional light.
@@ -67,7 +84,7 @@ impl Mesh {
     ) -> Mesh {
         let normals = vertex_normals(&positions, &faces);
         let face_colors = vec![color; faces.len()];
-        Mesh {
+        let mut mesh = Mesh {
             name: name.into(),
             positions,
             normals,
@@ -76,7 +93,30 @@ impl Mesh {
             face_colors,
             model: Mat4::IDENTITY,
             cull: Cull::Back,
-        }
+            shape: MeshShape::default(),
+        };
+        mesh.analyze();
+        mesh
+    }
+
+    /// Recomputes [`Mesh::shape`]; call it after changing the positions or
+    /// faces.
+    pub fn analyze(&mut self) {
+        let finite = !self.positions.is_empty() && self.positions.iter().all(|p| p.is_finite());
+        let bounds = finite.then(|| {
+            let lo = self.positions.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
+            let hi = self
+                .positions
+                .iter()
+                .fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
+            [lo, hi]
+        });
+        self.shape = MeshShape {
+            bounds,
+            closed_convex: finite
+                && closed(&self.positions, &self.faces)
+                && convex(&self.positions, &self.faces),
+        };
     }
 
     /// The centre and radius of a sphere around all positions (the centre of
@@ -110,6 +150,63 @@ impl Mesh {
         };
         self.model = Mat4::from_scale(Vec3::splat(scale)) * Mat4::from_translation(-centre);
     }
+}
+
+/// Whether every edge is shared by exactly two faces walking it in opposite
+/// directions. Corners are matched by position, so a cube whose faces have
+/// vertices of their own still counts as closed.
+fn closed(positions: &[Vec3], faces: &[[u32; 3]]) -> bool {
+    use std::collections::HashMap;
+    // −0.0 and 0.0 are the same position.
+    let key = |i: u32| {
+        positions[i as usize]
+            .to_array()
+            .map(|v| (v + 0.0).to_bits())
+    };
+    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    let id: Vec<u32> = (0..positions.len() as u32)
+        .map(|i| {
+            let n = ids.len() as u32;
+            *ids.entry(key(i)).or_insert(n)
+        })
+        .collect();
+    // For each undirected edge, how often it is walked low→high and
+    // high→low: closed and consistently wound is exactly once each way.
+    let mut edges: HashMap<(u32, u32), [u32; 2]> = HashMap::with_capacity(faces.len() * 3);
+    for f in faces {
+        let v = f.map(|i| id[i as usize]);
+        if v[0] == v[1] || v[1] == v[2] || v[2] == v[0] {
+            return false;
+        }
+        for k in 0..3 {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            let e = edges.entry((a.min(b), a.max(b))).or_insert([0, 0]);
+            e[(a > b) as usize] += 1;
+        }
+    }
+    !faces.is_empty() && edges.values().all(|&e| e == [1, 1])
+}
+
+/// Whether every position lies on the inner side of every face's plane
+/// (within a tolerance relative to the mesh's size). Quadratic, so meshes
+/// of more than 4,000 faces are reported as not convex.
+fn convex(positions: &[Vec3], faces: &[[u32; 3]]) -> bool {
+    if faces.len() > 4000 {
+        return false;
+    }
+    let scale = positions
+        .iter()
+        .fold(0.0f32, |m, p| m.max(p.abs().max_element()))
+        .max(1e-30);
+    faces.iter().all(|f| {
+        let [a, b, c] = f.map(|i| positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        len == 0.0
+            || positions
+                .iter()
+                .all(|&p| n.dot(p - a) <= 1e-5 * scale * len)
+    })
 }
 
 /// Angle-weighted vertex normals; a vertex on no face (or only degenerate
@@ -259,6 +356,45 @@ mod tests {
         let total: f32 = tris.iter().map(|&t| area2(&p, t)).sum();
         assert!((total - 8.0).abs() < 1e-5, "{total}");
         assert!(tris.iter().all(|&t| area2(&p, t) > 0.0));
+    }
+
+    #[test]
+    fn closed_convex_is_found_only_where_true() {
+        use crate::scene::shapes::Shape;
+        let cube = Shape::Cube.mesh(Rgb::WHITE);
+        assert!(cube.shape.closed_convex);
+        assert!(Shape::Sphere.mesh(Rgb::WHITE).shape.closed_convex);
+        assert!(
+            !Shape::Torus.mesh(Rgb::WHITE).shape.closed_convex,
+            "closed but not convex"
+        );
+        // A cube with a face missing is not closed.
+        let mut open = cube.clone();
+        open.faces.pop();
+        open.analyze();
+        assert!(!open.shape.closed_convex);
+        // A cube with one face wound the wrong way is not consistent.
+        let mut flipped = cube.clone();
+        flipped.faces[0].swap(1, 2);
+        flipped.faces[1].swap(1, 2);
+        flipped.analyze();
+        assert!(!flipped.shape.closed_convex);
+        // A dented cube is closed but not convex.
+        let mut dented = cube.clone();
+        let top: Vec<usize> = (0..dented.positions.len())
+            .filter(|&i| dented.positions[i].y > 0.5)
+            .collect();
+        for i in top {
+            if dented.positions[i].x > 0.5 && dented.positions[i].z > 0.5 {
+                dented.positions[i] *= 0.5;
+            }
+        }
+        dented.analyze();
+        assert!(!dented.shape.closed_convex);
+        assert_eq!(
+            cube.shape.bounds,
+            Some([Vec3::splat(-0.6), Vec3::splat(0.6)])
+        );
     }
 
     #[test]

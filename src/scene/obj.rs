@@ -114,7 +114,7 @@ pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
     } else {
         vertex_normals(&positions, &faces)
     };
-    Ok(Mesh {
+    let mut mesh = Mesh {
         name,
         positions,
         normals,
@@ -123,7 +123,10 @@ pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
         face_colors,
         model: glam::Mat4::IDENTITY,
         cull: Cull::Back,
-    })
+        shape: Default::default(),
+    };
+    mesh.analyze();
+    Ok(mesh)
 }
 
 /// The byte offset of the first `mtllib` statement.

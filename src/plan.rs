@@ -1,0 +1,315 @@
+//! The planner: which stages a frame needs, decided once per frame from
+//! bounds and flags (never per sample), so that a scene that needs no depth
+//! test, no lighting, no interpolation and no clipping does not pay for
+//! them, and a scene that needs them gets them.
+//!
+//! | stage | runs when | skipped when |
+//! |---|---|---|
+//! | depth buffer | primitives may overlap at different depths | a single primitive; a flat 2D scene (one depth everywhere); one closed convex mesh drawn with back faces culled (its front faces never overlap) |
+//! | clip tests | a mesh's (or the loose triangles') bounding box reaches a clip plane or leaves the guard band | the box is inside: then no vertex of it can be outside |
+//! | interpolation | an attribute varies over a triangle (per-vertex colours, smooth shading) | every triangle is one colour: written with no barycentrics |
+//! | perspective correction | perspective projection and something is interpolated | parallel views (`w = 1` exactly, so affine weights are the same numbers) or nothing interpolated |
+//! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
+//!
+//! Every skip is exact: the frame is bit for bit the one the full pipeline
+//! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
+//! checks on random scenes. Where skipping the depth test is allowed, the
+//! renderer writes a sample only if it is still empty, which is what the
+//! depth test does for primitives of equal depth (the first drawn stays),
+//! and what it does anywhere for primitives that never overlap.
+//!
+//! When unsure, the planner runs the stage.
+
+use std::fmt::{self, Write as _};
+use std::time::Duration;
+
+use glam::{Mat4, Vec3};
+
+use crate::clip::Clipper;
+use crate::raster::Cull;
+use crate::render::{RenderOptions, Renderer};
+use crate::scene::{Projection, Scene, TriangleColor};
+use crate::shade::Shading;
+
+/// Whether the planner may skip stages.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Pipeline {
+    /// Run only the stages the scene calls for.
+    #[default]
+    Planned,
+    /// Run every stage on every primitive (`--full-pipeline`): the
+    /// reference the planned frames are checked against.
+    Full,
+}
+
+/// One stage's decision, and why.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Decision {
+    pub run: bool,
+    pub why: &'static str,
+}
+
+impl Decision {
+    const fn run(why: &'static str) -> Decision {
+        Decision { run: true, why }
+    }
+
+    const fn skip(why: &'static str) -> Decision {
+        Decision { run: false, why }
+    }
+}
+
+impl fmt::Display for Decision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{:<4}  {}",
+            if self.run { "run" } else { "skip" },
+            self.why
+        )
+    }
+}
+
+/// The stages of one frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Plan {
+    pub depth: Decision,
+    /// Whether any clip test runs (decided per mesh; see [`needs_clip_tests`]).
+    pub clip: Decision,
+    pub interpolation: Decision,
+    pub perspective: Decision,
+    pub lighting: Decision,
+    pub full: bool,
+}
+
+const FORCED: &str = "forced on by the full pipeline";
+
+/// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
+/// view-projection for this frame and `turn` the scene's turn.
+pub fn plan(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4, clipper: &Clipper) -> Plan {
+    let full = opts.pipeline == Pipeline::Full;
+    let lit = opts.shading != Shading::None && !scene.lights.is_empty();
+    let lighting = match (lit, full) {
+        (true, _) => Decision::run("the scene has lights and the shading uses them"),
+        (false, _) if scene.lights.is_empty() => Decision::skip("the scene has no lights"),
+        (false, _) => Decision::skip("shading is none"),
+    };
+    let smooth = lit && opts.shading == Shading::Smooth;
+    let vertex_colors = scene
+        .triangles
+        .iter()
+        .any(|t| matches!(t.color, TriangleColor::PerVertex(_)))
+        || scene.meshes.iter().any(|m| m.colors.is_some());
+    let interpolation = if full {
+        Decision::run(FORCED)
+    } else if smooth {
+        Decision::run("smooth shading varies the light over each triangle")
+    } else if vertex_colors {
+        Decision::run("per-vertex colours vary over their triangles")
+    } else {
+        Decision::skip("every triangle is one colour: written without barycentrics")
+    };
+    let perspective_view = matches!(scene.camera.projection, Projection::Perspective { .. });
+    let perspective = if full {
+        Decision::run(FORCED)
+    } else if !interpolation.run {
+        Decision::skip("nothing is interpolated")
+    } else if perspective_view {
+        Decision::run("a perspective view interpolates through 1/w")
+    } else {
+        Decision::skip("a parallel view has w = 1: affine weights are exact")
+    };
+    let depth = if full {
+        Decision::run(FORCED)
+    } else {
+        depth(scene, opts, vp, turn)
+    };
+    let clip = if full {
+        Decision::run(FORCED)
+    } else {
+        let groups = scene
+            .meshes
+            .iter()
+            .map(|m| (turn * m.model, m.shape.bounds))
+            .chain((!scene.triangles.is_empty()).then(|| (turn, loose_bounds(scene))));
+        let mut any = false;
+        for (model, bounds) in groups {
+            any |= needs_clip_tests(clipper, vp * model, bounds);
+        }
+        if any {
+            Decision::run("geometry reaches a clip plane or leaves the guard band")
+        } else {
+            Decision::skip("every bounding box is inside the clip volume")
+        }
+    };
+    Plan {
+        depth,
+        clip,
+        interpolation,
+        perspective,
+        lighting,
+        full,
+    }
+}
+
+fn depth(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4) -> Decision {
+    if scene.triangle_count() <= 1 {
+        return Decision::skip("one primitive cannot overlap another");
+    }
+    if scene.meshes.is_empty() && scene.camera.projection == Projection::None {
+        // Every vertex at one depth: every sample's depth is that value, so
+        // the depth test keeps the first triangle drawn, as does writing
+        // only empty samples.
+        let mut zs = scene.triangles.iter().flat_map(|t| t.vertices).map(|p| {
+            let c = vp * turn * p.extend(1.0);
+            c.z / c.w
+        });
+        let first = zs.next();
+        if first.is_some_and(|z| z.is_finite()) && zs.all(|z| Some(z) == first) {
+            return Decision::skip(
+                "a flat 2D scene: one depth everywhere, the first triangle drawn stays",
+            );
+        }
+    }
+    if let [mesh] = scene.meshes.as_slice() {
+        let cull = opts.cull.unwrap_or(mesh.cull);
+        if scene.triangles.is_empty() && mesh.shape.closed_convex && cull == Cull::Back {
+            return Decision::skip(
+                "one closed convex mesh with back faces culled: its front faces never overlap",
+            );
+        }
+    }
+    Decision::run("primitives may overlap at different depths")
+}
+
+/// The bounding box of the loose triangles; `None` if a coordinate is not
+/// finite.
+fn loose_bounds(scene: &Scene) -> Option<[Vec3; 2]> {
+    let mut lo = Vec3::INFINITY;
+    let mut hi = Vec3::NEG_INFINITY;
+    for p in scene.triangles.iter().flat_map(|t| t.vertices) {
+        if !p.is_finite() {
+            return None;
+        }
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    Some([lo, hi])
+}
+
+/// Whether a group of vertices inside `bounds` (model space), drawn with
+/// `mvp`, needs per-vertex clip tests: unless all eight corners of the box
+/// are inside every clip plane (then, the clip volume being convex, so is
+/// every point of the box). Unknown bounds need them.
+pub fn needs_clip_tests(clipper: &Clipper, mvp: Mat4, bounds: Option<[Vec3; 2]>) -> bool {
+    let Some([lo, hi]) = bounds else { return true };
+    (0..8).any(|i| {
+        let corner = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        clipper.outcode(mvp * corner.extend(1.0)) != 0
+    })
+}
+
+impl fmt::Display for Plan {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "clip           {}", self.clip)?;
+        writeln!(f, "lighting       {}", self.lighting)?;
+        writeln!(f, "depth          {}", self.depth)?;
+        writeln!(f, "interpolation  {}", self.interpolation)?;
+        write!(f, "perspective    {}", self.perspective)
+    }
+}
+
+/// The report `rastty render --explain` prints: the frame, each stage run
+/// or skipped and why, the work each did (from the frame's statistics,
+/// where a skipped stage shows zero) and where the time went.
+pub fn explain(
+    scene: &Scene,
+    opts: &RenderOptions,
+    renderer: &Renderer,
+    encode: Duration,
+    bytes: usize,
+) -> String {
+    let Some(plan) = renderer.plan() else {
+        return "no frame rendered\n".into();
+    };
+    let s = renderer.stats();
+    let t = renderer.times();
+    let grid = opts.glyphs.grid(opts.cols, opts.rows);
+    let (w, h) = opts.glyphs.cell_size();
+    let ms = |d: Duration| format!("{:.3} ms", d.as_secs_f64() * 1e3);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "frame: {}×{} cells, {:?} glyphs ({} samples a cell, {}×{} samples), {} triangles, {} pipeline",
+        opts.cols,
+        opts.rows,
+        opts.glyphs,
+        w * h,
+        grid.width,
+        grid.height,
+        scene.triangle_count(),
+        if plan.full { "full" } else { "planned" },
+    );
+    // Each stage runs inside a timed phase (the last line): the vertex
+    // phase holds the clip tests and per-vertex lighting, the triangle
+    // phase the rest.
+    let rows = [
+        (
+            "clip",
+            plan.clip,
+            format!(
+                "{} vertices tested, {} triangles cut, {} removed",
+                s.clip_tests, s.clipped, s.clip_rejected
+            ),
+        ),
+        (
+            "lighting",
+            plan.lighting,
+            format!("{} evaluations", s.lighting_evaluations),
+        ),
+        (
+            "depth",
+            plan.depth,
+            format!("{} depth tests", s.depth_tests),
+        ),
+        (
+            "interpolation",
+            plan.interpolation,
+            format!("{} samples interpolated", s.interpolated_samples),
+        ),
+        (
+            "perspective",
+            plan.perspective,
+            format!("{} samples through 1/w", s.perspective_samples),
+        ),
+    ];
+    for (name, d, work) in &rows {
+        let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
+    }
+    let r = &s.raster;
+    let _ = writeln!(
+        out,
+        "raster: {} triangles set up, {} culled, {} degenerate, {} not finite; {} samples tested, {} covered",
+        r.triangles_drawn,
+        r.culled,
+        r.dropped_degenerate,
+        r.dropped_non_finite,
+        r.samples_tested,
+        r.samples_covered
+    );
+    let _ = writeln!(
+        out,
+        "time: plan {} · vertices {} · triangles {} · blit {} · encode {} ({} bytes)",
+        ms(t.plan),
+        ms(t.vertices),
+        ms(t.triangles),
+        ms(t.blit),
+        ms(encode),
+        bytes
+    );
+    out
+}
