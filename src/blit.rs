@@ -348,15 +348,32 @@ pub fn blit(
     frame.reset(cols, rows);
     let mut samples = [None; 8];
     let n = (w * h) as usize;
+    let (w, h) = (w as usize, h as usize);
+    let blank_when_uniform =
+        depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
     for row in 0..rows {
-        // The cell's top sample row.
-        let top = grid.height - 1 - row as u32 * h;
-        for col in 0..cols {
-            for (i, s) in samples[..n].iter_mut().enumerate() {
-                let (dx, dy) = (i as u32 % w, i as u32 / w);
-                *s = fb.get(col as u32 * w + dx, top - dy);
+        // The cell's sample rows, top first.
+        let top = grid.height as usize - 1 - row as usize * h;
+        let lines: [&[Option<Rgb>]; 4] = std::array::from_fn(|dy| {
+            if dy < h {
+                fb.row((top - dy) as u32)
+            } else {
+                &[]
             }
-            frame.set(col, row, mode.cell(&samples[..n], depth, background));
+        });
+        for (col, cell) in frame.row_mut(row).iter_mut().enumerate() {
+            let x = col * w;
+            for (i, s) in samples[..n].iter_mut().enumerate() {
+                *s = lines[i / w][x + i % w];
+            }
+            // Most cells are one colour (or all background): in the modes
+            // that draw such a cell as a blank, no split, no glyph table.
+            let first = samples[0];
+            *cell = if blank_when_uniform && samples[1..n].iter().all(|&s| s == first) {
+                blank(first.or(background))
+            } else {
+                mode.cell(&samples[..n], depth, background)
+            };
         }
     }
 }
@@ -390,6 +407,43 @@ mod tests {
         fb.set(0, 0, Rgb::WHITE);
         blit(&fb, GlyphMode::Half, ColorDepth::None, None, &mut frame);
         assert_eq!(frame.to_string(), "▀\n▄\n");
+    }
+
+    #[test]
+    fn blit_agrees_with_cell_in_every_mode() {
+        let red = Some(RED);
+        for mode in GlyphMode::ALL {
+            for depth in [ColorDepth::None, ColorDepth::TrueColor] {
+                for background in [None, Some(Rgb::BLACK)] {
+                    let grid = mode.grid(3, 2);
+                    let mut fb = Framebuffer::new(grid);
+                    // Column 0 full, column 1 half, column 2 empty.
+                    for y in 0..grid.height {
+                        let (w, _) = mode.cell_size();
+                        for x in 0..w {
+                            fb.set(x, y, RED);
+                            if y % 2 == 0 {
+                                fb.set(w + x, y, BLUE);
+                            }
+                        }
+                    }
+                    let mut frame = Frame::default();
+                    blit(&fb, mode, depth, background, &mut frame);
+                    let n = mode.samples();
+                    let full = vec![red; n];
+                    assert_eq!(
+                        frame.get(0, 0),
+                        mode.cell(&full, depth, background),
+                        "{mode:?} {depth:?}"
+                    );
+                    assert_eq!(
+                        frame.get(2, 0),
+                        mode.cell(&vec![None; n], depth, background),
+                        "{mode:?} {depth:?}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

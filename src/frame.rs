@@ -80,6 +80,12 @@ impl Frame {
         self.cells[i] = cell;
     }
 
+    /// Row `row` (0 at the top), to write.
+    pub fn row_mut(&mut self, row: u16) -> &mut [Cell] {
+        let w = self.cols as usize;
+        &mut self.cells[row as usize * w..(row as usize + 1) * w]
+    }
+
     /// Row `row` (0 at the top).
     pub fn row(&self, row: u16) -> &[Cell] {
         let w = self.cols as usize;

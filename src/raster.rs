@@ -355,7 +355,7 @@ impl Setup {
     /// Walks the samples with `traversal`, calling `hit(x, y, e)` for each
     /// covered sample, where `e[i]` is the weight of vertex `i` (the three sum
     /// to [`Setup::area2`]). Returns the number of samples tested.
-    #[inline]
+    #[inline(always)]
     pub fn walk<F: FnMut(u32, u32, [i64; 3])>(
         &self,
         grid: Grid,

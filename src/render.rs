@@ -125,6 +125,25 @@ pub struct FrameTimes {
     pub blit: Duration,
 }
 
+/// One group's matrices, computed once per frame: model to clip space,
+/// model to world, and the normals' (the inverse transpose).
+#[derive(Clone, Copy)]
+struct Transforms {
+    mvp: Mat4,
+    model: Mat4,
+    normal: Mat3,
+}
+
+impl Transforms {
+    fn new(vp: Mat4, model: Mat4) -> Transforms {
+        Transforms {
+            mvp: vp * model,
+            model,
+            normal: Mat3::from_mat4(model).inverse().transpose(),
+        }
+    }
+}
+
 /// A vertex after the vertex stage.
 #[derive(Clone, Copy, Debug, Default)]
 struct Vert {
@@ -265,8 +284,7 @@ impl Renderer {
                 p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.shape.bounds);
             self.vertex_stage(
                 &stage,
-                vp * model,
-                model,
+                &Transforms::new(vp, model),
                 &mesh.positions,
                 &mesh.normals,
                 tests,
@@ -287,18 +305,12 @@ impl Renderer {
             self.times.triangles += lap();
         }
         let cull = opts.cull.unwrap_or(Cull::None);
+        let loose = Transforms::new(vp, turn);
         for tri in &scene.triangles {
             let normal = (tri.vertices[1] - tri.vertices[0])
                 .cross(tri.vertices[2] - tri.vertices[0])
                 .normalize_or_zero();
-            self.vertex_stage(
-                &stage,
-                vp * turn,
-                turn,
-                &tri.vertices,
-                &[normal; 3],
-                p.clip.run,
-            );
+            self.vertex_stage(&stage, &loose, &tri.vertices, &[normal; 3], p.clip.run);
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
                 &stage,
@@ -324,13 +336,16 @@ impl Renderer {
     fn vertex_stage(
         &mut self,
         stage: &Stage,
-        mvp: Mat4,
-        model: Mat4,
+        t: &Transforms,
         positions: &[Vec3],
         normals: &[Vec3],
         clip_tests: bool,
     ) {
-        let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
+        let Transforms {
+            mvp,
+            model,
+            normal: normal_matrix,
+        } = *t;
         let smooth = stage.shading == Shading::Smooth;
         self.verts.clear();
         self.stats.vertices += positions.len() as u64;
@@ -487,32 +502,38 @@ impl Renderer {
         let [z0, z1, z2] = t.z;
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
         let use_depth = stage.depth;
-        let mut write = move |x: u32, y: u32, e: [i64; 3], c: Rgb| {
-            if use_depth {
-                let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
-                fb.set_if_nearer(x, y, z.clamp(z_lo, z_hi), c);
-            } else {
-                fb.set_if_empty(x, y, c);
-            }
+        let depth = move |e: [i64; 3]| {
+            let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
+            z.clamp(z_lo, z_hi)
         };
         let flat = !stage.full && t.color[0] == t.color[1] && t.color[1] == t.color[2];
-        let tested = if flat {
-            let c = Rgb::from_f32(t.color[0].to_array());
-            setup.walk(grid, stage.traversal, |x, y, e| {
+        // Weights e_i, or e_i / w_i for perspective correction, renormalised.
+        let [a, b, c] = if stage.perspective { t.inv_w } else { [1.0; 3] };
+        let [ca, cb, cc] = t.color;
+        let interpolate = move |e: [i64; 3]| {
+            let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
+            Rgb::from_f32(((ca * wa + cb * wb + cc * wc) / (wa + wb + wc)).to_array())
+        };
+        let one = Rgb::from_f32(ca.to_array());
+        let tr = stage.traversal;
+        // One tight loop per combination, so that each inlines.
+        let tested = match (flat, use_depth) {
+            (true, false) => setup.walk(grid, tr, |x, y, _| {
                 covered += 1;
-                write(x, y, e, c);
-            })
-        } else {
-            // Weights e_i, or e_i / w_i for perspective correction,
-            // renormalised.
-            let [a, b, c] = if stage.perspective { t.inv_w } else { [1.0; 3] };
-            let [ca, cb, cc] = t.color;
-            setup.walk(grid, stage.traversal, |x, y, e| {
+                fb.set_if_empty(x, y, one);
+            }),
+            (true, true) => setup.walk(grid, tr, |x, y, e| {
                 covered += 1;
-                let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
-                let col = (ca * wa + cb * wb + cc * wc) / (wa + wb + wc);
-                write(x, y, e, Rgb::from_f32(col.to_array()));
-            })
+                fb.set_if_nearer(x, y, depth(e), one);
+            }),
+            (false, false) => setup.walk(grid, tr, |x, y, e| {
+                covered += 1;
+                fb.set_if_empty(x, y, interpolate(e));
+            }),
+            (false, true) => setup.walk(grid, tr, |x, y, e| {
+                covered += 1;
+                fb.set_if_nearer(x, y, depth(e), interpolate(e));
+            }),
         };
         if use_depth {
             stats.depth_tests += covered;

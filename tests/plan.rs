@@ -1,0 +1,322 @@
+//! The planner never changes a picture: random scenes and every example
+//! scene, rendered with the plan and with every stage forced on, give the
+//! same frame and the same samples, bit for bit. And a skipped stage does
+//! no work at all.
+
+use std::path::Path;
+
+use glam::Vec3;
+use proptest::prelude::*;
+use rastty::plan::Pipeline;
+use rastty::raster::Cull;
+use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
+use rastty::shade::Shading;
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
+
+/// Renders both ways; returns the planned renderer's statistics.
+fn same_both_ways(
+    scene: &Scene,
+    opts: &RenderOptions,
+) -> Result<rastty::render::FrameStats, String> {
+    let mut planned = Renderer::new();
+    let mut full = Renderer::new();
+    let a = planned
+        .render(
+            scene,
+            &RenderOptions {
+                pipeline: Pipeline::Planned,
+                ..*opts
+            },
+        )
+        .clone();
+    let b = full
+        .render(
+            scene,
+            &RenderOptions {
+                pipeline: Pipeline::Full,
+                ..*opts
+            },
+        )
+        .clone();
+    if planned.framebuffer().samples() != full.framebuffer().samples() {
+        let i = planned
+            .framebuffer()
+            .samples()
+            .iter()
+            .zip(full.framebuffer().samples())
+            .position(|(x, y)| x != y);
+        return Err(format!(
+            "samples differ at {i:?}; plan: {:?}",
+            planned.plan()
+        ));
+    }
+    if a != b {
+        return Err("frames differ".into());
+    }
+    Ok(*planned.stats())
+}
+
+fn color() -> impl Strategy<Value = Rgb> {
+    any::<[u8; 3]>().prop_map(Rgb)
+}
+
+fn triangle(flat_z: bool) -> impl Strategy<Value = Triangle> {
+    let v = move || {
+        (-1.5f32..1.5, -1.5f32..1.5, -1.5f32..1.5)
+            .prop_map(move |(x, y, z)| Vec3::new(x, y, if flat_z { 0.25 } else { z }))
+    };
+    (v(), v(), v(), color(), prop::option::of((color(), color()))).prop_map(
+        |(a, b, c, c0, more)| Triangle {
+            vertices: [a, b, c],
+            color: match more {
+                None => TriangleColor::Flat(c0),
+                Some((c1, c2)) => TriangleColor::PerVertex([c0, c1, c2]),
+            },
+        },
+    )
+}
+
+fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
+    (
+        prop::sample::select(Shape::ALL.to_vec()),
+        color(),
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0),
+        (0.0f32..360.0, 0.0f32..360.0),
+        0.3f32..1.5,
+        prop::sample::select(vec![Cull::Back, Cull::None, Cull::Front]),
+    )
+        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull)| {
+            let mut m = shape.mesh(c);
+            m.model = rastty::transform::model(
+                Vec3::splat(s),
+                Vec3::new(rx, ry, 0.0),
+                Vec3::new(x, y, z),
+            );
+            m.cull = cull;
+            m
+        })
+}
+
+fn camera() -> impl Strategy<Value = Camera> {
+    (
+        prop::sample::select(vec![0u8, 1, 2]),
+        (-4.0f32..4.0, -4.0f32..4.0, 0.5f32..6.0),
+        20.0f32..100.0,
+        0.05f32..2.0,
+    )
+        .prop_map(|(kind, (x, y, z), fov, near)| Camera {
+            projection: match kind {
+                0 => Projection::Perspective {
+                    fov_y: fov,
+                    near,
+                    far: 40.0,
+                },
+                1 => Projection::Orthographic {
+                    height: 3.0,
+                    near,
+                    far: 40.0,
+                },
+                _ => Projection::None,
+            },
+            eye: Vec3::new(x, y, z),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+        })
+}
+
+fn light() -> impl Strategy<Value = Light> {
+    (
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..-0.1),
+        color(),
+        0.0f32..0.5,
+    )
+        .prop_map(|((x, y, z), color, ambient)| Light {
+            direction: Vec3::new(x, y, z).normalize(),
+            color,
+            ambient,
+        })
+}
+
+fn options() -> impl Strategy<Value = RenderOptions> {
+    (
+        prop::sample::select(GlyphMode::ALL.to_vec()),
+        prop::sample::select(Shading::ALL.to_vec()),
+        prop::option::of(prop::sample::select(vec![
+            Cull::None,
+            Cull::Back,
+            Cull::Front,
+        ])),
+        (0.0f32..360.0, 0.0f32..360.0, 0.0f32..360.0),
+        prop::sample::select(vec![(12u16, 6u16), (23, 9)]),
+    )
+        .prop_map(
+            |(glyphs, shading, cull, (p, y, r), (cols, rows))| RenderOptions {
+                cols,
+                rows,
+                glyphs,
+                color: ColorDepth::TrueColor,
+                shading,
+                cull,
+                turn: Vec3::new(p, y, r),
+                ..RenderOptions::default()
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(96)
+    ))]
+
+    #[test]
+    fn random_scenes_are_the_same_planned_or_full(
+        triangles in prop::collection::vec(triangle(false), 0..5),
+        meshes in prop::collection::vec(mesh(), 0..3),
+        camera in camera(),
+        lights in prop::collection::vec(light(), 0..3),
+        background in prop::option::of(color()),
+        opts in options(),
+    ) {
+        let scene = Scene { background, camera, triangles, meshes, lights };
+        if let Err(e) = same_both_ways(&scene, &opts) {
+            prop_assert!(false, "{}", e);
+        }
+    }
+
+    /// The depth-free path's favourite cases: flat 2D scenes, and one
+    /// convex mesh alone.
+    #[test]
+    fn flat_scenes_and_lone_convex_meshes_are_the_same_planned_or_full(
+        triangles in prop::collection::vec(triangle(true), 2..8),
+        mesh in mesh(),
+        camera in camera(),
+        lights in prop::collection::vec(light(), 0..2),
+        opts in options(),
+    ) {
+        let flat = Scene {
+            camera: Camera { projection: Projection::None, ..Camera::default() },
+            triangles,
+            ..Scene::default()
+        };
+        let flat_opts = RenderOptions { turn: Vec3::ZERO, ..opts };
+        let stats = same_both_ways(&flat, &flat_opts).map_err(TestCaseError::fail)?;
+        prop_assert_eq!(stats.depth_tests, 0);
+        let lone = Scene { camera, meshes: vec![mesh], lights, ..Scene::default() };
+        same_both_ways(&lone, &opts).map_err(TestCaseError::fail)?;
+    }
+}
+
+fn example(name: &str) -> Scene {
+    Scene::load(Path::new(&format!(
+        "{}/examples/scenes/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap()
+}
+
+#[test]
+fn every_example_scene_is_the_same_planned_or_full() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let scene = Scene::load(&path).unwrap();
+        for glyphs in GlyphMode::ALL {
+            for turn in [Vec3::ZERO, Vec3::new(10.0, 35.0, 5.0)] {
+                let opts = RenderOptions {
+                    cols: 40,
+                    rows: 14,
+                    glyphs,
+                    turn,
+                    ..RenderOptions::default()
+                };
+                same_both_ways(&scene, &opts).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            }
+        }
+    }
+}
+
+#[test]
+fn skipped_stages_do_no_work() {
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 14,
+        ..RenderOptions::default()
+    };
+    // A flat 2D scene of one-colour triangles, inside the screen, unlit.
+    let mut r = Renderer::new();
+    r.render(&example("shared-edge"), &opts);
+    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    assert!(
+        !p.depth.run
+            && !p.clip.run
+            && !p.interpolation.run
+            && !p.perspective.run
+            && !p.lighting.run
+    );
+    assert_eq!(
+        (
+            s.depth_tests,
+            s.clip_tests,
+            s.interpolated_samples,
+            s.perspective_samples,
+            s.lighting_evaluations
+        ),
+        (0, 0, 0, 0, 0)
+    );
+    assert!(s.raster.samples_covered > 0);
+    // The same scene through the full pipeline does that work.
+    r.render(
+        &example("shared-edge"),
+        &RenderOptions {
+            pipeline: Pipeline::Full,
+            ..opts
+        },
+    );
+    let f = *r.stats();
+    assert!(
+        f.depth_tests > 0
+            && f.clip_tests > 0
+            && f.interpolated_samples > 0
+            && f.perspective_samples > 0
+    );
+
+    // One convex mesh, culled: no depth test; inside the view: no clip test.
+    let cube = Scene::of_model(Path::new("cube")).unwrap();
+    r.render(
+        &cube,
+        &RenderOptions {
+            shading: Shading::Flat,
+            ..opts
+        },
+    );
+    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    assert!(!p.depth.run && !p.clip.run && !p.interpolation.run && p.lighting.run);
+    assert_eq!(
+        (s.depth_tests, s.clip_tests, s.interpolated_samples),
+        (0, 0, 0)
+    );
+    assert!(s.lighting_evaluations > 0);
+
+    // The torus is not convex: depth runs; smooth shading interpolates.
+    r.render(&rastty::default_scene(), &opts);
+    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    assert!(p.depth.run && p.interpolation.run && p.perspective.run);
+    assert!(s.depth_tests > 0 && s.perspective_samples > 0);
+
+    // Orthographic: interpolation without 1/w.
+    let mut ortho = rastty::default_scene();
+    ortho.camera.projection = Projection::Orthographic {
+        height: 3.0,
+        near: 0.1,
+        far: 50.0,
+    };
+    r.render(&ortho, &opts);
+    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    assert!(p.interpolation.run && !p.perspective.run);
+    assert!(s.interpolated_samples > 0);
+    assert_eq!(s.perspective_samples, 0);
+
+    // The near-plane scene reaches the near plane: clip tests run.
+    r.render(&example("near-plane"), &opts);
+    assert!(r.plan().unwrap().clip.run && r.stats().clip_tests > 0);
+}
