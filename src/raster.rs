@@ -247,9 +247,12 @@ impl Edge {
 /// A triangle set up for rasterization: snapped, oriented, bounded.
 #[derive(Clone, Copy, Debug)]
 pub struct Setup {
-    /// `edges[i]` is the edge opposite vertex `i`, so its value at a sample
-    /// is the (unnormalised) barycentric weight of vertex `i`.
+    /// `edges[k]` is the edge opposite vertex `order[k]`, so its value at a
+    /// sample is the (unnormalised) barycentric weight of that vertex.
     edges: [Edge; 3],
+    /// The vertices in the order the edges follow: a rotation of the
+    /// caller's, starting from the lowest vertex.
+    order: [usize; 3],
     /// Twice the snapped area in fixed-point units squared (> 0); the sum of
     /// the three edge values at any point.
     pub area2: i64,
@@ -289,6 +292,13 @@ impl Setup {
         if p.iter().any(|q| q.x.0.abs() > limit || q.y.0.abs() > limit) {
             return Err(Rejected::OutOfRange);
         }
+        // Start from the lowest vertex (then leftmost): ABC, BCA and CAB are
+        // then one and the same triangle to everything below, so a frame does
+        // not depend on which vertex a file lists first.
+        let key = |q: &FixedPoint| (q.y, q.x);
+        let r = (0..3).min_by_key(|&i| key(&p[i])).unwrap_or(0);
+        let order = [r, (r + 1) % 3, (r + 2) % 3];
+        let p = order.map(|i| p[i]);
         let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
         if area2 == 0 {
             return Err(Rejected::Degenerate);
@@ -318,6 +328,7 @@ impl Setup {
         let last = |hi: i64| (hi - ONE / 2).div_euclid(ONE);
         Ok(Setup {
             edges,
+            order,
             area2: area2.abs(),
             ccw,
             x0: first(min_x).max(0),
@@ -343,6 +354,13 @@ impl Setup {
         ((e[0] - self.edges[0].min) | (e[1] - self.edges[1].min) | (e[2] - self.edges[2].min)) >= 0
     }
 
+    /// The caller's vertex index behind each edge value: `e[k]` in
+    /// [`Setup::walk`] weighs vertex `order()[k]`. A rotation, so the
+    /// winding is unchanged.
+    pub fn order(&self) -> [usize; 3] {
+        self.order
+    }
+
     /// Number of samples in the clamped bounding box.
     pub fn bbox_samples(&self) -> u64 {
         if self.x0 > self.x1 || self.y0 > self.y1 {
@@ -353,8 +371,8 @@ impl Setup {
     }
 
     /// Walks the samples with `traversal`, calling `hit(x, y, e)` for each
-    /// covered sample, where `e[i]` is the weight of vertex `i` (the three sum
-    /// to [`Setup::area2`]). Returns the number of samples tested.
+    /// covered sample, where `e[k]` is the weight of vertex `order()[k]` (the
+    /// three sum to [`Setup::area2`]). Returns the number of samples tested.
     #[inline(always)]
     pub fn walk<F: FnMut(u32, u32, [i64; 3])>(
         &self,
@@ -608,8 +626,9 @@ mod tests {
         let e = setup.inside(0, 0).unwrap();
         assert_eq!(e.iter().sum::<i64>(), setup.area2);
         // At sample (0,0), centre (0.5,0.5): weights of b and c are 0.5/16.
-        assert_eq!(e[1], setup.area2 / 32);
-        assert_eq!(e[2], setup.area2 / 32);
+        let weight = |vertex: usize| e[setup.order().iter().position(|&i| i == vertex).unwrap()];
+        assert_eq!(weight(1), setup.area2 / 32);
+        assert_eq!(weight(2), setup.area2 / 32);
     }
 
     #[test]

@@ -109,6 +109,8 @@ pub struct FrameStats {
     pub perspective_samples: u64,
     /// Vertices tested against the clip planes.
     pub clip_tests: u64,
+    /// Triangles dropped for a NaN or infinite normal.
+    pub dropped_non_finite_normals: u64,
     pub raster: RasterStats,
 }
 
@@ -153,6 +155,8 @@ struct Vert {
     normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     light: Vec3,
+    /// Its normal (as given) is NaN or infinite: its triangles are dropped.
+    bad_normal: bool,
     /// Clip outcode: 0 when inside every plane (then the fields below are
     /// valid).
     code: u8,
@@ -369,6 +373,7 @@ impl Renderer {
                     clip,
                     world: model.transform_point3(p),
                     normal,
+                    bad_normal: !n.is_finite(),
                     code,
                     ..Vert::default()
                 };
@@ -393,6 +398,10 @@ impl Renderer {
     /// Sets up, lights, clips if it must, and rasterizes one triangle.
     fn triangle(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], cull: Cull) {
         self.stats.triangles_in += 1;
+        if v.iter().any(|v| v.bad_normal) {
+            self.stats.dropped_non_finite_normals += 1;
+            return;
+        }
         if v[0].code & v[1].code & v[2].code != 0 {
             self.stats.clip_rejected += 1;
             return;
@@ -499,7 +508,17 @@ impl Renderer {
         let fb = &mut self.fb;
         let mut covered = 0u64;
         let inv_area = 1.0 / setup.area2 as f32;
-        let [z0, z1, z2] = t.z;
+        // Attributes in the setup's vertex order (which starts from the
+        // lowest vertex, so the sums below do not depend on the order the
+        // triangle was given in).
+        let o = setup.order();
+        let [z0, z1, z2] = o.map(|i| t.z[i]);
+        let t = &ScreenTriangle {
+            xy: o.map(|i| t.xy[i]),
+            z: [z0, z1, z2],
+            inv_w: o.map(|i| t.inv_w[i]),
+            color: o.map(|i| t.color[i]),
+        };
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
         let use_depth = stage.depth;
         let depth = move |e: [i64; 3]| {

@@ -386,6 +386,14 @@ impl Scene {
                 ambient: l.ambient,
             });
         }
+        if triangles.is_empty() && meshes.is_empty() {
+            return Err(Error::parse_at(
+                name,
+                src,
+                0,
+                "nothing to draw: no [[triangle]] or [[mesh]]",
+            ));
+        }
         Ok(Scene {
             background: def.background,
             camera,

@@ -20,10 +20,21 @@ use crate::raster::Cull;
 
 /// Loads an OBJ file into one mesh; faces without a material get `color`.
 pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
-    let name = path.display().to_string();
     let src = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let text = String::from_utf8_lossy(&src);
-    check(&text, &name, path)?;
+    parse(
+        &src,
+        &path.display().to_string(),
+        path.parent().unwrap_or(Path::new(".")),
+        color,
+    )
+}
+
+/// Parses OBJ bytes; `name` is used in messages, material libraries are
+/// looked for in `dir`.
+pub fn parse(src: &[u8], name: &str, dir: &Path, color: Rgb) -> Result<Mesh> {
+    let name = name.to_string();
+    let text = String::from_utf8_lossy(src);
+    check(&text, &name, dir)?;
 
     let opts = tobj::LoadOptions {
         single_index: true,
@@ -31,7 +42,7 @@ pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let dir = dir.to_path_buf();
     let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &opts, |mtl| {
         tobj::load_mtl(dir.join(mtl))
     })
@@ -72,9 +83,28 @@ pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
                 .chunks_exact(3)
                 .map(|c| Rgb::from_f32([c[0] * 255.0, c[1] * 255.0, c[2] * 255.0])),
         );
-        let face_color = m
-            .material_id
-            .and_then(|id| materials.get(id))
+        let material = m.material_id.and_then(|id| materials.get(id));
+        if let Some(kd) = material
+            .and_then(|mat| mat.diffuse)
+            .filter(|kd| kd.iter().any(|v| !v.is_finite()))
+        {
+            let mat = material.map_or("", |m| m.name.as_str());
+            return Err(Error::parse_at(
+                &name,
+                &text,
+                mtllib_offset(&text),
+                format!("material {mat:?}: Kd {kd:?} is not a colour"),
+            ));
+        }
+        if m.vertex_color.iter().any(|v| !v.is_finite()) {
+            return Err(Error::parse_at(
+                &name,
+                &text,
+                0,
+                "a vertex colour is not a finite number",
+            ));
+        }
+        let face_color = material
             .and_then(|mat| mat.diffuse)
             .map_or(color, |kd| Rgb::from_f32(kd.map(|v| v * 255.0)));
         let before = faces.len();
@@ -142,7 +172,7 @@ fn mtllib_offset(text: &str) -> usize {
 }
 
 /// The line-by-line check (see the module doc).
-fn check(text: &str, name: &str, path: &Path) -> Result<()> {
+fn check(text: &str, name: &str, dir: &Path) -> Result<()> {
     let mut counts = [0i64; 3]; // v, vt, vn seen so far
     let mut offset = 0usize;
     for line in text.split_inclusive('\n') {
@@ -202,7 +232,6 @@ fn check(text: &str, name: &str, path: &Path) -> Result<()> {
             "mtllib" => {
                 let file: Vec<&str> = words.collect();
                 let file = file.join(" ");
-                let dir = path.parent().unwrap_or(Path::new("."));
                 if !dir.join(&file).is_file() {
                     return err(format!("material library {file:?} not found"));
                 }

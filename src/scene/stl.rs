@@ -16,8 +16,13 @@ use crate::error::{Error, Result};
 
 /// Loads an STL file; every face gets `color`.
 pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
-    let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    parse(&bytes, &path.display().to_string(), color)
+}
+
+/// Parses STL bytes, binary or ASCII; `name` is used in messages.
+pub fn parse(bytes: &[u8], name: &str, color: Rgb) -> Result<Mesh> {
+    let name = name.to_string();
     if bytes.is_empty() {
         return Err(Error::Parse {
             path: name,
@@ -26,7 +31,7 @@ pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
             message: "empty file".into(),
         });
     }
-    let mesh = stl_io::read_stl(&mut Cursor::new(&bytes)).map_err(|e| locate(&name, &bytes, e))?;
+    let mesh = stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| locate(&name, bytes, e))?;
     let positions: Vec<Vec3> = mesh.vertices.iter().map(|v| Vec3::from(v.0)).collect();
     let faces: Vec<[u32; 3]> = mesh
         .faces
