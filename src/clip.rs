@@ -55,17 +55,33 @@ impl ClipVertex {
     }
 }
 
-/// A plane `dist(p) = n·p + d`, inside where `dist ≥ 0`.
+/// A plane `dist(p) = n·p + d`, inside where `dist ≥ 0`, and how to put a
+/// point exactly onto it: coordinate `axis` becomes `k·w` (or, for the `w`
+/// axis, `k`).
 #[derive(Clone, Copy, Debug)]
 struct Plane {
     n: Vec4,
     d: f32,
+    axis: usize,
+    k: f32,
 }
 
 impl Plane {
     #[inline(always)]
     fn dist(&self, p: Vec4) -> f32 {
         self.n.dot(p) + self.d
+    }
+
+    /// Moves `p` onto the plane along one axis. A vertex made by clipping
+    /// lands there only up to rounding, and with far-away endpoints (1e30)
+    /// that rounding is as large as the guard band itself; set exactly, the
+    /// plane's own coordinate is right whatever the endpoints.
+    fn put_on(&self, p: &mut Vec4) {
+        if self.axis == 3 {
+            p.w = self.k;
+        } else {
+            p[self.axis] = self.k * p.w;
+        }
     }
 }
 
@@ -83,19 +99,21 @@ impl Clipper {
         // samples is |x_ndc| ≤ 2G/W.
         let gx = 2.0 * GUARD_SAMPLES / width.max(1) as f32;
         let gy = 2.0 * GUARD_SAMPLES / height.max(1) as f32;
-        let p = |x, y, z, w, d| Plane {
+        let p = |x, y, z, w, d, axis, k| Plane {
             n: Vec4::new(x, y, z, w),
             d,
+            axis,
+            k,
         };
         Clipper {
             planes: [
-                p(0.0, 0.0, 0.0, 1.0, -W_MIN),
-                p(0.0, 0.0, -1.0, 1.0, 0.0),
-                p(0.0, 0.0, 1.0, 1.0, 0.0),
-                p(-1.0, 0.0, 0.0, gx, 0.0),
-                p(1.0, 0.0, 0.0, gx, 0.0),
-                p(0.0, -1.0, 0.0, gy, 0.0),
-                p(0.0, 1.0, 0.0, gy, 0.0),
+                p(0.0, 0.0, 0.0, 1.0, -W_MIN, 3, W_MIN),
+                p(0.0, 0.0, -1.0, 1.0, 0.0, 2, 1.0),
+                p(0.0, 0.0, 1.0, 1.0, 0.0, 2, -1.0),
+                p(-1.0, 0.0, 0.0, gx, 0.0, 0, gx),
+                p(1.0, 0.0, 0.0, gx, 0.0, 0, -gx),
+                p(0.0, -1.0, 0.0, gy, 0.0, 1, gy),
+                p(0.0, 1.0, 0.0, gy, 0.0, 1, -gy),
             ],
             gx,
             gy,
@@ -216,7 +234,9 @@ fn clip_polygon(plane: &Plane, input: &Polygon, out: &mut Polygon) {
             } else {
                 (b, a, db, da)
             };
-            out.verts[out.len] = ClipVertex::lerp(inside, outside, di / (di - dout));
+            let mut v = ClipVertex::lerp(inside, outside, di / (di - dout));
+            plane.put_on(&mut v.pos);
+            out.verts[out.len] = v;
             out.len += 1;
         }
     }

@@ -1,0 +1,839 @@
+//! rastty's promises about hard cases, each with an exact expectation, in
+//! the spirit of the D3D rasterization rules and the dEQP/VK-GL-CTS
+//! fill-rule tests. The README lists them with the test behind each.
+
+use std::collections::BTreeSet;
+
+use glam::{Vec3, Vec4};
+use proptest::prelude::*;
+use rastty::clip::{ClipVertex, Clipper, Polygon};
+use rastty::raster::{
+    Cull, Fixed, FixedPoint, Grid, ONE, RasterStats, Setup, Traversal, rasterize,
+};
+use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
+use rastty::transform::Viewport;
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
+
+type Tri = [[f32; 2]; 3];
+
+/// The samples a triangle covers, as a set.
+fn covered(t: Tri, grid: Grid) -> BTreeSet<(u32, u32)> {
+    let mut set = BTreeSet::new();
+    rasterize(
+        t,
+        grid,
+        Cull::None,
+        Traversal::Incremental,
+        &mut RasterStats::default(),
+        |x, y, _| {
+            assert!(set.insert((x, y)), "({x}, {y}) twice in one triangle");
+        },
+    );
+    set
+}
+
+/// Per-sample hit counts of many triangles.
+fn counts(tris: &[Tri], grid: Grid) -> Vec<u32> {
+    let mut c = vec![0; grid.len()];
+    for &t in tris {
+        for (x, y) in covered(t, grid) {
+            c[(y * grid.width + x) as usize] += 1;
+        }
+    }
+    c
+}
+
+fn quad(a: [f32; 2], b: [f32; 2], c: [f32; 2], d: [f32; 2]) -> [Tri; 2] {
+    [[a, b, c], [a, c, d]]
+}
+
+fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> BTreeSet<(u32, u32)> {
+    let g = Grid::new(8, 8);
+    let [t1, t2] = quad([x0, y0], [x1, y0], [x1, y1], [x0, y1]);
+    let (a, b) = (covered(t1, g), covered(t2, g));
+    assert!(a.is_disjoint(&b));
+    a.union(&b).copied().collect()
+}
+
+fn set(cells: impl IntoIterator<Item = (u32, u32)>) -> BTreeSet<(u32, u32)> {
+    cells.into_iter().collect()
+}
+
+// 1. Shared edges, exactly once.
+
+#[test]
+fn a_screen_filling_quad_turned_through_15_angles_covers_each_sample_once() {
+    let g = Grid::new(32, 24);
+    let (cx, cy) = (16.3, 12.1);
+    for k in 0..15 {
+        let a = k as f32 * 6.1f32.to_radians();
+        let (s, c) = a.sin_cos();
+        // Big enough to cover the screen at any angle.
+        let corner = |x: f32, y: f32| [cx + 40.0 * (c * x - s * y), cy + 40.0 * (s * x + c * y)];
+        let tris = quad(
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+        );
+        assert!(counts(&tris, g).iter().all(|&n| n == 1), "angle {k}");
+    }
+}
+
+#[test]
+fn strips_cover_each_sample_once() {
+    // A triangle strip zig-zagging across the screen, vertices on sample
+    // centres and on edges between them.
+    let g = Grid::new(20, 6);
+    let mut pts = Vec::new();
+    for i in 0..=14 {
+        let x = -5.0 + i as f32 * 2.0;
+        pts.push([x, if i % 2 == 0 { -1.0 } else { 7.0 }]);
+    }
+    let tris: Vec<Tri> = pts.windows(3).map(|w| [w[0], w[1], w[2]]).collect();
+    let c = counts(&tris, g);
+    assert!(c.iter().all(|&n| n == 1), "{c:?}");
+}
+
+/// The clip and divide path of the renderer, for triangles given in clip
+/// space: what a projection with varying w produces.
+fn projected_counts(tris: &[[Vec4; 3]], grid: Grid) -> Vec<u32> {
+    let clipper = Clipper::new(grid.width, grid.height);
+    let vp = Viewport::new(grid.width as f32, grid.height as f32);
+    let mut c = vec![0; grid.len()];
+    let mut poly = Polygon::default();
+    for t in tris {
+        let verts = t.map(|pos| ClipVertex {
+            pos,
+            color: Vec3::ZERO,
+        });
+        clipper.clip(&verts, &mut poly);
+        for sub in poly.triangles() {
+            let xy = sub.map(|v| vp.apply(v.pos.x / v.pos.w, v.pos.y / v.pos.w));
+            if let Ok(s) = Setup::new(xy, grid, Cull::None) {
+                s.walk(grid, Traversal::Incremental, |x, y, _| {
+                    c[(y * grid.width + x) as usize] += 1
+                });
+            }
+        }
+    }
+    c
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(128)
+    ))]
+
+    /// A jittered grid of quads over the screen, in clip space with a
+    /// random w per vertex in [0.1, 4]: shared edges stay exact through
+    /// the divide.
+    #[test]
+    fn projected_grids_with_random_w_cover_each_sample_once(
+        ws in prop::collection::vec(0.1f32..4.0, 49),
+        jitter in prop::collection::vec((-0.2f32..0.2, -0.2f32..0.2), 49),
+        diagonals in prop::collection::vec(any::<bool>(), 36),
+    ) {
+        let g = Grid::new(24, 16);
+        // 7×7 vertices over NDC [-1.2, 1.2]², outer ones fixed.
+        let vertex = |i: usize, j: usize| {
+            let k = j * 7 + i;
+            let inner = (1..6).contains(&i) && (1..6).contains(&j);
+            let (jx, jy) = if inner { jitter[k] } else { (0.0, 0.0) };
+            let x = -1.2 + 0.4 * i as f32 + jx * 0.4;
+            let y = -1.2 + 0.4 * j as f32 + jy * 0.4;
+            let w = ws[k];
+            Vec4::new(x * w, y * w, 0.0, w)
+        };
+        let mut tris = Vec::new();
+        for j in 0..6 {
+            for i in 0..6 {
+                let (a, b, c, d) = (vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1));
+                if diagonals[j * 6 + i] {
+                    tris.push([a, b, c]);
+                    tris.push([a, c, d]);
+                } else {
+                    tris.push([a, b, d]);
+                    tris.push([b, c, d]);
+                }
+            }
+        }
+        let c = projected_counts(&tris, g);
+        prop_assert!(c.iter().all(|&n| n == 1), "{:?}", c);
+    }
+
+    /// 3. An independent reference: i128 arithmetic on the same snapped
+    /// coordinates, with the top-left rule stated another way.
+    #[test]
+    fn random_triangles_match_an_i128_reference(
+        v in prop::array::uniform3((-3000i32..9000, -3000i32..7000)),
+        scale in prop::sample::select(vec![1i32, 8, 64, 512]),
+    ) {
+        let g = Grid::new(24, 16);
+        let centre = (12 * 256, 8 * 256);
+        let p = v.map(|(x, y)| (centre.0 + (x - centre.0) / scale, centre.1 + (y - centre.1) / scale));
+        let tri = p.map(|(x, y)| [x as f32 / 256.0, y as f32 / 256.0]);
+        let expected = reference(p.map(|(x, y)| (x as i128, y as i128)), g);
+        prop_assert_eq!(covered(tri, g), expected);
+    }
+
+    /// 11. Determinism: the same frame whatever vertex the triangle starts
+    /// from.
+    #[test]
+    fn vertex_order_does_not_change_the_frame(
+        v in prop::array::uniform3((-1.3f32..1.3, -1.3f32..1.3, -0.9f32..0.9)),
+        colors in any::<[[u8; 3]; 3]>(),
+        glyphs in prop::sample::select(GlyphMode::ALL.to_vec()),
+    ) {
+        let frame = |rot: usize| {
+            let vs = [0, 1, 2].map(|i| Vec3::from(v[(i + rot) % 3]));
+            let cs = [0, 1, 2].map(|i| Rgb(colors[(i + rot) % 3]));
+            let scene = Scene {
+                camera: Camera { projection: Projection::Perspective { fov_y: 60.0, near: 0.1, far: 10.0 }, eye: Vec3::new(0.3, 0.2, 3.0), ..Camera::default() },
+                triangles: vec![Triangle { vertices: vs, color: TriangleColor::PerVertex(cs) }],
+                ..Scene::default()
+            };
+            let mut r = Renderer::new();
+            r.render(&scene, &RenderOptions { cols: 20, rows: 8, glyphs, color: ColorDepth::TrueColor, ..RenderOptions::default() });
+            r.framebuffer().samples().to_vec()
+        };
+        let abc = frame(0);
+        prop_assert_eq!(&abc, &frame(1));
+        prop_assert_eq!(&abc, &frame(2));
+    }
+
+    /// 12. Moving a triangle by whole samples moves its coverage by exactly
+    /// that.
+    #[test]
+    fn translation_by_whole_samples_moves_coverage_exactly(
+        v in prop::array::uniform3((0i32..4000, 0i32..3000)),
+        (dx, dy) in (-8i32..8, -6i32..6),
+    ) {
+        let g = Grid::new(32, 24);
+        let tri = |ox: i32, oy: i32| v.map(|(x, y)| [(x + ox * 256) as f32 / 256.0, (y + oy * 256) as f32 / 256.0]);
+        let moved = covered(tri(dx, dy), g);
+        let shifted: BTreeSet<(u32, u32)> = covered(tri(0, 0), g)
+            .into_iter()
+            .map(|(x, y)| (x as i32 + dx, y as i32 + dy))
+            .filter(|&(x, y)| x >= 0 && y >= 0 && x < 32 && y < 24)
+            .map(|(x, y)| (x as u32, y as u32))
+            .collect();
+        // Samples moved in from off the screen are the only difference.
+        let edge = |&(x, y): &(u32, u32)| {
+            let (sx, sy) = (x as i32 - dx, y as i32 - dy);
+            sx < 0 || sy < 0 || sx >= 32 || sy >= 24
+        };
+        let moved_from_screen: BTreeSet<_> = moved.iter().filter(|s| !edge(s)).copied().collect();
+        prop_assert_eq!(moved_from_screen, shifted);
+    }
+}
+
+/// The reference rasterizer: for each sample, the three edge functions in
+/// i128 (from the triangle's orientation as given), and the tie rule as
+/// "the interior lies to the right of a left edge, below a top edge".
+fn reference(p: [(i128, i128); 3], g: Grid) -> BTreeSet<(u32, u32)> {
+    let cross = |a: (i128, i128), b: (i128, i128), c: (i128, i128)| {
+        (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
+    };
+    let area = cross(p[0], p[1], p[2]);
+    let mut out = BTreeSet::new();
+    if area == 0 {
+        return out;
+    }
+    for y in 0..g.height {
+        for x in 0..g.width {
+            let s = (x as i128 * 256 + 128, y as i128 * 256 + 128);
+            let inside = (0..3).all(|i| {
+                let (a, b) = (p[i], p[(i + 1) % 3]);
+                // Oriented so the interior is positive.
+                let e = cross(a, b, s) * area.signum();
+                if e != 0 {
+                    return e > 0;
+                }
+                // On the edge: walk it with the interior on the left; the
+                // interior is below (top edge) if it runs towards −x
+                // horizontally, to its right... in screen terms: a left edge
+                // goes down.
+                let (dx, dy) = if area > 0 {
+                    (b.0 - a.0, b.1 - a.1)
+                } else {
+                    (a.0 - b.0, a.1 - b.1)
+                };
+                dy < 0 || (dy == 0 && dx < 0)
+            });
+            if inside {
+                out.insert((x, y));
+            }
+        }
+    }
+    out
+}
+
+// 2. Samples exactly on edges and vertices (the D3D examples).
+
+#[test]
+fn d3d_square_split_on_its_diagonal_is_15_and_10() {
+    let g = Grid::new(5, 5);
+    let lower = covered([[0.0, 0.0], [5.0, 0.0], [5.0, 5.0]], g);
+    let upper = covered([[0.0, 0.0], [5.0, 5.0], [0.0, 5.0]], g);
+    assert_eq!((lower.len(), upper.len()), (15, 10));
+    assert!(lower.is_disjoint(&upper));
+    assert_eq!(lower.union(&upper).count(), 25);
+    // The diagonal's samples belong to the lower triangle (its left edge).
+    assert!((0..5).all(|i| lower.contains(&(i, i))));
+}
+
+#[test]
+fn d3d_rectangles_on_sample_centres_and_between_them() {
+    // (0.5, 0.5)–(2.5, 4.5): the left edge x = 0.5 and the top edge y = 4.5
+    // (y up) pass through sample centres and own them; the right and the
+    // bottom edges do not.
+    let expected = set((0..2).flat_map(|x| (1..5).map(move |y| (x, y))));
+    assert_eq!(rect(0.5, 0.5, 2.5, 4.5), expected);
+    // (1, 1)–(3, 5): edges between sample centres: columns 1–2, rows 1–4.
+    let expected = set((1..3).flat_map(|x| (1..5).map(move |y| (x, y))));
+    assert_eq!(rect(1.0, 1.0, 3.0, 5.0), expected);
+}
+
+// 4. Degenerate triangles.
+
+#[test]
+fn degenerate_triangles_draw_nothing_and_say_so() {
+    let g = Grid::new(8, 8);
+    let mut stats = RasterStats::default();
+    for t in [
+        [[1.0, 1.0], [4.0, 4.0], [7.0, 7.0]], // collinear
+        [[2.5, 2.5], [2.5, 2.5], [6.0, 1.0]], // repeated vertex
+        [[3.0, 3.0], [3.0, 3.0], [3.0, 3.0]], // a point
+        [[1.0, 1.0], [7.0, 1.0 + 1.0 / 1024.0], [13.0, 1.0]], // collinear after snapping
+    ] {
+        rasterize(
+            t,
+            g,
+            Cull::None,
+            Traversal::Incremental,
+            &mut stats,
+            |_, _, _| panic!("drew {t:?}"),
+        );
+    }
+    assert_eq!(stats.dropped_degenerate, 4);
+    // Through the renderer: nothing written, no NaN.
+    let scene = Scene {
+        camera: Camera {
+            projection: Projection::None,
+            ..Camera::default()
+        },
+        triangles: vec![Triangle {
+            vertices: [
+                Vec3::new(-0.5, -0.5, 0.0),
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(0.5, 0.5, 0.0),
+            ],
+            color: TriangleColor::PerVertex([Rgb::WHITE, Rgb::BLACK, Rgb::WHITE]),
+        }],
+        ..Scene::default()
+    };
+    let mut r = Renderer::new();
+    r.render(&scene, &RenderOptions::default());
+    assert!(r.framebuffer().samples().iter().all(Option::is_none));
+    assert_eq!(r.stats().raster.dropped_degenerate, 1);
+}
+
+// 5. The near plane and w.
+
+#[test]
+fn vertices_behind_the_eye_never_show() {
+    let g = Grid::new(16, 16);
+    for w in [-1.0, 0.0, 1e-30, -1e-30] {
+        // One vertex at w ≤ 0 (or nearly): its mirror image would cover the
+        // screen's upper right; clipping keeps only what is in front.
+        let t = [
+            Vec4::new(-0.5, -0.5, 0.0, 1.0),
+            Vec4::new(0.5, -0.5, 0.0, 1.0),
+            Vec4::new(0.8 * w, 0.8 * w, 0.0, w),
+        ];
+        let c = projected_counts(&[t], g);
+        // What remains lies within the part of the plane in front of the
+        // eye: no sample in the upper-right quadrant beyond the vertices.
+        for y in 12..16 {
+            for x in 12..16 {
+                assert_eq!(c[(y * 16 + x) as usize], 0, "w = {w}: ({x}, {y})");
+            }
+        }
+        assert!(c.iter().all(|&n| n <= 1));
+    }
+    // All three behind: nothing.
+    let behind = [
+        Vec4::new(0.0, 0.0, 0.0, -1.0),
+        Vec4::new(1.0, 0.0, 0.0, -1.0),
+        Vec4::new(0.0, 1.0, 0.0, -2.0),
+    ];
+    assert!(projected_counts(&[behind], g).iter().all(|&n| n == 0));
+}
+
+#[test]
+fn neighbours_cut_by_the_near_plane_stay_watertight() {
+    // A floor from in front of the eye to behind it, as a fan of triangles
+    // around a point on it: every triangle crosses or touches the near plane.
+    let scene = |triangles| Scene {
+        camera: Camera {
+            projection: Projection::Perspective {
+                fov_y: 70.0,
+                near: 0.5,
+                far: 50.0,
+            },
+            eye: Vec3::new(0.0, 1.0, 0.0),
+            target: Vec3::new(0.0, 0.6, -3.0),
+            up: Vec3::Y,
+        },
+        triangles,
+        ..Scene::default()
+    };
+    let hub = Vec3::new(0.2, 0.0, -2.0);
+    let ring: Vec<Vec3> = (0..12)
+        .map(|k| {
+            let a = k as f32 / 12.0 * std::f32::consts::TAU;
+            hub + Vec3::new(a.cos(), 0.0, a.sin()) * 9.0
+        })
+        .collect();
+    let tris: Vec<Triangle> = (0..12)
+        .map(|k| Triangle {
+            vertices: [hub, ring[k], ring[(k + 1) % 12]],
+            color: TriangleColor::Flat(Rgb::WHITE),
+        })
+        .collect();
+    let opts = RenderOptions {
+        cols: 48,
+        rows: 20,
+        glyphs: GlyphMode::Block,
+        ..RenderOptions::default()
+    };
+    // Count coverage per sample with each triangle alone.
+    let grid = opts.glyphs.grid(opts.cols, opts.rows);
+    let mut count = vec![0u32; grid.len()];
+    for t in &tris {
+        let mut r = Renderer::new();
+        r.render(&scene(vec![*t]), &opts);
+        for (i, s) in r.framebuffer().samples().iter().enumerate() {
+            count[i] += s.is_some() as u32;
+        }
+    }
+    let mut r = Renderer::new();
+    r.render(&scene(tris), &opts);
+    assert!(r.stats().clipped > 0, "the near plane cut something");
+    // The floor covers the lower part of the screen with no hole and no
+    // double hit, and the whole picture is exactly the union.
+    assert!(count.iter().all(|&n| n <= 1));
+    let bottom = &count[..grid.width as usize];
+    assert!(bottom.iter().all(|&n| n == 1), "the nearest row is covered");
+    for (i, s) in r.framebuffer().samples().iter().enumerate() {
+        assert_eq!(s.is_some(), count[i] == 1);
+    }
+}
+
+// 6. Huge coordinates.
+
+/// Renders one triangle given in samples through the whole pipeline
+/// (canonical cube, no camera) on a `w × h` sample grid.
+fn render_samples(t: [[f64; 2]; 3], cols: u16, rows: u16) -> (BTreeSet<(u32, u32)>, RasterStats) {
+    let (w, h) = (cols as f64, rows as f64);
+    let ndc =
+        t.map(|[x, y]| Vec3::new((2.0 * x / w - 1.0) as f32, (2.0 * y / h - 1.0) as f32, 0.0));
+    let scene = Scene {
+        camera: Camera {
+            projection: Projection::None,
+            ..Camera::default()
+        },
+        triangles: vec![Triangle {
+            vertices: ndc,
+            color: TriangleColor::Flat(Rgb::WHITE),
+        }],
+        ..Scene::default()
+    };
+    let mut r = Renderer::new();
+    r.render(
+        &scene,
+        &RenderOptions {
+            cols,
+            rows,
+            glyphs: GlyphMode::Block,
+            ..RenderOptions::default()
+        },
+    );
+    let fb = r.framebuffer();
+    let mut set = BTreeSet::new();
+    for y in 0..rows as u32 {
+        for x in 0..cols as u32 {
+            if fb.get(x, y).is_some() {
+                set.insert((x, y));
+            }
+        }
+    }
+    (set, r.stats().raster)
+}
+
+#[test]
+fn huge_coordinates_neither_overflow_nor_move_the_edges() {
+    // A triangle with one corner on screen and two edges running out to
+    // `far` samples along directions chosen so that no edge passes within
+    // 0.05 of a sample centre; the reference tests each centre against the
+    // edges' lines in f64, from the corner and the directions alone.
+    let (cols, rows) = (40u16, 30u16);
+    let apex = [13.37, 9.71];
+    let dirs = [[1.0, 0.2131], [0.3117, 1.0]];
+    let mut expected = BTreeSet::new();
+    for y in 0..rows as u32 {
+        for x in 0..cols as u32 {
+            let s = [x as f64 + 0.5 - apex[0], y as f64 + 0.5 - apex[1]];
+            let side = |d: [f64; 2]| d[0] * s[1] - d[1] * s[0];
+            if side(dirs[0]) > 0.0 && side(dirs[1]) < 0.0 {
+                expected.insert((x, y));
+            }
+        }
+    }
+    assert!(expected.len() > 300);
+    for far in [1e3, 1e6, 1e12, 1e30] {
+        let t = [
+            apex,
+            [apex[0] + far * dirs[0][0], apex[1] + far * dirs[0][1]],
+            [apex[0] + far * dirs[1][0], apex[1] + far * dirs[1][1]],
+        ];
+        let (got, stats) = render_samples(t, cols, rows);
+        assert_eq!(got, expected, "far = {far}");
+        assert_eq!(stats.dropped_out_of_range, 0);
+        // And the mirror image, all three far away.
+        let huge = [[-far, -far], [far, -far * 0.5], [0.0, far]];
+        let (got, _) = render_samples(huge, cols, rows);
+        assert_eq!(
+            got.len(),
+            cols as usize * rows as usize,
+            "far = {far}: covers the screen"
+        );
+    }
+}
+
+// 7. NaN and infinity.
+
+#[test]
+fn nan_and_infinity_drop_the_primitive_and_are_counted() {
+    let g = Grid::new(8, 8);
+    let mut stats = RasterStats::default();
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        rasterize(
+            [[1.0, 1.0], [bad, 2.0], [6.0, 6.0]],
+            g,
+            Cull::None,
+            Traversal::Incremental,
+            &mut stats,
+            |_, _, _| panic!(),
+        );
+    }
+    assert_eq!(stats.dropped_non_finite, 3);
+    // Positions through the renderer: removed at the clip stage.
+    for bad in [f32::NAN, f32::INFINITY] {
+        let scene = Scene {
+            camera: Camera {
+                projection: Projection::None,
+                ..Camera::default()
+            },
+            triangles: vec![Triangle {
+                vertices: [
+                    Vec3::new(-0.5, -0.5, 0.0),
+                    Vec3::new(bad, 0.5, 0.0),
+                    Vec3::new(0.5, -0.5, 0.0),
+                ],
+                color: TriangleColor::Flat(Rgb::WHITE),
+            }],
+            ..Scene::default()
+        };
+        let mut r = Renderer::new();
+        r.render(&scene, &RenderOptions::default());
+        assert!(r.framebuffer().samples().iter().all(Option::is_none));
+        assert_eq!(r.stats().clip_rejected, 1);
+    }
+    // Normals: a mesh with one NaN normal loses exactly the faces using it.
+    let mut mesh = rastty::scene::Shape::Cube.mesh(Rgb::WHITE);
+    mesh.normals[0] = Vec3::NAN;
+    let users = mesh.faces.iter().filter(|f| f.contains(&0)).count() as u64;
+    let mut scene = Scene::of_mesh(mesh);
+    scene.meshes[0].cull = Cull::None;
+    let mut r = Renderer::new();
+    r.render(&scene, &RenderOptions::default());
+    assert_eq!(r.stats().dropped_non_finite_normals, users);
+}
+
+// 8. Tiny triangles and slivers.
+
+#[test]
+fn tiny_triangles_and_slivers() {
+    let g = Grid::new(8, 8);
+    // Smaller than a sample, around a sample centre: covers it; beside it:
+    // nothing.
+    assert_eq!(
+        covered([[2.4, 3.4], [2.6, 3.45], [2.5, 3.6]], g),
+        set([(2, 3)])
+    );
+    assert!(covered([[2.6, 3.6], [2.9, 3.6], [2.7, 3.9]], g).is_empty());
+    // 1e-3 by 1000 samples, across a row of centres: thinner than the
+    // 1/256 snap, it snaps to a line (zero area) and draws nothing.
+    let wide = Grid::new(1000, 4);
+    let mut stats = RasterStats::default();
+    let sliver = [
+        [0.0, 1.5 - 0.0005],
+        [1000.0, 1.5 - 0.0005],
+        [1000.0, 1.5 + 0.0005],
+    ];
+    rasterize(
+        sliver,
+        wide,
+        Cull::None,
+        Traversal::Incremental,
+        &mut stats,
+        |_, _, _| panic!("drew a sub-snap sliver"),
+    );
+    assert_eq!(stats.dropped_degenerate, 1);
+    // One snap unit thick, its top edge on the centres of row 1: it owns
+    // all 1000 of them (a top edge), and nothing else.
+    let top = covered(
+        [[0.0, 1.5], [500.0, 1.5 - 1.0 / 256.0], [1000.0, 1.5]],
+        wide,
+    );
+    assert_eq!(top, set((0..1000).map(|x| (x, 1))));
+    // The same sliver upside down: its edge on the centres is a bottom
+    // edge, which owns none of them.
+    assert!(
+        covered(
+            [[0.0, 1.5], [1000.0, 1.5], [500.0, 1.5 + 1.0 / 256.0]],
+            wide
+        )
+        .is_empty()
+    );
+}
+
+#[test]
+fn the_near_touching_pair_leaves_no_hole_on_the_diagonal() {
+    let g = Grid::new(8, 8);
+    // 0.49993896484375 and 6.50006103515625, exactly.
+    let (lo, hi): (f32, f32) = (0.5 - 1.0 / 16384.0, 6.5 + 1.0 / 16384.0);
+    assert_eq!((lo as f64, hi as f64), (0.49993896484375, 6.50006103515625));
+    let a = [0.5, lo];
+    let b = [0.5, 6.5];
+    let c = [hi, lo];
+    let d = [hi, 6.5];
+    let c = counts(&[[a, b, c], [b, d, c]], g);
+    // The pair snaps to the square (0.5, 0.5)–(6.5, 6.5): columns 0–5, rows
+    // 1–6, every sample exactly once, the diagonal's included.
+    for y in 0..8 {
+        for x in 0..8 {
+            let want = ((0..6).contains(&x) && (1..7).contains(&y)) as u32;
+            assert_eq!(c[(y * 8 + x) as usize], want, "({x}, {y})");
+        }
+    }
+}
+
+// 9. Perspective-correct interpolation.
+
+#[test]
+fn perspective_correct_colours_match_f64_and_differ_from_affine() {
+    // A floor running away from the eye, red near and blue far: w differs
+    // eightfold between its ends.
+    let near = Vec3::new(0.0, -1.0, -1.0);
+    let far = Vec3::new(0.0, -1.0, -8.0);
+    let camera = Camera {
+        projection: Projection::Perspective {
+            fov_y: 90.0,
+            near: 0.5,
+            far: 20.0,
+        },
+        eye: Vec3::ZERO,
+        target: Vec3::new(0.0, 0.0, -1.0),
+        up: Vec3::Y,
+    };
+    let (l, r) = (Vec3::X * 2.0, Vec3::X * -2.0);
+    let red = Rgb::new(255, 0, 0);
+    let blue = Rgb::new(0, 0, 255);
+    let scene = Scene {
+        camera,
+        triangles: vec![
+            Triangle {
+                vertices: [near + r, near + l, far + l],
+                color: TriangleColor::PerVertex([red, red, blue]),
+            },
+            Triangle {
+                vertices: [near + r, far + l, far + r],
+                color: TriangleColor::PerVertex([red, blue, blue]),
+            },
+        ],
+        ..Scene::default()
+    };
+    let opts = RenderOptions {
+        cols: 16,
+        rows: 16,
+        glyphs: GlyphMode::Block,
+        cell_aspect: 1.0,
+        ..RenderOptions::default()
+    };
+    let mut rr = Renderer::new();
+    rr.render(&scene, &opts);
+    let fb = rr.framebuffer();
+    let grid = fb.grid();
+    let vp = camera.view_projection(opts.aspect());
+    let (mut checked, mut off_affine) = (0, 0);
+    for y in 0..grid.height {
+        for x in 0..grid.width {
+            let Some(c) = fb.get(x, y) else { continue };
+            // The floor point behind this sample, in f64: cast the ray.
+            let ndc_x = (x as f64 + 0.5) / grid.width as f64 * 2.0 - 1.0;
+            let ndc_y = (y as f64 + 0.5) / grid.height as f64 * 2.0 - 1.0;
+            let inv = vp.as_dmat4().inverse();
+            let p0 = inv.project_point3(glam::DVec3::new(ndc_x, ndc_y, 1.0));
+            let p1 = inv.project_point3(glam::DVec3::new(ndc_x, ndc_y, -1.0));
+            let t = (-1.0 - p0.y) / (p1.y - p0.y);
+            let z = p0.z + t * (p1.z - p0.z);
+            // Blue's share grows linearly with depth along the floor.
+            let s = (z - (-1.0)) / (-8.0 - (-1.0));
+            let want = [255.0 * (1.0 - s), 0.0, 255.0 * s];
+            let got = c.to_f32();
+            assert!(
+                (got[0] as f64 - want[0]).abs() <= 2.0 && (got[2] as f64 - want[2]).abs() <= 2.0,
+                "({x}, {y}): {c} vs {want:?}"
+            );
+            // Affine interpolation in screen space would follow the screen y.
+            let p_near = vp.as_dmat4().project_point3(near.as_dvec3());
+            let p_far = vp.as_dmat4().project_point3(far.as_dvec3());
+            let s_affine = ((ndc_y - p_near.y) / (p_far.y - p_near.y)).clamp(0.0, 1.0);
+            if (255.0 * s_affine - want[2]).abs() > 20.0 {
+                off_affine += 1;
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 30, "{checked} samples");
+    assert!(
+        off_affine > 10,
+        "the case tells perspective from affine ({off_affine})"
+    );
+}
+
+// 10. Depth.
+
+#[test]
+fn depth_stays_within_its_vertices_and_coplanar_overlaps_resolve_the_same_way() {
+    // Two overlapping coplanar triangles of different colours on a tilted
+    // plane, over a third farther back: the first listed wins wherever they
+    // overlap, every time, and nothing of the back one shows between them.
+    let plane = |x: f32, y: f32| Vec3::new(x, y, -3.0 + 0.4 * x + 0.2 * y);
+    let a = Triangle {
+        vertices: [plane(-1.5, -1.0), plane(1.0, -1.0), plane(-0.2, 1.2)],
+        color: TriangleColor::Flat(Rgb::new(250, 0, 0)),
+    };
+    let b = Triangle {
+        vertices: [plane(-1.0, -1.2), plane(1.5, -0.8), plane(0.6, 1.0)],
+        color: TriangleColor::Flat(Rgb::new(0, 250, 0)),
+    };
+    let back = Triangle {
+        vertices: [
+            Vec3::new(-5.0, -5.0, -6.0),
+            Vec3::new(5.0, -5.0, -6.0),
+            Vec3::new(0.0, 5.0, -6.0),
+        ],
+        color: TriangleColor::Flat(Rgb::new(0, 0, 250)),
+    };
+    let scene = |tris| Scene {
+        camera: Camera::default(),
+        triangles: tris,
+        ..Scene::default()
+    };
+    let opts = RenderOptions {
+        cols: 60,
+        rows: 24,
+        glyphs: GlyphMode::Block,
+        ..RenderOptions::default()
+    };
+    let mut r = Renderer::new();
+    // Rotating each triangle's vertices changes nothing either.
+    let rot = |t: Triangle| Triangle {
+        vertices: [t.vertices[1], t.vertices[2], t.vertices[0]],
+        ..t
+    };
+    let rotated = Renderer::new()
+        .render(&scene(vec![back, rot(a), rot(b)]), &opts)
+        .clone();
+    let first = r.render(&scene(vec![back, a, b]), &opts).clone();
+    let again = r.render(&scene(vec![back, a, b]), &opts).clone();
+    assert_eq!(first, again);
+    assert_eq!(first, rotated);
+    let fb = r.framebuffer();
+    let grid = fb.grid();
+    let (mut overlap, mut zs) = (0, Vec::new());
+    // Coverage of a and b alone, to find their overlap.
+    let alone = |t: Triangle| {
+        let mut r = Renderer::new();
+        r.render(&scene(vec![t]), &opts);
+        r.framebuffer().samples().to_vec()
+    };
+    let (sa, sb) = (alone(a), alone(b));
+    for y in 0..grid.height {
+        for x in 0..grid.width {
+            let i = (y * grid.width + x) as usize;
+            if sa[i].is_some() && sb[i].is_some() {
+                overlap += 1;
+                let c = fb.get(x, y);
+                assert!(
+                    c == sa[i] || c == sb[i],
+                    "one of the two coplanar triangles shows"
+                );
+            }
+            if sa[i].is_some() || sb[i].is_some() {
+                assert_ne!(
+                    fb.get(x, y),
+                    Some(Rgb::new(0, 0, 250)),
+                    "no speckle of the back triangle at ({x}, {y})"
+                );
+                zs.push(fb.depth(x, y));
+            }
+        }
+    }
+    assert!(overlap > 20);
+    // Depths within the vertices' range (in the canonical cube).
+    let vp = Camera::default().view_projection(opts.aspect());
+    let vz: Vec<f32> = [a, b]
+        .iter()
+        .flat_map(|t| t.vertices)
+        .map(|p| {
+            let c = vp * p.extend(1.0);
+            c.z / c.w
+        })
+        .collect();
+    let (lo, hi) = (
+        vz.iter().copied().fold(f32::INFINITY, f32::min),
+        vz.iter().copied().fold(f32::NEG_INFINITY, f32::max),
+    );
+    assert!(zs.iter().all(|&z| z >= lo && z <= hi), "{lo}..{hi}");
+}
+
+#[test]
+fn one_thread_no_tiles_so_nothing_else_can_vary() {
+    // The renderer is single-threaded and walks whole triangles: there is
+    // no thread count or tile size to change the frame. Rendering the same
+    // frame twice, with a fresh renderer and a reused one, is bit for bit
+    // the same.
+    let scene = rastty::default_scene();
+    let opts = RenderOptions {
+        cols: 50,
+        rows: 16,
+        ..RenderOptions::default()
+    };
+    let mut reused = Renderer::new();
+    reused.render(
+        &scene,
+        &RenderOptions {
+            cols: 13,
+            rows: 7,
+            ..opts
+        },
+    );
+    let a = reused.render(&scene, &opts).clone();
+    assert_eq!(a, rastty::render(&scene, &opts));
+    let _ = (Fixed(0), FixedPoint::default(), ONE);
+}
