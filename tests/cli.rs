@@ -192,3 +192,84 @@ fn auto_colour_is_none_when_piped_even_with_colorterm() {
         .unwrap();
     assert!(!out.stdout.contains(&0x1b));
 }
+
+/// Every kind of bad input: one line on stderr naming the file (and the
+/// line where the format has lines), a non-zero exit, no panic.
+#[test]
+fn bad_input_gets_one_clear_line() {
+    let mut report = String::new();
+    for (what, args) in [
+        (
+            "OBJ with a bad number",
+            &["render", "tests/data/bad-number.obj"][..],
+        ),
+        (
+            "OBJ face of two vertices",
+            &["render", "tests/data/short-face.obj"],
+        ),
+        (
+            "OBJ index out of range",
+            &["render", "tests/data/out-of-range.obj"],
+        ),
+        (
+            "OBJ with a missing MTL",
+            &["render", "tests/data/missing-mtl.obj"],
+        ),
+        (
+            "truncated binary STL",
+            &["render", "tests/data/truncated.stl"],
+        ),
+        (
+            "ASCII STL with a bad number",
+            &["render", "tests/data/bad-ascii.stl"],
+        ),
+        ("empty OBJ", &["render", "tests/data/empty.obj"]),
+        ("empty STL", &["render", "tests/data/empty.stl"]),
+        ("empty scene", &["render", "tests/data/empty.toml"]),
+        ("a directory as a model", &["render", "tests/models/"]),
+        (
+            "a directory named like a model",
+            &["spin", "tests/data/dir.obj", "--frames", "1"],
+        ),
+        ("NaN in a scene", &["render", "tests/data/nan-eye.toml"]),
+        (
+            "infinity in a scene",
+            &["render", "tests/data/inf-vertex.toml"],
+        ),
+        (
+            "wrong type in a scene",
+            &["render", "tests/data/bad-type.toml"],
+        ),
+        (
+            "unknown key in a scene",
+            &["render", "tests/data/unknown-key.toml"],
+        ),
+        ("not a model", &["render", "README.md"]),
+        ("--cols 0", &["render", "--cols", "0"]),
+        ("--cols 100000", &["render", "--cols", "100000"]),
+        ("--fps 0", &["spin", "--fps", "0"]),
+    ] {
+        let err = fails(args);
+        assert_eq!(err.lines().count(), 1, "{what}: {err}");
+        report.push_str(&format!("{what}\n  {err}"));
+    }
+    insta::assert_snapshot!(report);
+}
+
+#[test]
+fn a_path_that_is_not_utf8_is_named_as_best_it_can() {
+    use std::os::unix::ffi::OsStrExt;
+    let name = std::ffi::OsStr::from_bytes(b"tests/data/\xff\xfe.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .arg("render")
+        .arg(name)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(
+        err,
+        "error: tests/data/\u{fffd}\u{fffd}.toml: No such file or directory (os error 2)\n"
+    );
+}

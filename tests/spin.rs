@@ -203,3 +203,20 @@ fn sigterm_and_sighup_restore_the_terminal() {
         assert_restored(&out);
     }
 }
+
+#[test]
+fn a_bad_model_is_reported_before_the_terminal_is_touched() {
+    let mut s = spawn(&["tests/data/short-face.obj"]);
+    let out = drain(&mut s, Vec::new());
+    assert_eq!(exit_code(&s), 1);
+    let text = String::from_utf8_lossy(&out);
+    assert!(
+        text.contains("error: tests/data/short-face.obj:4:1: a face needs at least 3 vertices"),
+        "{text:?}"
+    );
+    assert!(
+        !text.contains("\x1b[?1049h"),
+        "the alternate screen was never entered"
+    );
+    assert!(!text.contains("\x1b[?25l"), "the cursor was never hidden");
+}

@@ -71,10 +71,29 @@ fn locate(name: &str, bytes: &[u8], e: std::io::Error) -> Error {
         .map(|it| it.take_while(|t| t.is_ok()).count())
         .unwrap_or(0);
     let text = std::str::from_utf8(bytes).unwrap_or("");
-    let offset = text
+    let facet = text
         .match_indices("facet")
         .filter(|(i, _)| !text[..*i].ends_with("end"))
         .nth(good)
         .map_or(0, |(i, _)| i);
-    Error::parse_at(name, text, offset, message)
+    // Within the facet, the first line with a number that does not parse.
+    let mut offset = facet;
+    for line in text[facet..].split_inclusive('\n') {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let numbers = match words.as_slice() {
+            ["vertex", rest @ ..] | ["facet", "normal", rest @ ..] => rest,
+            _ => &[],
+        };
+        if numbers
+            .iter()
+            .any(|w| w.parse::<f32>().map_or(true, |v| !v.is_finite()))
+        {
+            return Error::parse_at(name, text, offset, format!("{message}: {:?}", line.trim()));
+        }
+        if words.first() == Some(&"endfacet") {
+            break;
+        }
+        offset += line.len();
+    }
+    Error::parse_at(name, text, facet, message)
 }
