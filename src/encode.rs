@@ -615,62 +615,39 @@ mod tests {
         assert_eq!(String::from_utf8(out).unwrap(), f.to_string());
     }
 
+    /// A one-row frame of `n` copies of a cell, written as lines with REP.
+    fn lines_with_rep(n: u16, cell: Cell) -> String {
+        let mut f = Frame::new(n, 1);
+        (0..n).for_each(|c| f.set(c, 0, cell));
+        let mut out = Vec::new();
+        write_lines(
+            &f,
+            ColorDepth::TrueColor,
+            Rep::On,
+            &mut Vec::new(),
+            &mut out,
+        )
+        .unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
     #[test]
     fn rep_replaces_long_runs_only() {
-        let mut f = Frame::new(12, 1);
-        for c in 0..12 {
-            f.set(
-                c,
-                0,
-                Cell {
-                    ch: '▀',
-                    fg: Some(Rgb::WHITE),
-                    bg: None,
-                },
-            );
-        }
-        let mut out = Vec::new();
-        write_lines(
-            &f,
-            ColorDepth::TrueColor,
-            Rep::On,
-            &mut Vec::new(),
-            &mut out,
-        )
-        .unwrap();
+        let white = Cell {
+            ch: '▀',
+            fg: Some(Rgb::WHITE),
+            bg: None,
+        };
         assert_eq!(
-            String::from_utf8(out).unwrap(),
+            lines_with_rep(12, white),
             "\x1b[38;2;255;255;255m▀\x1b[11b\x1b[m\n"
         );
-        let mut f = Frame::new(2, 1);
-        f.set(
-            0,
-            0,
-            Cell {
-                ch: 'x',
-                fg: None,
-                bg: None,
-            },
-        );
-        f.set(
-            1,
-            0,
-            Cell {
-                ch: 'x',
-                fg: None,
-                bg: None,
-            },
-        );
-        let mut out = Vec::new();
-        write_lines(
-            &f,
-            ColorDepth::TrueColor,
-            Rep::On,
-            &mut Vec::new(),
-            &mut out,
-        )
-        .unwrap();
-        assert_eq!(String::from_utf8(out).unwrap(), "xx\n");
+        let x = Cell {
+            ch: 'x',
+            fg: None,
+            bg: None,
+        };
+        assert_eq!(lines_with_rep(2, x), "xx\n");
     }
 
     #[test]

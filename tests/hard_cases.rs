@@ -318,21 +318,14 @@ fn degenerate_triangles_draw_nothing_and_say_so() {
     }
     assert_eq!(stats.dropped_degenerate, 4);
     // Through the renderer: nothing written, no NaN.
-    let scene = Scene {
-        camera: Camera {
-            projection: Projection::None,
-            ..Camera::default()
-        },
-        triangles: vec![Triangle {
-            vertices: [
-                Vec3::new(-0.5, -0.5, 0.0),
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(0.5, 0.5, 0.0),
-            ],
-            color: TriangleColor::PerVertex([Rgb::WHITE, Rgb::BLACK, Rgb::WHITE]),
-        }],
-        ..Scene::default()
-    };
+    let scene = Scene::in_canonical_cube(vec![Triangle {
+        vertices: [
+            Vec3::new(-0.5, -0.5, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.5, 0.5, 0.0),
+        ],
+        color: TriangleColor::PerVertex([Rgb::WHITE, Rgb::BLACK, Rgb::WHITE]),
+    }]);
     let mut r = Renderer::new();
     r.render(&scene, &RenderOptions::default());
     assert!(r.framebuffer().samples().iter().all(Option::is_none));
@@ -439,17 +432,10 @@ fn render_samples(t: [[f64; 2]; 3], cols: u16, rows: u16) -> (BTreeSet<(u32, u32
     let (w, h) = (cols as f64, rows as f64);
     let ndc =
         t.map(|[x, y]| Vec3::new((2.0 * x / w - 1.0) as f32, (2.0 * y / h - 1.0) as f32, 0.0));
-    let scene = Scene {
-        camera: Camera {
-            projection: Projection::None,
-            ..Camera::default()
-        },
-        triangles: vec![Triangle {
-            vertices: ndc,
-            color: TriangleColor::Flat(Rgb::WHITE),
-        }],
-        ..Scene::default()
-    };
+    let scene = Scene::in_canonical_cube(vec![Triangle {
+        vertices: ndc,
+        color: TriangleColor::Flat(Rgb::WHITE),
+    }]);
     let mut r = Renderer::new();
     r.render(
         &scene,
@@ -531,21 +517,14 @@ fn nan_and_infinity_drop_the_primitive_and_are_counted() {
     assert_eq!(stats.dropped_non_finite, 3);
     // Positions through the renderer: removed at the clip stage.
     for bad in [f32::NAN, f32::INFINITY] {
-        let scene = Scene {
-            camera: Camera {
-                projection: Projection::None,
-                ..Camera::default()
-            },
-            triangles: vec![Triangle {
-                vertices: [
-                    Vec3::new(-0.5, -0.5, 0.0),
-                    Vec3::new(bad, 0.5, 0.0),
-                    Vec3::new(0.5, -0.5, 0.0),
-                ],
-                color: TriangleColor::Flat(Rgb::WHITE),
-            }],
-            ..Scene::default()
-        };
+        let scene = Scene::in_canonical_cube(vec![Triangle {
+            vertices: [
+                Vec3::new(-0.5, -0.5, 0.0),
+                Vec3::new(bad, 0.5, 0.0),
+                Vec3::new(0.5, -0.5, 0.0),
+            ],
+            color: TriangleColor::Flat(Rgb::WHITE),
+        }]);
         let mut r = Renderer::new();
         r.render(&scene, &RenderOptions::default());
         assert!(r.framebuffer().samples().iter().all(Option::is_none));

@@ -193,11 +193,7 @@ proptest! {
         lights in prop::collection::vec(light(), 0..2),
         opts in options(),
     ) {
-        let flat = Scene {
-            camera: Camera { projection: Projection::None, ..Camera::default() },
-            triangles,
-            ..Scene::default()
-        };
+        let flat = Scene::in_canonical_cube(triangles);
         let flat_opts = RenderOptions { turn: Vec3::ZERO, ..opts };
         let stats = same_both_ways(&flat, &flat_opts).map_err(TestCaseError::fail)?;
         prop_assert_eq!(stats.depth_tests, 0);

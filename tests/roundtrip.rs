@@ -3,23 +3,15 @@
 //! and background of every cell, for every glyph mode and colour depth, for
 //! full frames and for sequences of frames sent as diffs, resizes included.
 
-use std::num::NonZeroU16;
+mod common;
 
+use common::{as_displayed, nz, terminal};
 use glam::Vec3;
 use proptest::prelude::*;
 use rastty::color::{Ink, Metric, Quantizer};
 use rastty::encode::{Encoder, Rep, write_lines};
-use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
+use rastty::scene::{Triangle, TriangleColor};
 use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
-
-/// A vt100 parser of `rows × cols` cells, no scrollback.
-fn terminal(rows: u16, cols: u16) -> vt100::Parser {
-    vt100::Parser::new(nz(rows), nz(cols), 0)
-}
-
-fn nz(n: u16) -> NonZeroU16 {
-    NonZeroU16::new(n).expect("a non-zero size")
-}
 
 fn vt_color(ink: Ink) -> vt100::Color {
     match ink {
@@ -113,20 +105,8 @@ fn render_lines_read_back_the_same() {
             let frame = rastty::render(&scene, &opts(30, 9, glyphs, depth));
             let mut bytes = Vec::new();
             write_lines(&frame, depth, Rep::On, &mut Vec::new(), &mut bytes).unwrap();
-            // A terminal's output processing turns \n into \r\n.
-            let bytes: Vec<u8> = bytes
-                .iter()
-                .flat_map(|&b| {
-                    if b == b'\n' {
-                        vec![b'\r', b'\n']
-                    } else {
-                        vec![b]
-                    }
-                })
-                .collect();
-            // Without the last line's newline, nine rows hold the nine lines.
             let mut vt = terminal(9, 30);
-            vt.process(&bytes[..bytes.len() - 2]);
+            vt.process(&as_displayed(&bytes));
             assert_screen(vt.screen(), &frame, depth)
                 .unwrap_or_else(|e| panic!("{glyphs:?} {depth:?}: {e}"));
             if depth == ColorDepth::None {
@@ -184,12 +164,7 @@ proptest! {
         let mut encoder = Encoder::new(depth).with_rep(rep);
         let mut vt: Option<vt100::Parser> = None;
         for (k, (triangles, cols, rows)) in steps.into_iter().enumerate() {
-            let scene = Scene {
-                background,
-                camera: Camera { projection: Projection::None, ..Camera::default() },
-                triangles,
-                ..Scene::default()
-            };
+            let scene = Scene { background, ..Scene::in_canonical_cube(triangles) };
             let frame = renderer.render(&scene, &opts(cols, rows, glyphs, depth)).clone();
             // A resize: the terminal changes size first, as a real one does.
             match &mut vt {

@@ -2,23 +2,17 @@
 //! the terminal it leaves behind when it is one (a pseudo-terminal run by
 //! `expectrl`), whichever way it ends.
 
+mod common;
+
 use std::io::Read;
-use std::num::NonZeroU16;
 use std::process::Command;
 use std::time::Duration;
 
+use common::{as_displayed, terminal};
 use expectrl::Expect;
 use expectrl::session::OsSession as Session;
 
 const BIN: &str = env!("CARGO_BIN_EXE_rastty");
-
-fn terminal(rows: u16, cols: u16) -> vt100::Parser {
-    vt100::Parser::new(
-        NonZeroU16::new(rows).unwrap(),
-        NonZeroU16::new(cols).unwrap(),
-        0,
-    )
-}
 
 fn run(args: &[&str]) -> Vec<u8> {
     let out = Command::new(BIN)
@@ -79,18 +73,8 @@ fn spin_frames_replayed_end_on_render_at_the_last_angle() {
 
     // Frame 11 is turned by 11 · 7.5 = 82.5 degrees.
     let lines = run(&[&["render", "--yaw", "82.5"][..], &view].concat());
-    let lines: Vec<u8> = lines
-        .iter()
-        .flat_map(|&b| {
-            if b == b'\n' {
-                vec![b'\r', b'\n']
-            } else {
-                vec![b]
-            }
-        })
-        .collect();
     let mut rendered = terminal(12, 40);
-    rendered.process(&lines[..lines.len() - 2]);
+    rendered.process(&as_displayed(&lines));
 
     assert_eq!(cells(spun.screen()), cells(rendered.screen()));
     // And the stream is deterministic.

@@ -227,6 +227,20 @@ impl Scene {
         }
     }
 
+    /// Loose triangles already in the canonical cube (x right, y up, larger
+    /// z nearer), seen through no camera: the viewport maps them straight
+    /// onto the samples.
+    pub fn in_canonical_cube(triangles: Vec<Triangle>) -> Scene {
+        Scene {
+            camera: Camera {
+                projection: Projection::None,
+                ..Camera::default()
+            },
+            triangles,
+            ..Scene::default()
+        }
+    }
+
     /// A model file (`.obj` or `.stl`) or, when `name` is one, a built-in
     /// shape, as [`Scene::of_mesh`].
     pub fn of_model(name: &Path) -> Result<Scene> {
