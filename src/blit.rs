@@ -111,8 +111,20 @@ impl GlyphMode {
         }
     }
 
-    /// One cell from its samples (see the module doc for their order).
+    /// One cell from its samples (see the module doc for their order), with
+    /// the exact two-colour split.
     pub fn cell(self, samples: &[Option<Rgb>], depth: ColorDepth, background: Option<Rgb>) -> Cell {
+        self.cell_split(samples, depth, background, Split::Exhaustive)
+    }
+
+    /// One cell, its two colours split by `split`.
+    pub fn cell_split(
+        self,
+        samples: &[Option<Rgb>],
+        depth: ColorDepth,
+        background: Option<Rgb>,
+        split: Split,
+    ) -> Cell {
         let n = samples.len();
         debug_assert_eq!(n, self.samples());
         let drawn = samples
@@ -161,12 +173,18 @@ impl GlyphMode {
                 }
             }
             GlyphMode::Half | GlyphMode::Quadrant | GlyphMode::Sextant | GlyphMode::Octant => {
-                self.two_colour(samples, drawn, background)
+                self.two_colour(samples, drawn, background, split)
             }
         }
     }
 
-    fn two_colour(self, samples: &[Option<Rgb>], drawn: u8, background: Option<Rgb>) -> Cell {
+    fn two_colour(
+        self,
+        samples: &[Option<Rgb>],
+        drawn: u8,
+        background: Option<Rgb>,
+        how: Split,
+    ) -> Cell {
         let n = samples.len();
         let full = ((1u16 << n) - 1) as u8;
         let Some(bg_color) = background.or(if drawn == full { samples[0] } else { None }) else {
@@ -188,7 +206,10 @@ impl GlyphMode {
             *c = s.unwrap_or(bg_color);
         }
         let colors = &colors[..n];
-        let mask = split(colors);
+        let mask = match how {
+            Split::Exhaustive => split(colors),
+            Split::WidestChannel => split_widest_channel(colors),
+        };
         if mask == 0 {
             return blank(Some(colors[0]));
         }
@@ -327,6 +348,37 @@ pub fn split(colors: &[Rgb]) -> u8 {
     best
 }
 
+/// How a cell of more than two colours is split into two.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Split {
+    /// Every split tried: the least squared error (at most 128 tries).
+    #[default]
+    Exhaustive,
+    /// chafa's fast path: the channel with the widest range, cut at its
+    /// mean.
+    WidestChannel,
+}
+
+/// The cheaper split: samples above the mean of the widest channel are the
+/// foreground. 0 when all colours are equal.
+pub fn split_widest_channel(colors: &[Rgb]) -> u8 {
+    let (lo, hi) = colors.iter().fold(([255u8; 3], [0u8; 3]), |(lo, hi), c| {
+        (
+            std::array::from_fn(|k| lo[k].min(c.0[k])),
+            std::array::from_fn(|k| hi[k].max(c.0[k])),
+        )
+    });
+    let k = (0..3).max_by_key(|&k| hi[k] - lo[k]).unwrap_or(0);
+    if hi[k] == lo[k] {
+        return 0;
+    }
+    let mean = colors.iter().map(|c| c.0[k] as u32).sum::<u32>() as f32 / colors.len() as f32;
+    colors
+        .iter()
+        .enumerate()
+        .fold(0, |m, (i, c)| m | (((c.0[k] as f32 > mean) as u8) << i))
+}
+
 /// The ramp step for a drawn sample: never the blank first step.
 fn ramp(steps: &[char], c: Rgb) -> char {
     let top = (steps.len() - 2) as f32;
@@ -340,6 +392,7 @@ pub fn blit(
     mode: GlyphMode,
     depth: ColorDepth,
     background: Option<Rgb>,
+    split: Split,
     frame: &mut Frame,
 ) {
     let (w, h) = mode.cell_size();
@@ -372,7 +425,7 @@ pub fn blit(
             *cell = if blank_when_uniform && samples[1..n].iter().all(|&s| s == first) {
                 blank(first.or(background))
             } else {
-                mode.cell(&samples[..n], depth, background)
+                mode.cell_split(&samples[..n], depth, background, split)
             };
         }
     }
@@ -399,13 +452,27 @@ mod tests {
         fb.set(0, 2, Rgb::WHITE); // top-left
         fb.set(1, 0, Rgb::WHITE); // bottom-right
         let mut frame = Frame::default();
-        blit(&fb, GlyphMode::Ascii, ColorDepth::None, None, &mut frame);
+        blit(
+            &fb,
+            GlyphMode::Ascii,
+            ColorDepth::None,
+            None,
+            Split::Exhaustive,
+            &mut frame,
+        );
         assert_eq!(frame.to_string(), "@ \n  \n @\n");
         // Half blocks: the top sample of the cell is bit 0.
         let mut fb = Framebuffer::new(Grid::new(1, 4));
         fb.set(0, 3, Rgb::WHITE);
         fb.set(0, 0, Rgb::WHITE);
-        blit(&fb, GlyphMode::Half, ColorDepth::None, None, &mut frame);
+        blit(
+            &fb,
+            GlyphMode::Half,
+            ColorDepth::None,
+            None,
+            Split::Exhaustive,
+            &mut frame,
+        );
         assert_eq!(frame.to_string(), "▀\n▄\n");
     }
 
@@ -428,7 +495,7 @@ mod tests {
                         }
                     }
                     let mut frame = Frame::default();
-                    blit(&fb, mode, depth, background, &mut frame);
+                    blit(&fb, mode, depth, background, Split::Exhaustive, &mut frame);
                     let n = mode.samples();
                     let full = vec![red; n];
                     assert_eq!(

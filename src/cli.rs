@@ -7,8 +7,10 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use rastty::animate::Axis;
+use rastty::blit::Split;
 use rastty::encode::Rep;
 use rastty::raster::Cull;
+use rastty::render::{Aa, Interpolation};
 use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, Traversal};
 
@@ -114,6 +116,18 @@ pub struct ViewArgs {
     /// How the rasterizer walks samples (all give the same picture)
     #[arg(long, value_enum, default_value_t = Traversal::Incremental)]
     pub traversal: Traversal,
+    /// Anti-aliasing: 4 or 16 sub-samples per sample, or each triangle's
+    /// exact area in the sample's square
+    #[arg(long, value_enum, default_value_t = Aa::None)]
+    pub aa: Aa,
+    /// How attributes are interpolated (affine is wrong under perspective:
+    /// for comparison)
+    #[arg(long, value_enum, default_value_t = Interpolation::Perspective)]
+    pub interpolation: Interpolation,
+    /// How cells of more than two colours are split (widest-channel is
+    /// chafa's fast path: for comparison)
+    #[arg(long, value_enum, default_value_t = Split::Exhaustive)]
+    pub split: Split,
     /// Run every pipeline stage on every primitive, even those the scene
     /// does not need (the same picture, slower: for comparison)
     #[arg(long)]

@@ -41,6 +41,7 @@
 //! and the projection is given the physical aspect of the view
 //! ([`RenderOptions::aspect`]), since cells are not square.
 
+pub mod accuracy;
 pub mod animate;
 pub mod blit;
 pub mod clip;

@@ -172,5 +172,8 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         } else {
             Pipeline::Planned
         },
+        aa: view.aa,
+        interpolation: view.interpolation,
+        split: view.split,
     }
 }

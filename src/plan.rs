@@ -27,7 +27,7 @@ use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
 use crate::raster::Cull;
-use crate::render::{RenderOptions, Renderer};
+use crate::render::{Interpolation, RenderOptions, Renderer};
 use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 
@@ -110,7 +110,9 @@ pub fn plan(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4, clipper: 
         Decision::skip("every triangle is one colour: written without barycentrics")
     };
     let perspective_view = matches!(scene.camera.projection, Projection::Perspective { .. });
-    let perspective = if full {
+    let perspective = if opts.interpolation == Interpolation::Affine {
+        Decision::skip("affine interpolation was asked for")
+    } else if full {
         Decision::run(FORCED)
     } else if !interpolation.run {
         Decision::skip("nothing is interpolated")

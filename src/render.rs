@@ -29,7 +29,7 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
-use crate::blit::{self, GlyphMode};
+use crate::blit::{self, GlyphMode, Split};
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon};
 use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
@@ -61,6 +61,71 @@ pub struct RenderOptions {
     pub cull: Option<Cull>,
     /// Whether the planner may skip stages the scene does not need.
     pub pipeline: Pipeline,
+    /// Anti-aliasing: sub-samples per sample, or exact area coverage.
+    pub aa: Aa,
+    /// How interpolated attributes are weighted.
+    pub interpolation: Interpolation,
+    /// How two-colour cells split their samples.
+    pub split: Split,
+}
+
+/// How attributes are interpolated across a triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Interpolation {
+    /// Screen-space weights divided by `w` (correct under perspective).
+    #[default]
+    Perspective,
+    /// Screen-space weights as they are: cheaper, and wrong under
+    /// perspective (for measuring what correctness costs).
+    Affine,
+}
+
+/// How a sample's colour is found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Aa {
+    /// One test at the sample's centre: the lecture's sampling.
+    #[default]
+    None,
+    /// Four sub-samples in the rotated-grid pattern, averaged.
+    #[value(name = "4x")]
+    X4,
+    /// Sixteen sub-samples on an ordered 4×4 grid, averaged.
+    #[value(name = "16x")]
+    X16,
+    /// The exact area of each triangle inside the sample's square.
+    Exact,
+}
+
+/// The rotated-grid pattern of 4× anti-aliasing, in a sample's square.
+const RGSS: [(f32, f32); 4] = [
+    (0.375, 0.125),
+    (0.875, 0.375),
+    (0.125, 0.625),
+    (0.625, 0.875),
+];
+
+/// The ordered 4×4 grid of 16× anti-aliasing.
+const ORDERED_16: [(f32, f32); 16] = {
+    let mut g = [(0.0, 0.0); 16];
+    let mut i = 0;
+    while i < 16 {
+        g[i] = (((i % 4) as f32 + 0.5) / 4.0, ((i / 4) as f32 + 0.5) / 4.0);
+        i += 1;
+    }
+    g
+};
+
+impl Aa {
+    pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
+
+    /// The sub-sample positions inside a sample's unit square.
+    pub fn offsets(self) -> &'static [(f32, f32)] {
+        match self {
+            Aa::None | Aa::Exact => &[(0.5, 0.5)],
+            Aa::X4 => &RGSS,
+            Aa::X16 => &ORDERED_16,
+        }
+    }
 }
 
 impl Default for RenderOptions {
@@ -76,6 +141,9 @@ impl Default for RenderOptions {
             shading: Shading::default(),
             cull: None,
             pipeline: Pipeline::default(),
+            aa: Aa::None,
+            interpolation: Interpolation::default(),
+            split: Split::default(),
         }
     }
 }
@@ -181,7 +249,10 @@ struct ScreenTriangle {
 }
 
 /// Per-frame constants of the vertex and triangle stages.
+#[derive(Clone, Copy)]
 struct Stage {
+    /// Accumulate exact area coverage instead of sampling.
+    exact: bool,
     clipper: Clipper,
     viewport: transform::Viewport,
     lights: Lights,
@@ -222,6 +293,8 @@ pub struct Renderer {
     stats: FrameStats,
     plan: Option<Plan>,
     times: FrameTimes,
+    /// Anti-aliasing's per-sample sums: red, green, blue, weight.
+    acc: Vec<[f32; 4]>,
 }
 
 impl Default for Renderer {
@@ -240,6 +313,7 @@ impl Renderer {
             stats: FrameStats::default(),
             plan: None,
             times: FrameTimes::default(),
+            acc: Vec::new(),
         }
     }
 
@@ -261,7 +335,6 @@ impl Renderer {
         let clipper = Clipper::new(grid.width, grid.height);
         let p = plan::plan(scene, opts, vp, turn, &clipper);
         self.plan = Some(p);
-        self.fb.reset(grid, p.depth.run);
         let cam = &scene.camera;
         let eye = match cam.projection {
             Projection::Perspective { .. } => Eye::At(cam.eye),
@@ -270,6 +343,7 @@ impl Renderer {
         };
         let lit = opts.shading != Shading::None && !scene.lights.is_empty();
         let stage = Stage {
+            exact: false,
             clipper,
             depth: p.depth.run,
             perspective: p.perspective.run,
@@ -282,12 +356,78 @@ impl Renderer {
         };
 
         self.times.plan += lap();
+        let n = grid.len();
+        match opts.aa {
+            Aa::None => {
+                self.fb.reset(grid, p.depth.run);
+                self.geometry(scene, opts, &stage, vp, turn, &mut lap);
+            }
+            Aa::X4 | Aa::X16 => {
+                // One pass per sub-sample position, the geometry shifted so
+                // that sample centres land on it; the passes are averaged.
+                self.acc.clear();
+                self.acc.resize(n, [0.0; 4]);
+                let offsets = opts.aa.offsets();
+                for &(ox, oy) in offsets {
+                    self.fb.reset(grid, p.depth.run);
+                    let shifted = Stage {
+                        viewport: transform::Viewport::new(grid.width as f32, grid.height as f32)
+                            .shifted(0.5 - ox, 0.5 - oy),
+                        ..stage
+                    };
+                    self.geometry(scene, opts, &shifted, vp, turn, &mut lap);
+                    for (a, s) in self.acc.iter_mut().zip(self.fb.samples()) {
+                        if let Some(c) = s {
+                            let [r, g, b] = c.to_f32();
+                            *a = [a[0] + r, a[1] + g, a[2] + b, a[3] + 1.0];
+                        }
+                    }
+                }
+                self.resolve(offsets.len() as f32, scene.background);
+            }
+            Aa::Exact => {
+                self.acc.clear();
+                self.acc.resize(n, [0.0; 4]);
+                self.fb.reset(grid, p.depth.run);
+                let exact = Stage {
+                    exact: true,
+                    ..stage
+                };
+                self.geometry(scene, opts, &exact, vp, turn, &mut lap);
+                self.resolve(1.0, scene.background);
+            }
+        }
+        self.times.triangles += lap();
+        blit::blit(
+            &self.fb,
+            opts.glyphs,
+            opts.color,
+            scene.background,
+            opts.split,
+            &mut self.frame,
+        );
+        self.times.blit += lap();
+        &self.frame
+    }
+
+    /// Draws every mesh and loose triangle into the framebuffer (or, for
+    /// exact coverage, the accumulator).
+    fn geometry(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        stage: &Stage,
+        vp: Mat4,
+        turn: Mat4,
+        lap: &mut impl FnMut() -> Duration,
+    ) {
+        let p = self.plan.expect("planned");
         for mesh in &scene.meshes {
             let model = turn * mesh.model;
             let tests =
                 p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.shape.bounds);
             self.vertex_stage(
-                &stage,
+                stage,
                 &Transforms::new(vp, model),
                 &mesh.positions,
                 &mesh.normals,
@@ -303,7 +443,7 @@ impl Renderer {
                     Some(c) => face.map(|i| c[i as usize]),
                     None => [mesh.face_colors[f]; 3],
                 };
-                self.triangle(&stage, v, base, cull);
+                self.triangle(stage, v, base, cull);
             }
             self.verts = verts;
             self.times.triangles += lap();
@@ -314,26 +454,40 @@ impl Renderer {
             let normal = (tri.vertices[1] - tri.vertices[0])
                 .cross(tri.vertices[2] - tri.vertices[0])
                 .normalize_or_zero();
-            self.vertex_stage(&stage, &loose, &tri.vertices, &[normal; 3], p.clip.run);
+            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], p.clip.run);
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
-                &stage,
+                stage,
                 [&verts[0], &verts[1], &verts[2]],
                 tri.color.at_vertices(),
                 cull,
             );
             self.verts = verts;
         }
-        self.times.triangles += lap();
-        blit::blit(
-            &self.fb,
-            opts.glyphs,
-            opts.color,
-            scene.background,
-            &mut self.frame,
-        );
-        self.times.blit += lap();
-        &self.frame
+    }
+
+    /// Turns the accumulated colour sums and weights into samples: weight
+    /// over `total` is the coverage, which blends the mean colour with the
+    /// background (where there is none, a sample at least half covered
+    /// shows its colour, the rest the terminal's).
+    fn resolve(&mut self, total: f32, background: Option<Rgb>) {
+        let grid = self.fb.grid();
+        let bg = background.map(|c| Vec3::from(c.to_f32()));
+        for (i, a) in self.acc.iter().enumerate() {
+            let (x, y) = (i as u32 % grid.width, i as u32 / grid.width);
+            let weight = a[3];
+            if weight <= 0.0 {
+                continue;
+            }
+            let coverage = (weight / total).min(1.0);
+            let mean = Vec3::new(a[0], a[1], a[2]) / weight;
+            let c = match bg {
+                Some(bg) => mean * coverage + bg * (1.0 - coverage),
+                None if coverage >= 0.5 => mean,
+                None => continue,
+            };
+            self.fb.set(x, y, Rgb::from_f32(c.to_array()));
+        }
     }
 
     /// Transforms `positions` (with `normals`) into `self.verts`.
@@ -413,9 +567,10 @@ impl Renderer {
             let early = stage
                 .full
                 .then(|| self.shade(stage, v, base, !front_facing(v)));
-            let Some(setup) =
-                self.setup(Setup::from_fixed(v.map(|v| v.fixed), self.fb.grid(), cull))
-            else {
+            let Some(setup) = self.setup(
+                Setup::from_fixed(v.map(|v| v.fixed), self.fb.grid(), cull),
+                stage.exact,
+            ) else {
                 return;
             };
             let screen = ScreenTriangle {
@@ -443,7 +598,9 @@ impl Renderer {
                 self.stats.clipped += 1;
                 for tri in poly.triangles() {
                     let screen = to_screen(&tri, &stage.viewport);
-                    if let Some(setup) = self.setup(Setup::new(screen.xy, self.fb.grid(), cull)) {
+                    if let Some(setup) =
+                        self.setup(Setup::new(screen.xy, self.fb.grid(), cull), stage.exact)
+                    {
                         self.fill(&setup, &screen, stage);
                     }
                 }
@@ -486,11 +643,13 @@ impl Renderer {
 
     /// A set-up screen triangle, counted; `None` when it was rejected or
     /// covers no sample.
-    fn setup(&mut self, setup: Result<Setup, Rejected>) -> Option<Setup> {
+    fn setup(&mut self, setup: Result<Setup, Rejected>, exact: bool) -> Option<Setup> {
         match setup {
             Ok(s) => {
                 self.stats.raster.triangles_drawn += 1;
-                (s.bbox_samples() > 0).then_some(s)
+                // Exact coverage counts area, which a triangle between
+                // sample centres still has.
+                (s.bbox_samples() > 0 || exact).then_some(s)
             }
             Err(r) => {
                 self.stats.raster.count_rejected(r);
@@ -503,6 +662,10 @@ impl Renderer {
     /// (when the plan skips depth) only where still empty; one colour, or
     /// interpolated, through `1/w` where the plan asks for it.
     fn fill(&mut self, setup: &Setup, t: &ScreenTriangle, stage: &Stage) {
+        if stage.exact {
+            self.accumulate_exact(t);
+            return;
+        }
         let grid = self.fb.grid();
         let stats = &mut self.stats;
         let fb = &mut self.fb;
@@ -565,6 +728,49 @@ impl Renderer {
         }
         stats.raster.samples_tested += tested;
         stats.raster.samples_covered += covered;
+    }
+
+    /// Adds the triangle's exact area in each sample's square, times its
+    /// mean colour, to the accumulator (`--aa exact`). Depth plays no part:
+    /// exact for scenes whose visible triangles do not overlap; where they
+    /// do, their areas add up (and the coverage is capped at 1).
+    fn accumulate_exact(&mut self, t: &ScreenTriangle) {
+        let grid = self.fb.grid();
+        let tri = t.xy.map(|[x, y]| [x as f64, y as f64]);
+        let color = (t.color[0] + t.color[1] + t.color[2]) / 3.0;
+        let lo = |k: usize| {
+            tri.iter()
+                .map(|p| p[k])
+                .fold(f64::INFINITY, f64::min)
+                .floor()
+                .max(0.0) as u32
+        };
+        let hi = |k: usize, n: u32| {
+            (tri.iter()
+                .map(|p| p[k])
+                .fold(f64::NEG_INFINITY, f64::max)
+                .ceil()
+                .max(0.0) as u32)
+                .min(n)
+        };
+        let (x0, x1, y0, y1) = (lo(0), hi(0, grid.width), lo(1), hi(1, grid.height));
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let a = crate::accuracy::area_in_square(tri, [x as f64, y as f64]) as f32;
+                if a > 0.0 {
+                    let acc = &mut self.acc[(y * grid.width + x) as usize];
+                    *acc = [
+                        acc[0] + color.x * a,
+                        acc[1] + color.y * a,
+                        acc[2] + color.z * a,
+                        acc[3] + a,
+                    ];
+                    self.stats.raster.samples_covered += 1;
+                }
+            }
+        }
+        self.stats.raster.samples_tested +=
+            ((x1.saturating_sub(x0)) * (y1.saturating_sub(y0))) as u64;
     }
 
     pub fn frame(&self) -> &Frame {

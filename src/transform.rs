@@ -119,6 +119,8 @@ pub fn viewport(width: f32, height: f32) -> Mat4 {
 pub struct Viewport {
     half_w: f32,
     half_h: f32,
+    dx: f32,
+    dy: f32,
 }
 
 impl Viewport {
@@ -126,13 +128,24 @@ impl Viewport {
         Viewport {
             half_w: width / 2.0,
             half_h: height / 2.0,
+            dx: 0.0,
+            dy: 0.0,
         }
+    }
+
+    /// The same viewport moved by `(dx, dy)` samples (anti-aliasing's
+    /// sub-sample passes).
+    pub fn shifted(self, dx: f32, dy: f32) -> Viewport {
+        Viewport { dx, dy, ..self }
     }
 
     /// Canonical `(x, y)` to samples.
     #[inline(always)]
     pub fn apply(&self, x: f32, y: f32) -> [f32; 2] {
-        [self.half_w * x + self.half_w, self.half_h * y + self.half_h]
+        [
+            self.half_w * x + self.half_w + self.dx,
+            self.half_h * y + self.half_h + self.dy,
+        ]
     }
 }
 
