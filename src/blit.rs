@@ -399,33 +399,51 @@ pub fn blit(
     let grid = fb.grid();
     let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
     frame.reset(cols, rows);
-    let mut samples = [None; 8];
-    let n = (w * h) as usize;
-    let (w, h) = (w as usize, h as usize);
     let blank_when_uniform =
         depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
-    for row in 0..rows {
+    let args = (fb, mode, depth, background, split, blank_when_uniform);
+    // One copy of the loop per cell size, so that gathering a cell's
+    // samples is constant indexing.
+    match (w, h) {
+        (1, 1) => blit_cells::<1, 1>(args, frame),
+        (1, 2) => blit_cells::<1, 2>(args, frame),
+        (2, 2) => blit_cells::<2, 2>(args, frame),
+        (2, 3) => blit_cells::<2, 3>(args, frame),
+        _ => blit_cells::<2, 4>(args, frame),
+    }
+}
+
+type BlitArgs<'a> = (
+    &'a Framebuffer,
+    GlyphMode,
+    ColorDepth,
+    Option<Rgb>,
+    Split,
+    bool,
+);
+
+fn blit_cells<const W: usize, const H: usize>(
+    (fb, mode, depth, background, split, blank_when_uniform): BlitArgs,
+    frame: &mut Frame,
+) {
+    let grid = fb.grid();
+    let mut samples = [None; 8];
+    for row in 0..frame.rows() {
         // The cell's sample rows, top first.
-        let top = grid.height as usize - 1 - row as usize * h;
-        let lines: [&[Option<Rgb>]; 4] = std::array::from_fn(|dy| {
-            if dy < h {
-                fb.row((top - dy) as u32)
-            } else {
-                &[]
-            }
-        });
+        let top = grid.height as usize - 1 - row as usize * H;
+        let lines: [&[Option<Rgb>]; H] = std::array::from_fn(|dy| fb.row((top - dy) as u32));
         for (col, cell) in frame.row_mut(row).iter_mut().enumerate() {
-            let x = col * w;
-            for (i, s) in samples[..n].iter_mut().enumerate() {
-                *s = lines[i / w][x + i % w];
+            let x = col * W;
+            for (i, s) in samples[..W * H].iter_mut().enumerate() {
+                *s = lines[i / W][x + i % W];
             }
             // Most cells are one colour (or all background): in the modes
             // that draw such a cell as a blank, no split, no glyph table.
             let first = samples[0];
-            *cell = if blank_when_uniform && samples[1..n].iter().all(|&s| s == first) {
+            *cell = if blank_when_uniform && samples[1..W * H].iter().all(|&s| s == first) {
                 blank(first.or(background))
             } else {
-                mode.cell_split(&samples[..n], depth, background, split)
+                mode.cell_split(&samples[..W * H], depth, background, split)
             };
         }
     }

@@ -34,6 +34,23 @@ pub enum Command {
     Render(RenderArgs),
     /// Spin a scene or model in the terminal (q quits).
     Spin(SpinArgs),
+    /// Measure what accuracy costs: every accuracy knob's time per frame
+    /// and error, as a Markdown table on stdout and an SVG plot.
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Where to find models to time (bunny, teapot, fox, shiba-inu,
+    /// linux-mascot-tux; those missing are left out)
+    #[arg(long, value_name = "DIR", default_value = "../shared/models")]
+    pub models: PathBuf,
+    /// Where to write the plot of error against time
+    #[arg(long, value_name = "PATH", default_value = "bench.svg")]
+    pub svg: PathBuf,
+    /// Frames timed per measurement (the median is reported)
+    #[arg(long, value_name = "N", default_value_t = 7, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub reps: u32,
 }
 
 #[derive(Args, Debug, Default)]

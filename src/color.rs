@@ -34,10 +34,14 @@ impl Rgb {
         [r as f32, g as f32, b as f32]
     }
 
-    /// Rounds and clamps float channels in [0, 255]; a NaN channel becomes 0.
+    /// Rounds (halves up) and clamps float channels in [0, 255]; a NaN
+    /// channel becomes 0.
+    #[inline]
     pub fn from_f32(c: [f32; 3]) -> Self {
-        // `as u8` saturates and maps NaN to 0.
-        Rgb(c.map(|v| v.round() as u8))
+        // `as u8` truncates, saturates and maps NaN to 0; adding a half
+        // first rounds without `f32::round`'s library call (negative
+        // values all end at 0 either way).
+        Rgb(c.map(|v| (v + 0.5) as u8))
     }
 }
 
@@ -172,6 +176,13 @@ fn oklab(c: Rgb) -> [f32; 3] {
     let [r, g, b] = c.0;
     let l = oklab::srgb_to_oklab(oklab::Rgb { r, g, b });
     [l.l, l.a, l.b]
+}
+
+/// The distance between two colours in OKLab (about 0.02 is a just
+/// noticeable difference).
+pub fn oklab_distance(a: Rgb, b: Rgb) -> f32 {
+    let (p, q) = (oklab(a), oklab(b));
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
 }
 
 /// The 256 palette colours in OKLab, computed once.
@@ -323,5 +334,6 @@ mod tests {
     fn from_f32_rounds_clamps_and_survives_nan() {
         assert_eq!(Rgb::from_f32([0.4, 254.6, 300.0]), Rgb([0, 255, 255]));
         assert_eq!(Rgb::from_f32([f32::NAN, -5.0, 127.5]), Rgb([0, 0, 128]));
+        assert_eq!(Rgb::from_f32([2.5, 2.4999, 254.5]), Rgb([3, 2, 255]));
     }
 }

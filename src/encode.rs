@@ -415,6 +415,12 @@ impl Encoder {
         }
     }
 
+    /// Measures "nearest" palette colours with `metric` (OKLab by default).
+    pub fn with_metric(mut self, metric: Metric) -> Encoder {
+        self.quantizer = Quantizer::new(self.quantizer.depth(), metric);
+        self
+    }
+
     pub fn with_rep(mut self, rep: Rep) -> Encoder {
         self.rep = rep;
         self

@@ -43,6 +43,7 @@
 
 pub mod accuracy;
 pub mod animate;
+pub mod bench;
 pub mod blit;
 pub mod clip;
 pub mod color;

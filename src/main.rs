@@ -76,7 +76,26 @@ fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
     match command {
         Command::Render(args) => render(&args).map(|()| ExitCode::SUCCESS),
         Command::Spin(args) => spin(&args),
+        Command::Bench(args) => bench(&args).map(|()| ExitCode::SUCCESS),
     }
+}
+
+fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
+    let workloads = rastty::bench::workloads(&args.models);
+    let report = rastty::bench::run(&workloads, args.reps as usize);
+    let mut out = io::stdout().lock();
+    writeln!(
+        out,
+        "Time per frame at 200×60 cells (median of {} frames; rendering, or encoding for quantisation), and each knob's error.",
+        args.reps
+    )
+    .and_then(|()| write!(out, "{}", report.markdown()))
+    .map_err(stdout_error)?;
+    report
+        .svg(&args.svg)
+        .map_err(|e| rastty::Error::Invalid(format!("{}: {e}", args.svg.display())))?;
+    eprintln!("wrote {}", args.svg.display());
+    Ok(())
 }
 
 fn scene(path: Option<&std::path::Path>) -> rastty::Result<Scene> {

@@ -295,10 +295,8 @@ impl Setup {
         // Start from the lowest vertex (then leftmost): ABC, BCA and CAB are
         // then one and the same triangle to everything below, so a frame does
         // not depend on which vertex a file lists first.
-        let key = |q: &FixedPoint| (q.y, q.x);
-        let r = (0..3).min_by_key(|&i| key(&p[i])).unwrap_or(0);
-        let order = [r, (r + 1) % 3, (r + 2) % 3];
-        let p = order.map(|i| p[i]);
+        // Twice the signed area, the same from any starting vertex: cull
+        // and drop degenerates before anything else.
         let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
         if area2 == 0 {
             return Err(Rejected::Degenerate);
@@ -308,6 +306,10 @@ impl Setup {
             (Cull::Back, false) | (Cull::Front, true) => return Err(Rejected::Culled),
             _ => {}
         }
+        let key = |q: &FixedPoint| (q.y, q.x);
+        let r = (0..3).min_by_key(|&i| key(&p[i])).unwrap_or(0);
+        let order = [r, (r + 1) % 3, (r + 2) % 3];
+        let p = order.map(|i| p[i]);
         // Edge opposite vertex i runs from i+1 to i+2 when counter-clockwise;
         // a clockwise triangle takes each edge the other way round.
         let edge = |i: usize| {

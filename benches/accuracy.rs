@@ -1,0 +1,85 @@
+//! The accuracy knobs of `rastty bench`, under criterion, for tracking
+//! regressions: a frame of the bunny at 200×60 cells with each coverage,
+//! interpolation and two-colour setting, and a frame's encoding with each
+//! colour depth and metric.
+//!
+//! `cargo bench --bench accuracy`
+
+use std::path::Path;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use glam::Vec3;
+use rastty::blit::Split;
+use rastty::color::Metric;
+use rastty::encode::Encoder;
+use rastty::render::{Aa, Interpolation};
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+
+fn knobs(c: &mut Criterion) {
+    let scene = Scene::of_model(Path::new(&format!(
+        "{}/tests/models/bunny.obj",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap();
+    let base = RenderOptions {
+        cols: 200,
+        rows: 60,
+        color: ColorDepth::TrueColor,
+        turn: Vec3::new(15.0, 30.0, 0.0),
+        ..RenderOptions::default()
+    };
+    let mut group = c.benchmark_group("accuracy");
+    let mut frame = |name: String, opts: RenderOptions| {
+        let mut r = Renderer::new();
+        group.bench_function(name, |b| b.iter(|| r.render(&scene, &opts).cols()));
+    };
+    for glyphs in [
+        GlyphMode::Block,
+        GlyphMode::Half,
+        GlyphMode::Quadrant,
+        GlyphMode::Sextant,
+        GlyphMode::Octant,
+    ] {
+        for aa in Aa::ALL {
+            frame(
+                format!("coverage/{glyphs:?}/{aa:?}"),
+                RenderOptions { glyphs, aa, ..base },
+            );
+        }
+    }
+    for interpolation in [Interpolation::Affine, Interpolation::Perspective] {
+        frame(
+            format!("interpolation/{interpolation:?}"),
+            RenderOptions {
+                interpolation,
+                ..base
+            },
+        );
+    }
+    for split in [Split::WidestChannel, Split::Exhaustive] {
+        frame(
+            format!("split/{split:?}"),
+            RenderOptions {
+                glyphs: GlyphMode::Octant,
+                split,
+                ..base
+            },
+        );
+    }
+    let rendered = rastty::render(&scene, &base);
+    for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
+        for metric in [Metric::Rgb, Metric::Oklab] {
+            group.bench_function(format!("quantisation/{depth:?}/{metric:?}"), |b| {
+                b.iter(|| {
+                    let mut e = Encoder::new(depth).with_metric(metric);
+                    e.prepare(&rendered);
+                    e.last_bytes().len()
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, knobs);
+criterion_main!(benches);
