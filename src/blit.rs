@@ -398,7 +398,8 @@ pub fn blit(
     let (w, h) = mode.cell_size();
     let grid = fb.grid();
     let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
-    frame.reset(cols, rows);
+    // Every cell is written below.
+    frame.resize(cols, rows);
     let blank_when_uniform =
         depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
     let args = (fb, mode, depth, background, split, blank_when_uniform);

@@ -58,6 +58,14 @@ impl Frame {
             .resize(cols as usize * rows as usize, Cell::BLANK);
     }
 
+    /// Resizes to `cols × rows` keeping whatever cells are there (blank
+    /// where it grows): for a caller about to overwrite every cell.
+    pub fn resize(&mut self, cols: u16, rows: u16) {
+        self.cols = cols;
+        self.rows = rows;
+        self.cells.resize(cols as usize * rows as usize, Cell::BLANK);
+    }
+
     pub fn cols(&self) -> u16 {
         self.cols
     }
