@@ -14,13 +14,15 @@ use euc::{Pipeline, Target, buffer::Buffer2d, rasterizer};
 use glam::{Mat4, Vec3};
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
-/// The mesh, pre-lit per vertex (as rastty's Gouraud shading is), drawn by
-/// euc: the vertex shader transforms, the fragment shader packs the
-/// interpolated colour.
+/// The mesh drawn by euc as rastty draws it: the vertex shader transforms
+/// and lights each vertex (Gouraud, the same Lambert term), the fragment
+/// shader packs the interpolated colour.
 struct Lit<'a> {
     mvp: Mat4,
+    normal: glam::Mat3,
     positions: &'a [Vec3],
-    light: &'a [(f32, f32, f32)],
+    normals: &'a [Vec3],
+    lights: rastty::shade::Lights,
 }
 
 impl Pipeline for Lit<'_> {
@@ -32,9 +34,16 @@ impl Pipeline for Lit<'_> {
     fn vert(&self, i: &u32) -> ([f32; 4], Self::VsOut) {
         let i = *i as usize;
         let c = self.mvp * self.positions[i].extend(1.0);
+        let l = self
+            .lights
+            .lambert((self.normal * self.normals[i]).normalize_or_zero())
+            * 0.8;
         // euc keeps the smaller z; rastty's canonical cube has larger z
         // nearer.
-        ([c.x, c.y, -c.z, c.w], self.light[i])
+        (
+            [c.x, c.y, -c.z, c.w],
+            (l.x.min(1.0), l.y.min(1.0), l.z.min(1.0)),
+        )
     }
 
     #[inline(always)]
@@ -60,25 +69,17 @@ fn vs_euc(c: &mut Criterion) {
         b.iter(|| r.render(&scene, &opts).cols())
     });
 
-    // The same transform and the same per-vertex light for euc.
+    // The same transform and the same lights for euc.
     let mesh = &scene.meshes[0];
     let model = rastty::transform::rotation(opts.turn) * mesh.model;
     let mvp = scene.camera.view_projection(opts.aspect()) * model;
-    let normal = glam::Mat3::from_mat4(model).inverse().transpose();
-    let light = rastty::shade::Lights::new(&scene.lights);
-    let lit: Vec<(f32, f32, f32)> = mesh
-        .normals
-        .iter()
-        .map(|&n| {
-            let l = light.lambert((normal * n).normalize_or_zero()) * 0.8;
-            (l.x.min(1.0), l.y.min(1.0), l.z.min(1.0))
-        })
-        .collect();
     let indices: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
     let pipeline = Lit {
         mvp,
+        normal: glam::Mat3::from_mat4(model).inverse().transpose(),
         positions: &mesh.positions,
-        light: &lit,
+        normals: &mesh.normals,
+        lights: rastty::shade::Lights::new(&scene.lights),
     };
     let mut color = Buffer2d::new([200, 120], 0u32);
     let mut depth = Buffer2d::new([200, 120], 1.0f32);

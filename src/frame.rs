@@ -63,7 +63,8 @@ impl Frame {
     pub fn resize(&mut self, cols: u16, rows: u16) {
         self.cols = cols;
         self.rows = rows;
-        self.cells.resize(cols as usize * rows as usize, Cell::BLANK);
+        self.cells
+            .resize(cols as usize * rows as usize, Cell::BLANK);
     }
 
     pub fn cols(&self) -> u16 {
