@@ -25,9 +25,9 @@
 //! direction the triangle walks the edge, so the arithmetic, and the f32
 //! result, are identical for both.
 //!
-//! The cost, for scenes that do not need it: seven dot products per vertex
-//! for the trivial accept test. [`needs_clipping`] answers that test alone,
-//! so a caller can skip the stage for geometry known to be inside.
+//! The cost, for scenes that do not need it: seven comparisons per vertex
+//! for the trivial accept test ([`Clipper::outcode`]); the planner skips even
+//! that for geometry whose bounding box is inside.
 
 use glam::{Vec3, Vec4};
 
@@ -170,12 +170,6 @@ impl Clipper {
     }
 }
 
-/// Whether any vertex lies outside a clip plane (so that [`Clipper::clip`]
-/// would do more than copy the triangle).
-pub fn needs_clipping(clipper: &Clipper, tri: &[ClipVertex; 3]) -> bool {
-    tri.iter().any(|v| clipper.outcode(v.pos) != 0)
-}
-
 /// The outcome of clipping one triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Clipped {
@@ -264,7 +258,7 @@ mod tests {
         let mut out = Polygon::default();
         assert_eq!(c.clip(&tri, &mut out), Clipped::Inside);
         assert_eq!(out.vertices(), &tri[..]);
-        assert!(!needs_clipping(&c, &tri));
+        assert!(tri.iter().all(|v| c.outcode(v.pos) == 0));
     }
 
     #[test]

@@ -89,10 +89,12 @@ const FORCED: &str = "forced on by the full pipeline";
 pub fn plan(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4, clipper: &Clipper) -> Plan {
     let full = opts.pipeline == Pipeline::Full;
     let lit = opts.shading != Shading::None && !scene.lights.is_empty();
-    let lighting = match (lit, full) {
-        (true, _) => Decision::run("the scene has lights and the shading uses them"),
-        (false, _) if scene.lights.is_empty() => Decision::skip("the scene has no lights"),
-        (false, _) => Decision::skip("shading is none"),
+    let lighting = if lit {
+        Decision::run("the scene has lights and the shading uses them")
+    } else if scene.lights.is_empty() {
+        Decision::skip("the scene has no lights")
+    } else {
+        Decision::skip("shading is none")
     };
     let smooth = lit && opts.shading == Shading::Smooth;
     let vertex_colors = scene

@@ -7,9 +7,7 @@ use std::collections::BTreeSet;
 use glam::{Vec3, Vec4};
 use proptest::prelude::*;
 use rastty::clip::{ClipVertex, Clipper, Polygon};
-use rastty::raster::{
-    Cull, Fixed, FixedPoint, Grid, ONE, RasterStats, Setup, Traversal, rasterize,
-};
+use rastty::raster::{Cull, Grid, RasterStats, Setup, Traversal, rasterize};
 use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
 use rastty::transform::Viewport;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
@@ -814,5 +812,4 @@ fn one_thread_no_tiles_so_nothing_else_can_vary() {
     );
     let a = reused.render(&scene, &opts).clone();
     assert_eq!(a, rastty::render(&scene, &opts));
-    let _ = (Fixed(0), FixedPoint::default(), ONE);
 }
