@@ -1,7 +1,8 @@
 //! The accuracy knobs of `rastty bench`, under criterion, for tracking
 //! regressions: a frame of the bunny at 200×60 cells with each coverage,
-//! interpolation and two-colour setting, and a frame's encoding with each
-//! colour depth and metric.
+//! interpolation and two-colour setting, the precision workload's tilings
+//! with each edge-function precision, and a frame's encoding with each
+//! colour depth and metric. (Traversals: `benches/raster.rs`.)
 //!
 //! `cargo bench --bench accuracy`
 
@@ -65,6 +66,12 @@ fn knobs(c: &mut Criterion) {
                 ..base
             },
         );
+    }
+    for precision in rastty::bench::Precision::ALL {
+        // The tilings of `rastty bench`, drawn once per iteration.
+        group.bench_function(format!("precision/{precision:?}"), |b| {
+            b.iter(|| rastty::bench::precision_errors(precision, 1).0)
+        });
     }
     let rendered = rastty::render(&scene, &base);
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {

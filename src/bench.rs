@@ -170,7 +170,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
     });
 
     // 2. Precision.
-    for precision in [Precision::F32, Precision::F64, Precision::Fixed] {
+    for precision in Precision::ALL {
         let (cracks, doubles, time) = precision_errors(precision, reps);
         rows.push(Row {
             knob: "precision",
@@ -334,13 +334,17 @@ fn coverage_error(tris: &[[[f64; 2]; 3]], glyphs: GlyphMode, aa: Aa) -> (f64, f6
 
 /// How edge functions are evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Precision {
+pub enum Precision {
     /// Unsnapped, in f32.
     F32,
     /// Unsnapped, in f64.
     F64,
     /// Snapped to 1/256, in i64: the rasterizer.
     Fixed,
+}
+
+impl Precision {
+    pub const ALL: [Precision; 3] = [Precision::F32, Precision::F64, Precision::Fixed];
 }
 
 /// Tilings of a 64×48 screen drawn with `precision`: samples covered no
@@ -350,7 +354,7 @@ enum Precision {
 /// around a sample centre whose spokes run through further sample centres
 /// (their far ends, at thirds of a sample, are not exact in binary): there
 /// the unsnapped edge functions of two neighbours round differently.
-fn precision_errors(precision: Precision, reps: usize) -> (u64, u64, Duration) {
+pub fn precision_errors(precision: Precision, reps: usize) -> (u64, u64, Duration) {
     let (w, h) = (64u32, 48u32);
     let grid = Grid::new(w, h);
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
