@@ -206,6 +206,26 @@ impl GlyphMode {
             *c = s.unwrap_or(bg_color);
         }
         let colors = &colors[..n];
+        if n == 2 && how == Split::Exhaustive {
+            // Half blocks, written out: what the general path below
+            // decides for two samples, without its sums.
+            let (top, bottom) = (colors[0], colors[1]);
+            return if top == bottom {
+                blank(Some(top))
+            } else if background == Some(bottom) {
+                Cell {
+                    ch: '▀',
+                    fg: Some(top),
+                    bg: Some(bottom),
+                }
+            } else {
+                Cell {
+                    ch: '▄',
+                    fg: Some(bottom),
+                    bg: Some(top),
+                }
+            };
+        }
         let mask = match how {
             Split::Exhaustive => split(colors),
             Split::WidestChannel => split_widest_channel(colors),
@@ -557,6 +577,33 @@ mod tests {
         );
         let plain = GlyphMode::Ascii.cell(&[Some(RED)], ColorDepth::None, bg);
         assert_eq!((plain.fg, plain.bg), (None, None));
+    }
+
+    #[test]
+    fn the_half_block_shortcut_agrees_with_the_general_split() {
+        // The general path, reached through the widest-channel split's
+        // sibling: an exhaustive split of two colours, taken the long way
+        // round by a quadrant cell whose columns repeat them.
+        let colors = [Rgb::BLACK, Rgb::WHITE, RED, BLUE, Rgb::new(10, 200, 30)];
+        for &a in &colors {
+            for &b in &colors {
+                for bg in [None, Some(Rgb::BLACK), Some(RED)] {
+                    let half = GlyphMode::Half.cell(&[Some(a), Some(b)], ColorDepth::TrueColor, bg);
+                    let quad = GlyphMode::Quadrant.cell(
+                        &[Some(a), Some(a), Some(b), Some(b)],
+                        ColorDepth::TrueColor,
+                        bg,
+                    );
+                    // ▀ is quadrant mask 0b0011, ▄ is 0b1100: the same picture.
+                    let as_quad = |c: Cell| match c.ch {
+                        '▀' => Cell { ch: '▀', ..c },
+                        '▄' => Cell { ch: '▄', ..c },
+                        _ => c,
+                    };
+                    assert_eq!(as_quad(half), quad, "{a} over {b}, background {bg:?}");
+                }
+            }
+        }
     }
 
     #[test]
