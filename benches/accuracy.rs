@@ -9,7 +9,6 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use glam::Vec3;
 use rastty::blit::Split;
 use rastty::color::Metric;
 use rastty::encode::Encoder;
@@ -22,13 +21,7 @@ fn knobs(c: &mut Criterion) {
         env!("CARGO_MANIFEST_DIR")
     )))
     .unwrap();
-    let base = RenderOptions {
-        cols: 200,
-        rows: 60,
-        color: ColorDepth::TrueColor,
-        turn: Vec3::new(15.0, 30.0, 0.0),
-        ..RenderOptions::default()
-    };
+    let base = rastty::bench::base();
     let mut group = c.benchmark_group("accuracy");
     let mut frame = |name: String, opts: RenderOptions| {
         let mut r = Renderer::new();

@@ -13,20 +13,12 @@ mod euc_pipeline;
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use glam::Vec3;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{Renderer, Scene};
 
 fn vs_euc(c: &mut Criterion) {
     let root = env!("CARGO_MANIFEST_DIR");
     let scene = Scene::of_model(Path::new(&format!("{root}/tests/models/bunny.obj"))).unwrap();
-    let opts = RenderOptions {
-        cols: 200,
-        rows: 60,
-        glyphs: GlyphMode::Half,
-        color: ColorDepth::TrueColor,
-        turn: Vec3::new(10.0, 30.0, 0.0),
-        ..RenderOptions::default()
-    };
+    let opts = euc_pipeline::options();
     let mut group = c.benchmark_group("vs-euc");
     let mut r = Renderer::new();
     group.bench_function("rastty/bunny/200x120-samples", |b| {

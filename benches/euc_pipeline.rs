@@ -43,6 +43,19 @@ impl Pipeline for Lit<'_> {
     }
 }
 
+/// The frame both draw: the bunny's 200×60 cells in half mode (200×120
+/// samples), turned a little.
+pub fn options() -> RenderOptions {
+    RenderOptions {
+        cols: 200,
+        rows: 60,
+        glyphs: rastty::GlyphMode::Half,
+        color: rastty::ColorDepth::TrueColor,
+        turn: Vec3::new(10.0, 30.0, 0.0),
+        ..RenderOptions::default()
+    }
+}
+
 /// What euc needs to draw `scene`'s first mesh as rastty draws it with
 /// `opts`: the pipeline, the index list, and colour and depth buffers.
 pub fn setup<'a>(

@@ -14,8 +14,7 @@ mod euc_pipeline;
 
 use std::path::Path;
 
-use glam::Vec3;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{Renderer, Scene};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -26,14 +25,7 @@ fn main() {
         "/tests/models/bunny.obj"
     )))
     .expect("the bunny");
-    let opts = RenderOptions {
-        cols: 200,
-        rows: 60,
-        glyphs: GlyphMode::Half,
-        color: ColorDepth::TrueColor,
-        turn: Vec3::new(10.0, 30.0, 0.0),
-        ..RenderOptions::default()
-    };
+    let opts = euc_pipeline::options();
     if who == "euc" {
         let (pipeline, indices, mut color, mut depth) = euc_pipeline::setup(&scene, &opts);
         for _ in 0..frames {

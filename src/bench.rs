@@ -84,7 +84,9 @@ pub fn workloads(models: &Path) -> Vec<Workload> {
 const COLS: u16 = 200;
 const ROWS: u16 = 60;
 
-fn base() -> RenderOptions {
+/// The frame every knob is timed on: 200×60 cells, truecolor, the scene
+/// turned a little.
+pub fn base() -> RenderOptions {
     RenderOptions {
         cols: COLS,
         rows: ROWS,
@@ -542,7 +544,7 @@ fn traversal_mismatch(workloads: &[Workload], traversal: Traversal) -> u64 {
 /// A floor from 1 to 8 units in front of the eye, red near, blue far:
 /// every drawn sample's colour against the colour of the floor point behind
 /// it, found by casting the ray in f64. Largest and mean error, 0–255.
-fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
+pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
     let near = Vec3::new(0.0, -1.0, -1.0);
     let far = Vec3::new(0.0, -1.0, -8.0);
     let camera = Camera {

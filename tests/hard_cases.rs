@@ -612,83 +612,21 @@ fn the_near_touching_pair_leaves_no_hole_on_the_diagonal() {
 
 #[test]
 fn perspective_correct_colours_match_f64_and_differ_from_affine() {
-    // A floor running away from the eye, red near and blue far: w differs
-    // eightfold between its ends.
-    let near = Vec3::new(0.0, -1.0, -1.0);
-    let far = Vec3::new(0.0, -1.0, -8.0);
-    let camera = Camera {
-        projection: Projection::Perspective {
-            fov_y: 90.0,
-            near: 0.5,
-            far: 20.0,
-        },
-        eye: Vec3::ZERO,
-        target: Vec3::new(0.0, 0.0, -1.0),
-        up: Vec3::Y,
-    };
-    let (l, r) = (Vec3::X * 2.0, Vec3::X * -2.0);
-    let red = Rgb::new(255, 0, 0);
-    let blue = Rgb::new(0, 0, 255);
-    let scene = Scene {
-        camera,
-        triangles: vec![
-            Triangle {
-                vertices: [near + r, near + l, far + l],
-                color: TriangleColor::PerVertex([red, red, blue]),
-            },
-            Triangle {
-                vertices: [near + r, far + l, far + r],
-                color: TriangleColor::PerVertex([red, blue, blue]),
-            },
-        ],
-        ..Scene::default()
-    };
-    let opts = RenderOptions {
-        cols: 16,
-        rows: 16,
-        glyphs: GlyphMode::Block,
-        cell_aspect: 1.0,
-        ..RenderOptions::default()
-    };
-    let mut rr = Renderer::new();
-    rr.render(&scene, &opts);
-    let fb = rr.framebuffer();
-    let grid = fb.grid();
-    let vp = camera.view_projection(opts.aspect());
-    let (mut checked, mut off_affine) = (0, 0);
-    for y in 0..grid.height {
-        for x in 0..grid.width {
-            let Some(c) = fb.get(x, y) else { continue };
-            // The floor point behind this sample, in f64: cast the ray.
-            let ndc_x = (x as f64 + 0.5) / grid.width as f64 * 2.0 - 1.0;
-            let ndc_y = (y as f64 + 0.5) / grid.height as f64 * 2.0 - 1.0;
-            let inv = vp.as_dmat4().inverse();
-            let p0 = inv.project_point3(glam::DVec3::new(ndc_x, ndc_y, 1.0));
-            let p1 = inv.project_point3(glam::DVec3::new(ndc_x, ndc_y, -1.0));
-            let t = (-1.0 - p0.y) / (p1.y - p0.y);
-            let z = p0.z + t * (p1.z - p0.z);
-            // Blue's share grows linearly with depth along the floor.
-            let s = (z - (-1.0)) / (-8.0 - (-1.0));
-            let want = [255.0 * (1.0 - s), 0.0, 255.0 * s];
-            let got = c.to_f32();
-            assert!(
-                (got[0] as f64 - want[0]).abs() <= 2.0 && (got[2] as f64 - want[2]).abs() <= 2.0,
-                "({x}, {y}): {c} vs {want:?}"
-            );
-            // Affine interpolation in screen space would follow the screen y.
-            let p_near = vp.as_dmat4().project_point3(near.as_dvec3());
-            let p_far = vp.as_dmat4().project_point3(far.as_dvec3());
-            let s_affine = ((ndc_y - p_near.y) / (p_far.y - p_near.y)).clamp(0.0, 1.0);
-            if (255.0 * s_affine - want[2]).abs() > 20.0 {
-                off_affine += 1;
-            }
-            checked += 1;
-        }
-    }
-    assert!(checked > 30, "{checked} samples");
+    // A floor from 1 to 8 units in front of the eye (w differs eightfold),
+    // red near and blue far; every drawn sample against the floor point
+    // behind it, found by casting the ray in f64 (rastty::bench measures
+    // the same for its table).
+    let (max, mean) =
+        rastty::bench::interpolation_error(rastty::render::Interpolation::Perspective);
     assert!(
-        off_affine > 10,
-        "the case tells perspective from affine ({off_affine})"
+        max <= 2.0 && mean <= 0.5,
+        "perspective-correct: max {max}, mean {mean}"
+    );
+    let (affine_max, affine_mean) =
+        rastty::bench::interpolation_error(rastty::render::Interpolation::Affine);
+    assert!(
+        affine_max > 100.0 && affine_mean > 40.0,
+        "affine: max {affine_max}, mean {affine_mean}"
     );
 }
 
