@@ -97,6 +97,7 @@ pub struct Player {
     renderer: Renderer,
     encoder: Encoder,
     last_bytes: usize,
+    status: String,
 }
 
 impl Player {
@@ -114,6 +115,7 @@ impl Player {
             renderer: Renderer::new(),
             encoder,
             last_bytes: 0,
+            status: String::new(),
         }
     }
 
@@ -191,8 +193,13 @@ impl Player {
         };
         self.renderer.render(&self.scene, &opts);
         if self.hud {
+            use std::fmt::Write as _;
             let stats = *self.renderer.stats();
-            let text = format!(
+            // The status line's text is rebuilt in the same buffer each
+            // frame: no allocation once it has grown.
+            self.status.clear();
+            let _ = write!(
+                self.status,
                 " {fps:.1} fps · {} triangles drawn · {} B/frame · {:?} · {:?} · {:?}{} ",
                 stats.raster.triangles_drawn,
                 self.last_bytes,
@@ -201,7 +208,7 @@ impl Player {
                 opts.shading,
                 if self.paused { " · paused" } else { "" },
             );
-            overlay_status(self.renderer.frame_mut(), &text);
+            overlay_status(self.renderer.frame_mut(), &self.status);
         }
         self.last_bytes = self.encoder.encode(self.renderer.frame(), out)?;
         Ok(self.last_bytes)

@@ -9,6 +9,7 @@ use glam::Vec3;
 use proptest::prelude::*;
 use rastty::plan::Pipeline;
 use rastty::raster::Cull;
+use rastty::render::Aa;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
 use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
@@ -148,9 +149,10 @@ fn options() -> impl Strategy<Value = RenderOptions> {
         ])),
         (0.0f32..360.0, 0.0f32..360.0, 0.0f32..360.0),
         prop::sample::select(vec![(12u16, 6u16), (23, 9)]),
+        prop::sample::select(Aa::ALL.to_vec()),
     )
         .prop_map(
-            |(glyphs, shading, cull, (p, y, r), (cols, rows))| RenderOptions {
+            |(glyphs, shading, cull, (p, y, r), (cols, rows), aa)| RenderOptions {
                 cols,
                 rows,
                 glyphs,
@@ -158,6 +160,7 @@ fn options() -> impl Strategy<Value = RenderOptions> {
                 shading,
                 cull,
                 turn: Vec3::new(p, y, r),
+                aa,
                 ..RenderOptions::default()
             },
         )
