@@ -27,13 +27,7 @@ fn knobs(c: &mut Criterion) {
         let mut r = Renderer::new();
         group.bench_function(name, |b| b.iter(|| r.render(&scene, &opts).cols()));
     };
-    for glyphs in [
-        GlyphMode::Block,
-        GlyphMode::Half,
-        GlyphMode::Quadrant,
-        GlyphMode::Sextant,
-        GlyphMode::Octant,
-    ] {
+    for glyphs in rastty::bench::COVERAGE_MODES {
         for aa in Aa::ALL {
             frame(
                 format!("coverage/{glyphs:?}/{aa:?}"),

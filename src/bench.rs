@@ -81,6 +81,15 @@ pub fn workloads(models: &Path) -> Vec<Workload> {
     w
 }
 
+/// One glyph mode for each number of samples per cell: 1, 2, 4, 6, 8.
+pub const COVERAGE_MODES: [GlyphMode; 5] = [
+    GlyphMode::Block,
+    GlyphMode::Half,
+    GlyphMode::Quadrant,
+    GlyphMode::Sextant,
+    GlyphMode::Octant,
+];
+
 const COLS: u16 = 200;
 const ROWS: u16 = 60;
 
@@ -138,13 +147,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
 
     // 1. Coverage.
     let tris = random_triangles(300, 40.0, 12.0);
-    for glyphs in [
-        GlyphMode::Block,
-        GlyphMode::Half,
-        GlyphMode::Quadrant,
-        GlyphMode::Sextant,
-        GlyphMode::Octant,
-    ] {
+    for glyphs in COVERAGE_MODES {
         for aa in [Aa::None, Aa::X4, Aa::X16] {
             let (mean, max) = coverage_error(&tris, glyphs, aa);
             let (w, h) = glyphs.cell_size();
