@@ -102,7 +102,7 @@ pub fn perspective(fr: &Frustum) -> Mat4 {
     -(orthographic(fr) * persp_to_ortho(fr.n, fr.f))
 }
 
-/// `M_viewport`: [-1,1]^2 onto [0,width]×[0,height], z untouched.
+/// `M_viewport`: `[-1,1]^2` onto `[0,width]×[0,height]`, z untouched.
 pub fn viewport(width: f32, height: f32) -> Mat4 {
     rows([
         [width / 2.0, 0.0, 0.0, width / 2.0],
