@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rastty::animate::{Axis, Player, Spin};
+use rastty::animate::{Axis, LiveStatus, Player, Spin};
 use rastty::encode::Encoder;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene};
 
@@ -43,7 +43,7 @@ fn frames(c: &mut Criterion) {
         group.bench_function(format!("{name}/200x60/half"), |b| {
             b.iter(|| {
                 player.advance(1);
-                player.show(&mut sink, 0.0).unwrap()
+                player.show(&mut sink, LiveStatus::default()).unwrap()
             })
         });
     }

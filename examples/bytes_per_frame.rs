@@ -31,8 +31,17 @@ fn main() {
                 axis: Axis::Z,
                 step: 6.0,
             };
-            let sizes =
-                animate::play(&scene, &opts, spin, 60, encoder, &mut std::io::sink()).unwrap();
+            let mut sizes = Vec::new();
+            animate::play(
+                &scene,
+                &opts,
+                spin,
+                60,
+                encoder,
+                &mut std::io::sink(),
+                |n| sizes.push(n),
+            )
+            .unwrap();
             (sizes[0], sizes[1..].iter().sum::<usize>() as f64 / 59.0)
         });
         println!(

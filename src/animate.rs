@@ -13,7 +13,7 @@ use std::io::{self, Write};
 
 use glam::Vec3;
 
-use crate::GlyphMode;
+use crate::blit::GlyphMode;
 use crate::color::{ColorDepth, Rgb};
 use crate::encode::Encoder;
 use crate::frame::{Cell, Frame};
@@ -31,6 +31,16 @@ pub enum Axis {
 }
 
 impl Axis {
+    /// The name of a turn about this axis, as the command line has it
+    /// (`--pitch`, `--yaw`, `--roll`).
+    pub fn angle_name(self) -> &'static str {
+        match self {
+            Axis::X => "pitch",
+            Axis::Y => "yaw",
+            Axis::Z => "roll",
+        }
+    }
+
     pub fn unit(self) -> Vec3 {
         match self {
             Axis::X => Vec3::X,
@@ -81,6 +91,16 @@ pub enum Command {
     Redraw,
 }
 
+/// What the live loop knows that the player does not: the measured frame
+/// rate and the link's drain rate, for the status line.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LiveStatus {
+    /// Frames shown per second, measured.
+    pub fps: f32,
+    /// Bytes per second the terminal drains, measured (`None`: not known).
+    pub link: Option<f64>,
+}
+
 /// A spinning scene and everything that changes while it spins.
 #[derive(Debug)]
 pub struct Player {
@@ -98,6 +118,14 @@ pub struct Player {
     encoder: Encoder,
     last_bytes: usize,
     status: String,
+    /// Which glyph modes `m` may pick (in [`GlyphMode::ALL`] order).
+    usable: [bool; 7],
+    /// The deepest colour `c` may pick.
+    max_depth: ColorDepth,
+    /// A short message over the last row, and a number that changes with
+    /// every new one (so that a loop can time how long it has shown).
+    notice: Option<String>,
+    notice_serial: u64,
 }
 
 impl Player {
@@ -116,6 +144,10 @@ impl Player {
             encoder,
             last_bytes: 0,
             status: String::new(),
+            usable: [true; 7],
+            max_depth: ColorDepth::TrueColor,
+            notice: None,
+            notice_serial: 0,
         }
     }
 
@@ -125,8 +157,28 @@ impl Player {
         self
     }
 
+    /// Limits the modes `m` cycles through to those for which `usable` is
+    /// true (the current mode stays as it is).
+    pub fn set_usable_glyphs(&mut self, usable: impl Fn(GlyphMode) -> bool) {
+        self.usable = GlyphMode::ALL.map(usable);
+    }
+
+    /// Limits the depths `c` cycles through to `max` and below.
+    pub fn set_max_depth(&mut self, max: ColorDepth) {
+        self.max_depth = max;
+    }
+
+    /// Switches to another glyph mode (a fallback), with a notice.
+    pub fn set_glyphs(&mut self, glyphs: GlyphMode) {
+        self.opts.glyphs = glyphs;
+    }
+
     pub fn options(&self) -> &RenderOptions {
         &self.opts
+    }
+
+    pub fn encoder_mut(&mut self) -> &mut Encoder {
+        &mut self.encoder
     }
 
     pub fn frame_number(&self) -> u64 {
@@ -137,7 +189,28 @@ impl Player {
         self.paused
     }
 
-    /// Applies a command; `false` when it asks to quit.
+    /// The notice shown over the last row, if any.
+    pub fn notice(&self) -> Option<&str> {
+        self.notice.as_deref()
+    }
+
+    /// Changes with every new notice.
+    pub fn notice_serial(&self) -> u64 {
+        self.notice_serial
+    }
+
+    /// Shows `text` over the last row until [`Player::clear_notice`].
+    pub fn set_notice(&mut self, text: impl Into<String>) {
+        self.notice = Some(text.into());
+        self.notice_serial += 1;
+    }
+
+    pub fn clear_notice(&mut self) {
+        self.notice = None;
+    }
+
+    /// Applies a command; `false` when it asks to quit. A change of glyphs,
+    /// colour or shading shows a notice naming the new setting.
     pub fn apply(&mut self, cmd: Command) -> bool {
         match cmd {
             Command::Quit => return false,
@@ -147,15 +220,24 @@ impl Player {
                 self.orbit.1 = (self.orbit.1 + pitch).clamp(-85.0, 85.0);
             }
             Command::Zoom(f) => self.zoom = (self.zoom * f).clamp(0.05, 20.0),
-            Command::NextGlyphs => self.opts.glyphs = next(&GlyphMode::ALL, self.opts.glyphs),
-            Command::NextColor => {
-                self.opts.color = next(&ColorDepth::ALL, self.opts.color);
-                self.encoder.set_depth(self.opts.color);
+            Command::NextGlyphs => {
+                let usable = self.usable;
+                self.opts.glyphs = next_where(&GlyphMode::ALL, self.opts.glyphs, |i, _| usable[i]);
+                self.set_notice(format!("glyphs {}", self.opts.glyphs.name()));
             }
-            Command::NextShading => self.opts.shading = next(&Shading::ALL, self.opts.shading),
+            Command::NextColor => {
+                let max = self.max_depth;
+                self.opts.color = next_where(&ColorDepth::ALL, self.opts.color, |_, d| d <= max);
+                self.encoder.set_depth(self.opts.color);
+                self.set_notice(format!("color {}", self.opts.color.name()));
+            }
+            Command::NextShading => {
+                self.opts.shading = next_where(&Shading::ALL, self.opts.shading, |_, _| true);
+                self.set_notice(format!("shading {}", self.opts.shading.name()));
+            }
             Command::Resize { cols, rows } => {
-                self.opts.cols = cols.max(1);
-                self.opts.rows = rows.max(1);
+                self.opts.cols = cols.clamp(1, crate::MAX_CELLS);
+                self.opts.rows = rows.clamp(1, crate::MAX_CELLS);
                 self.encoder.invalidate();
             }
             Command::Redraw => self.encoder.invalidate(),
@@ -183,48 +265,82 @@ impl Player {
         }
     }
 
-    /// Renders the current frame, sends it to `out`, and returns the bytes
-    /// written.
-    pub fn show(&mut self, out: &mut impl Write, fps: f32) -> io::Result<usize> {
+    /// Renders the current frame and encodes it; returns the bytes to send
+    /// (empty when nothing changed).
+    pub fn prepare(&mut self, live: LiveStatus) -> &[u8] {
         self.scene.camera = self.camera();
-        let opts = RenderOptions {
-            turn: self.spin.turn(self.opts.turn, self.k),
-            ..self.opts
-        };
+        let turn = self.spin.turn(self.opts.turn, self.k);
+        let opts = RenderOptions { turn, ..self.opts };
         self.renderer.render(&self.scene, &opts);
         if self.hud {
             use std::fmt::Write as _;
             let stats = *self.renderer.stats();
-            // The status line's text is rebuilt in the same buffer each
-            // frame: no allocation once it has grown.
+            // Anti-aliasing draws every triangle once per pass.
+            let drawn = stats.raster.triangles_drawn / opts.aa.passes();
+            // Rebuilt in the same buffer each frame: no allocation once it
+            // has grown.
             self.status.clear();
+            // A notice first, where the narrowest status line still shows it.
+            if let Some(n) = &self.notice {
+                let _ = write!(self.status, " {n} ·");
+            }
+            let _ = write!(self.status, " {:.1} fps · ", live.fps);
+            let _ = match live.link {
+                Some(rate) => write!(self.status, "link {:.1} kB/s · ", rate / 1e3),
+                None => write!(self.status, "link ? · "),
+            };
             let _ = write!(
                 self.status,
-                " {fps:.1} fps · {} triangles drawn · {} B/frame · {:?} · {:?} · {:?}{} ",
-                stats.raster.triangles_drawn,
+                "{} triangles · {} B/frame · {} · {} · {} · sync {} · {} {:.1}°{} ",
+                drawn,
                 self.last_bytes,
-                opts.glyphs,
-                opts.color,
-                opts.shading,
+                opts.glyphs.name(),
+                opts.color.name(),
+                opts.shading.name(),
+                if self.encoder.sync() { "on" } else { "off" },
+                self.spin.axis.angle_name(),
+                self.spin.axis.unit().dot(turn).rem_euclid(360.0),
                 if self.paused { " · paused" } else { "" },
             );
-            overlay_status(self.renderer.frame_mut(), &self.status);
+            overlay(self.renderer.frame_mut(), &self.status, true);
+        } else if let Some(n) = &self.notice {
+            self.status.clear();
+            self.status.push(' ');
+            self.status.push_str(n);
+            self.status.push(' ');
+            overlay(self.renderer.frame_mut(), &self.status, false);
         }
-        self.last_bytes = self.encoder.encode(self.renderer.frame(), out)?;
-        Ok(self.last_bytes)
+        self.encoder.prepare(self.renderer.frame());
+        self.last_bytes = self.encoder.last_bytes().len();
+        self.encoder.last_bytes()
+    }
+
+    /// Renders the current frame, sends it to `out`, and returns the bytes
+    /// written.
+    pub fn show(&mut self, out: &mut impl Write, live: LiveStatus) -> io::Result<usize> {
+        let bytes = self.prepare(live);
+        out.write_all(bytes)?;
+        out.flush()?;
+        Ok(bytes.len())
     }
 }
 
-/// Writes `text` over the last row of `frame`, white on black.
-fn overlay_status(frame: &mut Frame, text: &str) {
+/// Writes `text` over the last row of `frame`, white on black; across the
+/// whole row with `full_row`, else over as many cells as the text needs.
+fn overlay(frame: &mut Frame, text: &str, full_row: bool) {
     let row = frame.rows().saturating_sub(1);
     let mut chars = text.chars();
     for col in 0..frame.cols() {
+        let ch = match chars.next() {
+            Some(c) => c,
+            None if full_row => ' ',
+            None => break,
+        };
         frame.set(
             col,
             row,
             Cell {
-                ch: chars.next().unwrap_or(' '),
+                ch,
                 fg: Some(Rgb::WHITE),
                 bg: Some(Rgb::BLACK),
             },
@@ -232,14 +348,19 @@ fn overlay_status(frame: &mut Frame, text: &str) {
     }
 }
 
-fn next<T: Copy + PartialEq>(all: &[T], current: T) -> T {
+/// The entry after `current` in `all` (cyclically) for which `allowed`
+/// holds; `current` if none does.
+fn next_where<T: Copy + PartialEq>(all: &[T], current: T, allowed: impl Fn(usize, T) -> bool) -> T {
     let i = all.iter().position(|&x| x == current).unwrap_or(0);
-    all[(i + 1) % all.len()]
+    (1..=all.len())
+        .map(|d| (i + d) % all.len())
+        .find(|&j| allowed(j, all[j]))
+        .map_or(current, |j| all[j])
 }
 
 /// Renders frames `0..frames` of `spin` and writes each through `encoder`
 /// to `out`: what `rastty spin --frames N` writes when stdout is not a
-/// terminal. Returns the bytes sent for each frame.
+/// terminal. Calls `sent` with the bytes of each frame.
 pub fn play(
     scene: &Scene,
     opts: &RenderOptions,
@@ -247,14 +368,14 @@ pub fn play(
     frames: u64,
     encoder: Encoder,
     out: &mut impl Write,
-) -> io::Result<Vec<usize>> {
+    mut sent: impl FnMut(usize),
+) -> io::Result<()> {
     let mut player = Player::new(scene.clone(), *opts, spin, encoder);
-    let mut sizes = Vec::with_capacity(frames as usize);
     for _ in 0..frames {
-        sizes.push(player.show(out, 0.0)?);
+        sent(player.show(out, LiveStatus::default())?);
         player.advance(1);
     }
-    Ok(sizes)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -302,7 +423,61 @@ mod tests {
         assert_eq!(p.frame_number(), 5);
         p.apply(Command::Resize { cols: 10, rows: 4 });
         let mut out = Vec::new();
-        assert!(p.show(&mut out, 30.0).unwrap() > 0);
+        assert!(p.show(&mut out, LiveStatus::default()).unwrap() > 0);
         assert!(!p.apply(Command::Quit));
+        // A terminal's size is clamped as the command line's is.
+        p.apply(Command::Resize {
+            cols: 60_000,
+            rows: 0,
+        });
+        assert_eq!((p.options().cols, p.options().rows), (crate::MAX_CELLS, 1));
+    }
+
+    #[test]
+    fn m_and_c_skip_what_the_terminal_cannot_show_and_say_what_they_chose() {
+        let mut p = Player::new(
+            crate::default_scene(),
+            RenderOptions {
+                glyphs: GlyphMode::Sextant,
+                color: ColorDepth::Ansi16,
+                ..RenderOptions::default()
+            },
+            Spin {
+                axis: Axis::Y,
+                step: 3.0,
+            },
+            Encoder::new(ColorDepth::Ansi16),
+        );
+        p.set_usable_glyphs(|m| !matches!(m, GlyphMode::Octant | GlyphMode::Braille));
+        p.set_max_depth(ColorDepth::Ansi256);
+        p.apply(Command::NextGlyphs);
+        assert_eq!(
+            p.options().glyphs,
+            GlyphMode::Ascii,
+            "octant and braille skipped"
+        );
+        assert_eq!(p.notice(), Some("glyphs ascii"));
+        let serial = p.notice_serial();
+        p.apply(Command::NextColor);
+        assert_eq!(p.options().color, ColorDepth::Ansi256);
+        p.apply(Command::NextColor);
+        assert_eq!(
+            p.options().color,
+            ColorDepth::None,
+            "no truecolor beyond 256"
+        );
+        assert_eq!(p.notice(), Some("color none"));
+        assert!(p.notice_serial() > serial);
+        // The notice is drawn over the last row, even without the HUD.
+        p.apply(Command::Resize { cols: 20, rows: 4 });
+        p.prepare(LiveStatus::default());
+        let text = p.renderer.frame().to_string();
+        assert!(
+            text.lines().last().unwrap().starts_with(" color none "),
+            "{text}"
+        );
+        p.clear_notice();
+        p.prepare(LiveStatus::default());
+        assert!(!p.renderer.frame().to_string().contains("color"));
     }
 }

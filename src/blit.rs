@@ -70,6 +70,19 @@ impl GlyphMode {
         GlyphMode::Braille,
     ];
 
+    /// The name the command line uses (`--glyphs octant`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            GlyphMode::Ascii => "ascii",
+            GlyphMode::Block => "block",
+            GlyphMode::Half => "half",
+            GlyphMode::Quadrant => "quadrant",
+            GlyphMode::Sextant => "sextant",
+            GlyphMode::Octant => "octant",
+            GlyphMode::Braille => "braille",
+        }
+    }
+
     /// Samples per cell, `(w, h)`.
     pub const fn cell_size(self) -> (u32, u32) {
         match self {

@@ -14,8 +14,7 @@ use rastty::render::{Aa, Interpolation};
 use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, Traversal};
 
-/// Largest terminal side accepted, in cells.
-pub const MAX_CELLS: u16 = 4096;
+use rastty::MAX_CELLS;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -33,6 +32,7 @@ pub enum Command {
     /// Print one frame of a scene or model to stdout.
     Render(RenderArgs),
     /// Spin a scene or model in the terminal (q quits).
+    #[command(after_help = rastty::live::KEYS)]
     Spin(SpinArgs),
     /// Measure what accuracy costs: every accuracy knob's time per frame
     /// and error, as a Markdown table on stdout and an SVG plot.
@@ -86,9 +86,14 @@ pub struct SpinArgs {
     /// are then written as one ANSI stream)
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub frames: Option<u64>,
-    /// Show a status line: fps, triangles drawn, bytes per frame
+    /// Show a status line: fps, link rate, triangles drawn, bytes per
+    /// frame, the settings and the angle
     #[arg(long)]
     pub hud: bool,
+    /// Do not ask the terminal which glyphs it draws (by default spin
+    /// checks, within 150 ms, and falls back from modes it cannot draw)
+    #[arg(long)]
+    pub no_probe: bool,
 }
 
 /// How a frame is laid out and drawn.
@@ -101,9 +106,10 @@ pub struct ViewArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
     pub rows: Option<u16>,
     /// How samples become glyphs (samples per cell: ascii and block 1,
-    /// half 2, quadrant 4, sextant 6, octant and braille 8)
-    #[arg(long, value_enum, default_value_t = GlyphMode::Half)]
-    pub glyphs: GlyphMode,
+    /// half 2, quadrant 4, sextant 6, octant and braille 8) [default: half,
+    /// or ascii when TERM is dumb]
+    #[arg(long, value_enum)]
+    pub glyphs: Option<GlyphMode>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,

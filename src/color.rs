@@ -78,8 +78,8 @@ impl TryFrom<String> for Rgb {
     }
 }
 
-/// How many colours the terminal shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// How many colours the terminal shows, fewest first.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum ColorDepth {
     /// Glyphs only: no colour escape sequence at all.
     None,
@@ -100,6 +100,16 @@ impl ColorDepth {
         ColorDepth::Ansi256,
         ColorDepth::TrueColor,
     ];
+
+    /// The name the command line uses (`--color 256`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ColorDepth::None => "none",
+            ColorDepth::Ansi16 => "16",
+            ColorDepth::Ansi256 => "256",
+            ColorDepth::TrueColor => "truecolor",
+        }
+    }
 
     /// Whether cells carry colours at all.
     pub fn has_color(self) -> bool {

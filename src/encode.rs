@@ -226,13 +226,24 @@ pub fn write_lines(
     let mut q = Quantizer::new(depth, Metric::Oklab);
     let mut cells = Vec::with_capacity(frame.cells().len());
     quantize(frame, &mut q, &mut cells);
+    buf.clear();
+    push_lines(&cells, frame.cols(), frame.rows(), depth, rep, buf);
+    out.write_all(buf)?;
+    out.flush()
+}
+
+/// Appends `cells` (`cols × rows`) as lines of text.
+fn push_lines(
+    cells: &[TermCell],
+    cols: u16,
+    rows: u16,
+    depth: ColorDepth,
+    rep: Rep,
+    buf: &mut Vec<u8>,
+) {
     // Plain text means no escape sequence at all, REP included.
     let rep = if depth.has_color() { rep } else { Rep::Off };
-    buf.clear();
-    for row in cells
-        .chunks(frame.cols().max(1) as usize)
-        .take(frame.rows() as usize)
-    {
+    for row in cells.chunks(cols.max(1) as usize).take(rows as usize) {
         let mut pen = Pen::default();
         let mut rest = row;
         while let Some(cell) = rest.first() {
@@ -243,8 +254,6 @@ pub fn write_lines(
         push_sgr(buf, pen, Pen::default());
         buf.push(b'\n');
     }
-    out.write_all(buf)?;
-    out.flush()
 }
 
 /// Where the cursor is: a cell, or just past the last column of a row (the
@@ -399,6 +408,11 @@ pub struct Encoder {
     next: Vec<TermCell>,
     synced: bool,
     buf: Vec<u8>,
+    /// Bracket frames in synchronized output.
+    sync: bool,
+    /// Every frame in full as plain lines (a terminal that cannot move its
+    /// cursor), rather than as the difference from the last.
+    lines: bool,
 }
 
 impl Encoder {
@@ -412,7 +426,37 @@ impl Encoder {
             next: Vec::new(),
             synced: false,
             buf: Vec::new(),
+            sync: true,
+            lines: false,
         }
+    }
+
+    /// An encoder that writes each frame in full as lines of text, for a
+    /// terminal that cannot move its cursor (`TERM=dumb`): no cursor moves,
+    /// no screen clearing, no synchronized output.
+    pub fn lines(depth: ColorDepth) -> Encoder {
+        Encoder {
+            lines: true,
+            sync: false,
+            ..Encoder::new(depth)
+        }
+    }
+
+    /// Whether frames are bracketed in synchronized output (on by default;
+    /// terminals that do not know it ignore it, at 16 bytes a frame).
+    pub fn with_sync(mut self, on: bool) -> Encoder {
+        self.set_sync(on);
+        self
+    }
+
+    /// See [`Encoder::with_sync`].
+    pub fn set_sync(&mut self, on: bool) {
+        self.sync = on && !self.lines;
+    }
+
+    /// Whether frames are bracketed in synchronized output.
+    pub fn sync(&self) -> bool {
+        self.sync
     }
 
     /// Measures "nearest" palette colours with `metric` (OKLab by default).
@@ -461,7 +505,21 @@ impl Encoder {
     pub fn prepare(&mut self, frame: &Frame) {
         quantize(frame, &mut self.quantizer, &mut self.next);
         self.buf.clear();
-        self.buf.extend_from_slice(SYNC_BEGIN);
+        if self.lines {
+            let depth = self.depth();
+            push_lines(
+                &self.next,
+                frame.cols(),
+                frame.rows(),
+                depth,
+                self.rep,
+                &mut self.buf,
+            );
+            return;
+        }
+        if self.sync {
+            self.buf.extend_from_slice(SYNC_BEGIN);
+        }
         let full = !self.synced || frame.cols() != self.cols || frame.rows() != self.rows;
         let mut cursor = None;
         if full {
@@ -478,7 +536,7 @@ impl Encoder {
         if self.buf.len() == start && !full {
             // Nothing changed: nothing to send.
             self.buf.clear();
-        } else {
+        } else if self.sync {
             self.buf.extend_from_slice(SYNC_END);
         }
         std::mem::swap(&mut self.shown, &mut self.next);

@@ -51,6 +51,7 @@ pub mod encode;
 pub mod error;
 pub mod frame;
 pub mod framebuffer;
+pub mod live;
 pub mod plan;
 pub mod raster;
 pub mod render;
@@ -64,7 +65,7 @@ pub use color::{ColorDepth, Rgb};
 pub use error::{Error, Result};
 pub use frame::{Cell, Frame};
 pub use raster::Traversal;
-pub use render::{RenderOptions, Renderer, render};
+pub use render::{MAX_CELLS, RenderOptions, Renderer, render};
 pub use scene::Scene;
 
 /// The scene `rastty render` draws when it is given none.

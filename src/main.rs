@@ -11,9 +11,10 @@ use clap::Parser as _;
 use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
 use rastty::animate::{self, Player, Spin};
 use rastty::encode::Encoder;
+use rastty::live::{self, Exit, LiveOptions};
 use rastty::plan::Pipeline;
-use rastty::terminal::{self, Exit};
-use rastty::{RenderOptions, Renderer, Scene, encode};
+use rastty::terminal;
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, encode};
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -32,19 +33,29 @@ fn main() -> ExitCode {
 }
 
 /// `--help` and `--version` print as clap has them; a usage error prints
-/// its first line only (`error: invalid value '0' for '--cols <N>': …`) and
-/// exits with 2.
+/// clap's message (with the possible values, and a suggestion where one is
+/// close) and exits with 2. A model or scene named where a command belongs
+/// (`rastty bunny.obj`) gets the command that shows it.
 fn usage_error(e: clap::Error) -> ExitCode {
-    use clap::error::ErrorKind;
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
     if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
         let _ = e.print();
         return ExitCode::SUCCESS;
     }
-    let text = e.render().to_string();
-    eprintln!(
-        "{}",
-        text.lines().next().unwrap_or("error: invalid arguments")
-    );
+    let named = match e.get(ContextKind::InvalidSubcommand) {
+        Some(ContextValue::String(arg)) if e.kind() == ErrorKind::InvalidSubcommand => Some(arg),
+        _ => None,
+    };
+    if let Some(arg) = named {
+        let path = std::path::Path::new(arg);
+        if path.exists() || Scene::is_model(path) || arg.ends_with(".toml") {
+            eprintln!(
+                "error: '{arg}' is not a command; to show it, run\n\n  rastty spin {arg}\n\nor `rastty render {arg}` for one frame (rastty --help lists the commands)"
+            );
+            return ExitCode::from(2);
+        }
+    }
+    let _ = e.print();
     ExitCode::from(2)
 }
 
@@ -133,7 +144,12 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         axis: args.axis,
         step: args.step,
     };
-    let encoder = Encoder::new(opts.color).with_rep(args.view.rep());
+    let dumb = is_dumb();
+    let encoder = if dumb {
+        Encoder::lines(opts.color)
+    } else {
+        Encoder::new(opts.color).with_rep(args.view.rep())
+    };
     if !terminal::stdout_is_terminal() {
         // Not a terminal: the frames as one deterministic ANSI stream.
         let Some(frames) = args.frames else {
@@ -142,44 +158,72 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
             ));
         };
         let mut out = io::stdout().lock();
-        animate::play(&scene, &opts, spin, frames, encoder, &mut out).map_err(stdout_error)?;
+        animate::play(&scene, &opts, spin, frames, encoder, &mut out, |_| {})
+            .map_err(stdout_error)?;
         return Ok(ExitCode::SUCCESS);
     }
     terminal::install_panic_hook();
+    // `c` goes up to what the terminal shows, or what was asked for.
+    let max_depth = auto_color(true).max(opts.color);
     let mut player = Player::new(scene, opts, spin, encoder).with_hud(args.hud);
-    match terminal::run(&mut player, args.fps, args.frames).map_err(stdout_error)? {
-        Exit::Quit | Exit::Done => Ok(ExitCode::SUCCESS),
-        Exit::Signal(sig) => Ok(ExitCode::from((128 + sig).clamp(0, 255) as u8)),
+    let live_opts = LiveOptions {
+        fps: args.fps,
+        frames: args.frames,
+        probe: !args.no_probe,
+        full_screen: !dumb,
+        max_depth,
+    };
+    let outcome = live::run(&mut player, &live_opts)
+        .map_err(|e| rastty::Error::Invalid(format!("spin: {e}")))?;
+    for m in &outcome.messages {
+        eprintln!("note: {m}");
     }
+    Ok(match outcome.exit {
+        Exit::Quit | Exit::Done => ExitCode::SUCCESS,
+        Exit::Signal(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
+    })
 }
 
-/// Resolves sizes and colour against the terminal; `spare_rows` are left
-/// free below the frame (for the shell prompt after `render`).
+/// Whether `TERM` says the terminal cannot move its cursor.
+fn is_dumb() -> bool {
+    terminal::is_dumb(std::env::var("TERM").ok().as_deref())
+}
+
+/// The colour depth `--color auto` gives.
+fn auto_color(tty: bool) -> ColorDepth {
+    terminal::detect_color(tty, |k| std::env::var(k).ok())
+}
+
+/// Resolves sizes, glyphs and colour against the terminal; `spare_rows`
+/// are left free below the frame (for the shell prompt after `render`).
 fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
     let tty = terminal::stdout_is_terminal();
-    let term = if tty { terminal::size() } else { None };
+    let term = terminal::stdout_size();
+    let cells = term.map(|t| t.cells());
     let cols = view
         .cols
-        .or(term.map(|t| t.0))
+        .or(cells.map(|t| t.0))
         .unwrap_or(80)
-        .min(cli::MAX_CELLS);
+        .min(rastty::MAX_CELLS);
     let rows = view
         .rows
-        .or(term.map(|t| t.1.saturating_sub(spare_rows).max(1)))
+        .or(cells.map(|t| t.1.saturating_sub(spare_rows).max(1)))
         .unwrap_or(24)
-        .min(cli::MAX_CELLS);
-    let color = view
-        .color
-        .depth()
-        .unwrap_or_else(|| terminal::detect_color(tty, |k| std::env::var(k).ok()));
+        .min(rastty::MAX_CELLS);
+    let color = view.color.depth().unwrap_or_else(|| auto_color(tty));
     let cell_aspect = view
         .cell_aspect
-        .or_else(|| if tty { terminal::cell_aspect() } else { None })
+        .or_else(|| term.and_then(|t| t.cell_aspect()))
         .unwrap_or(0.5);
+    let glyphs = view.glyphs.unwrap_or(if is_dumb() && tty {
+        GlyphMode::Ascii
+    } else {
+        GlyphMode::Half
+    });
     RenderOptions {
         cols,
         rows,
-        glyphs: view.glyphs,
+        glyphs,
         color,
         cell_aspect,
         traversal: view.traversal,

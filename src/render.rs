@@ -40,6 +40,10 @@ use crate::scene::{Projection, Scene};
 use crate::shade::{Lights, Shading};
 use crate::transform;
 
+/// Largest frame side, in cells: a bigger terminal is drawn at this size
+/// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
+pub const MAX_CELLS: u16 = 4096;
+
 /// Everything about a frame that is not the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
@@ -117,6 +121,11 @@ const ORDERED_16: [(f32, f32); 16] = {
 
 impl Aa {
     pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
+
+    /// How many times a frame's geometry is drawn.
+    pub fn passes(self) -> u64 {
+        self.offsets().len() as u64
+    }
 
     /// The sub-sample positions inside a sample's unit square.
     pub fn offsets(self) -> &'static [(f32, f32)] {

@@ -25,6 +25,15 @@ pub enum Shading {
 
 impl Shading {
     pub const ALL: [Shading; 3] = [Shading::None, Shading::Flat, Shading::Smooth];
+
+    /// The name the command line uses (`--shading flat`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Shading::None => "none",
+            Shading::Flat => "flat",
+            Shading::Smooth => "smooth",
+        }
+    }
 }
 
 /// Most lights a scene may have.

@@ -196,13 +196,15 @@ fn spinning_square_in_half_mode_stays_within_budget() {
         step: 6.0,
     };
     let mut bytes = Vec::new();
-    let sizes = animate::play(
+    let mut sizes = Vec::new();
+    animate::play(
         &scene,
         &o,
         spin,
         60,
         Encoder::new(ColorDepth::TrueColor),
         &mut bytes,
+        |n| sizes.push(n),
     )
     .unwrap();
     let later = sizes[1..].iter().sum::<usize>() as f64 / 59.0;

@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::io::Read;
+use std::io::{Read, Write};
 use std::process::Command;
 use std::time::Duration;
 
@@ -203,4 +203,512 @@ fn a_bad_model_is_reported_before_the_terminal_is_touched() {
         "the alternate screen was never entered"
     );
     assert!(!text.contains("\x1b[?25l"), "the cursor was never hidden");
+}
+
+/// A terminal played by the test: it reads what `spin` writes (at most
+/// `rate` bytes a second, if given), answers its status requests and
+/// cursor position requests as told, and records when each byte arrived.
+struct Fake {
+    session: Session,
+    seen: Vec<u8>,
+    /// Where the next query is looked for.
+    scanned: usize,
+    /// Columns to report for successive position requests (then 2).
+    cpr_cols: Vec<u16>,
+    /// Whether position and status requests are answered at all.
+    answer: bool,
+    rate: Option<f64>,
+    start: std::time::Instant,
+    /// `(time, bytes seen by then)`, one entry per read.
+    arrivals: Vec<(Duration, usize)>,
+    eof: bool,
+}
+
+impl Fake {
+    fn spawn(args: &[&str], answer: bool, cpr_cols: &[u16], rate: Option<f64>) -> Fake {
+        let mut cmd = Command::new(BIN);
+        cmd.arg("spin").args(args);
+        cmd.env("TERM", "xterm-256color").env_remove("COLORTERM");
+        let mut session = Session::spawn(cmd).expect("a pty");
+        session.get_process_mut().set_window_size(80, 24).unwrap();
+        Fake {
+            session,
+            seen: Vec::new(),
+            scanned: 0,
+            cpr_cols: cpr_cols.iter().rev().copied().collect(),
+            answer,
+            rate,
+            start: std::time::Instant::now(),
+            arrivals: Vec::new(),
+            eof: false,
+        }
+    }
+
+    fn elapsed(&self) -> Duration {
+        self.start.elapsed()
+    }
+
+    /// Reads what is there (within the rate), answers new queries; returns
+    /// whether anything was read.
+    fn pump(&mut self) -> bool {
+        let mut buf = [0u8; 4096];
+        let budget = match self.rate {
+            Some(r) => ((self.elapsed().as_secs_f64() * r) as usize)
+                .saturating_sub(self.seen.len())
+                .min(buf.len()),
+            None => buf.len(),
+        };
+        if budget == 0 || self.eof {
+            std::thread::sleep(Duration::from_millis(2));
+            return false;
+        }
+        let n = match self.session.try_read(&mut buf[..budget]) {
+            Ok(0) => {
+                self.eof = true;
+                0
+            }
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => 0,
+            Err(_) => {
+                self.eof = true;
+                0
+            }
+        };
+        if n == 0 {
+            std::thread::sleep(Duration::from_millis(2));
+            return false;
+        }
+        self.seen.extend_from_slice(&buf[..n]);
+        self.arrivals.push((self.elapsed(), self.seen.len()));
+        self.answer_queries();
+        true
+    }
+
+    fn answer_queries(&mut self) {
+        loop {
+            let rest = &self.seen[self.scanned..];
+            let next = [b"\x1b[6n", b"\x1b[5n"]
+                .iter()
+                .filter_map(|q| find(rest, *q).map(|i| (i, q[2])))
+                .min();
+            let Some((i, kind)) = next else {
+                self.scanned = self.seen.len().saturating_sub(3).max(self.scanned);
+                return;
+            };
+            self.scanned += i + 4;
+            if !self.answer {
+                continue;
+            }
+            let reply = if kind == b'6' {
+                let col = self.cpr_cols.pop().unwrap_or(2);
+                format!("\x1b[1;{col}R")
+            } else {
+                "\x1b[0n".to_string()
+            };
+            self.session.write_all(reply.as_bytes()).unwrap();
+        }
+    }
+
+    /// Pumps until `pattern` has been seen after byte `from`, or `timeout`;
+    /// returns where it ends.
+    fn wait_for(&mut self, pattern: &[u8], from: usize, timeout: Duration) -> Option<usize> {
+        let end = self.elapsed() + timeout;
+        loop {
+            if let Some(i) = find(&self.seen[from.min(self.seen.len())..], pattern) {
+                return Some(from + i + pattern.len());
+            }
+            if self.eof || self.elapsed() > end {
+                return None;
+            }
+            self.pump();
+        }
+    }
+
+    /// Pumps until the program has exited and closed the terminal.
+    fn wait_exit(&mut self, timeout: Duration) -> bool {
+        let end = self.elapsed() + timeout;
+        while !self.eof {
+            if self.elapsed() > end {
+                return false;
+            }
+            self.pump();
+        }
+        true
+    }
+
+    fn send(&mut self, bytes: &[u8]) {
+        self.session.write_all(bytes).unwrap();
+    }
+}
+
+fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
+const FRAME_END: &[u8] = b"\x1b[?2026l";
+
+#[test]
+fn q_quits_within_half_a_second_when_frames_run_late() {
+    // Sixteen passes of anti-aliasing at 240 frames a second: every frame
+    // is late.
+    let mut t = Fake::spawn(
+        &[
+            "tests/models/bunny.obj",
+            "--aa",
+            "16x",
+            "--fps",
+            "240",
+            "--cols",
+            "60",
+            "--rows",
+            "20",
+        ],
+        true,
+        &[],
+        None,
+    );
+    let first = t
+        .wait_for(FRAME_END, 0, Duration::from_secs(20))
+        .expect("a frame");
+    // A few more late frames.
+    let mut at = first;
+    for _ in 0..3 {
+        at = t
+            .wait_for(FRAME_END, at, Duration::from_secs(20))
+            .expect("frames");
+    }
+    let sent = t.elapsed();
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    let took = t.elapsed() - sent;
+    assert!(took < Duration::from_millis(500), "q took {took:?}");
+    assert_eq!(exit_code(&t.session), 0);
+    assert_restored(&t.seen);
+}
+
+/// Whether `bytes` hold a character of the octant block or of the sextant
+/// block.
+fn has_chars_in(bytes: &[u8], range: std::ops::RangeInclusive<u32>) -> bool {
+    String::from_utf8_lossy(bytes)
+        .chars()
+        .any(|c| range.contains(&(c as u32)))
+}
+
+const OCTANTS: std::ops::RangeInclusive<u32> = 0x1CD00..=0x1CDE5;
+const SEXTANTS: std::ops::RangeInclusive<u32> = 0x1FB00..=0x1FB3B;
+
+#[test]
+fn octants_fall_back_to_sextants_when_the_terminal_does_not_draw_them_one_cell_wide() {
+    // Position reports for the probe glyphs in order: quadrant, sextant,
+    // the three octant glyphs, braille. An octant glyph that leaves the
+    // cursor in column 1 (no width) or column 3 (two cells) is unusable.
+    for octant_col in [1, 3] {
+        let mut t = Fake::spawn(
+            &[
+                "--glyphs", "octant", "--cols", "60", "--rows", "20", "--hud",
+            ],
+            true,
+            &[2, 2, octant_col, 2, 2, 2],
+            None,
+        );
+        let frame = t
+            .wait_for(FRAME_END, 0, Duration::from_secs(20))
+            .expect("a frame");
+        let frame = t
+            .wait_for(FRAME_END, frame, Duration::from_secs(20))
+            .expect("a frame");
+        t.send(b"q");
+        assert!(t.wait_exit(Duration::from_secs(20)));
+        // The frames, after the probe (which writes octants to test them).
+        let frames = &t.seen[find(&t.seen, b"\x1b[2J").unwrap()..frame];
+        assert!(!has_chars_in(frames, OCTANTS), "no octant is drawn");
+        assert!(has_chars_in(frames, SEXTANTS), "sextants instead");
+        // Said on the status line, and once more after the terminal is back.
+        let text = String::from_utf8_lossy(&t.seen);
+        let restored = text.find("\x1b[?1049l").expect("restored");
+        assert!(text[..restored].contains("octant glyphs are not one cell wide here: sextant"));
+        let after = &text[restored..];
+        assert_eq!(
+            after.matches("note: this terminal does not draw octant glyphs one cell wide, so sextant was used").count(),
+            1,
+            "{after:?}"
+        );
+        assert_restored(&t.seen);
+    }
+}
+
+#[test]
+fn a_terminal_that_draws_octants_gets_octants() {
+    let mut t = Fake::spawn(
+        &["--glyphs", "octant", "--cols", "60", "--rows", "20"],
+        true,
+        &[],
+        None,
+    );
+    let frame = t
+        .wait_for(FRAME_END, 0, Duration::from_secs(20))
+        .expect("a frame");
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    let frames = &t.seen[find(&t.seen, b"\x1b[2J").unwrap()..frame];
+    assert!(has_chars_in(frames, OCTANTS));
+    assert!(!String::from_utf8_lossy(&t.seen).contains("note:"));
+}
+
+#[test]
+fn a_terminal_that_answers_nothing_costs_the_probe_deadline_and_no_more() {
+    let mut t = Fake::spawn(
+        &["--glyphs", "octant", "--cols", "60", "--rows", "20"],
+        false,
+        &[],
+        None,
+    );
+    let asked = t
+        .wait_for(b"\x1b[5n", 0, Duration::from_secs(20))
+        .expect("the probe asks");
+    let asked_at = t.elapsed();
+    let frame = t
+        .wait_for(FRAME_END, asked, Duration::from_secs(20))
+        .expect("a frame");
+    let waited = t.elapsed() - asked_at;
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    // The deadline is 150 ms; rendering the first frame takes a little.
+    assert!(waited < Duration::from_secs(1), "waited {waited:?}");
+    // Nothing known against octants: they are drawn; and a terminal that
+    // does not answer is not asked again after each frame.
+    assert!(has_chars_in(&t.seen[asked..frame], OCTANTS));
+    assert!(find(&t.seen[asked..], b"\x1b[5n").is_none());
+    assert_restored(&t.seen);
+}
+
+#[test]
+fn no_probe_asks_nothing() {
+    let mut t = Fake::spawn(
+        &[
+            "--no-probe",
+            "--cols",
+            "60",
+            "--rows",
+            "20",
+            "--frames",
+            "3",
+        ],
+        true,
+        &[],
+        None,
+    );
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    assert!(find(&t.seen, b"\x1b[6n").is_none());
+    assert_eq!(exit_code(&t.session), 0);
+}
+
+/// The state of process `pid` from /proc (`R`, `S`, `T` for stopped…).
+fn process_state(pid: u32) -> Option<char> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    stat.rsplit(')').next()?.trim_start().chars().next()
+}
+
+/// The children of process `pid`.
+fn children(pid: u32) -> Vec<u32> {
+    std::fs::read_to_string(format!("/proc/{pid}/task/{pid}/children"))
+        .unwrap_or_default()
+        .split_whitespace()
+        .filter_map(|s| s.parse().ok())
+        .collect()
+}
+
+/// A screen after everything seen so far.
+fn screen_of(bytes: &[u8]) -> vt100::Parser {
+    let mut vt = terminal(24, 80);
+    vt.process(bytes);
+    vt
+}
+
+#[test]
+fn ctrl_z_and_sigtstp_suspend_and_fg_resumes_with_the_terminal_sane_at_each_step() {
+    // A real shell with job control runs spin, as a user's would.
+    let mut cmd = Command::new("bash");
+    cmd.args(["--norc", "--noprofile", "-i"]);
+    cmd.env("TERM", "xterm-256color").env("PS1", "$ ");
+    let mut session = Session::spawn(cmd).expect("a pty");
+    session.get_process_mut().set_window_size(80, 24).unwrap();
+    let bash = session.get_process().pid().as_raw() as u32;
+    let mut t = Fake {
+        session,
+        seen: Vec::new(),
+        scanned: 0,
+        cpr_cols: Vec::new(),
+        answer: true,
+        rate: None,
+        start: std::time::Instant::now(),
+        arrivals: Vec::new(),
+        eof: false,
+    };
+    let long = Duration::from_secs(20);
+    t.wait_for(b"$ ", 0, long).expect("a prompt");
+    t.send(format!("{BIN} spin --cols 60 --rows 20\r").as_bytes());
+    let frame = t.wait_for(FRAME_END, 0, long).expect("a frame");
+    let spin = children(bash)[0];
+    let sane_stopped = |t: &mut Fake, from: usize| {
+        let prompt = t.wait_for(b"$ ", from, long).expect("the shell's prompt");
+        let end = std::time::Instant::now() + long;
+        while process_state(spin) != Some('T') {
+            assert!(std::time::Instant::now() < end, "spin stopped");
+            t.pump();
+        }
+        let vt = screen_of(&t.seen);
+        assert!(!vt.screen().alternate_screen(), "main screen while stopped");
+        assert!(!vt.screen().hide_cursor(), "cursor shown while stopped");
+        prompt
+    };
+    let sane_running = |t: &mut Fake, from: usize| {
+        let redraw = t.wait_for(b"\x1b[2J", from, long).expect("a full redraw");
+        let frame = t.wait_for(FRAME_END, redraw, long).expect("a frame");
+        let vt = screen_of(&t.seen);
+        assert!(vt.screen().alternate_screen() && vt.screen().hide_cursor());
+        frame
+    };
+
+    // Ctrl-Z, then fg.
+    t.send(b"\x1a");
+    let at = sane_stopped(&mut t, frame);
+    t.send(b"fg\r");
+    let at = sane_running(&mut t, at);
+    // SIGTSTP from elsewhere, then fg.
+    unsafe { libc::kill(spin as i32, libc::SIGTSTP) };
+    let at = sane_stopped(&mut t, at);
+    t.send(b"fg\r");
+    let at = sane_running(&mut t, at);
+    // Raw mode is back: q quits without Enter.
+    t.send(b"q");
+    t.wait_for(b"$ ", at, long).expect("back at the prompt");
+    let vt = screen_of(&t.seen);
+    assert!(!vt.screen().alternate_screen() && !vt.screen().hide_cursor());
+    t.send(b"exit\r");
+    assert!(t.wait_exit(long));
+}
+
+/// The last row of the screen after `bytes`.
+fn status_line(bytes: &[u8], rows: u16, cols: u16) -> String {
+    let mut vt = terminal(rows, cols);
+    vt.process(bytes);
+    vt.screen().rows(0, cols).last().unwrap_or_default()
+}
+
+/// The number after `key` in `line` (`"yaw 12.5°"` → 12.5).
+fn number_after(line: &str, key: &str) -> Option<f64> {
+    let rest = &line[line.find(key)? + key.len()..];
+    let num: String = rest
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect();
+    num.parse().ok()
+}
+
+#[test]
+fn a_slow_link_lowers_the_frame_rate_keeps_the_angle_current_and_still_hears_q() {
+    // Tux at 200×60 read at 16 kB/s: a frame takes a good part of a second
+    // to get through, against a clock of 10 frames a second.
+    let (fps, step) = (10.0, 0.5);
+    let mut t = Fake::spawn(
+        &[
+            "tests/models/linux-mascot-tux.obj",
+            "--cols",
+            "200",
+            "--rows",
+            "60",
+            "--hud",
+            "--fps",
+            "10",
+            "--step",
+            "0.5",
+        ],
+        true,
+        &[],
+        Some(16_000.0),
+    );
+    t.session
+        .get_process_mut()
+        .set_window_size(200, 60)
+        .unwrap();
+    let pid = t.session.get_process().pid().as_raw() as u32;
+    let long = Duration::from_secs(30);
+    // (when its first byte arrived, the frame number the status line shows)
+    let mut frames: Vec<(Duration, f64)> = Vec::new();
+    let mut at = 0;
+    let mut rates = Vec::new();
+    while frames.len() < 8 {
+        let begin = t.wait_for(b"\x1b[?2026h", at, long).expect("a frame") - 8;
+        at = t.wait_for(FRAME_END, begin, long).expect("its end");
+        let arrived = t.arrivals.iter().find(|(_, n)| *n > begin).unwrap().0;
+        let line = status_line(&t.seen[..at], 60, 200);
+        let angle = number_after(&line, "yaw").expect("the angle on the status line");
+        frames.push((arrived, angle / step));
+        rates.extend(number_after(&line, "link"));
+    }
+    let (t0, k0) = frames[0];
+    for &(when, k) in &frames[1..] {
+        let clock = k0 + ((when - t0).as_secs_f64() * fps).floor();
+        assert!(
+            k >= clock - 1.0,
+            "frame {k} shown when the clock was at {clock}: {frames:?}"
+        );
+    }
+    // Frames were dropped, not queued: fewer than the clock's.
+    let (tn, kn) = frames[frames.len() - 1];
+    assert!(kn - k0 > frames.len() as f64, "{frames:?}");
+    assert!(((tn - t0).as_secs_f64() * fps) > frames.len() as f64 * 1.5);
+    // The status line shows the rate the terminal drains at.
+    let rate = *rates.last().expect("a link rate");
+    assert!((8.0..=20.0).contains(&rate), "link {rate} kB/s: {rates:?}");
+
+    let sent = t.elapsed();
+    t.send(b"q");
+    while process_state(pid) != Some('Z') {
+        assert!(
+            t.elapsed() - sent < Duration::from_secs(1),
+            "q took over a second"
+        );
+        t.pump();
+    }
+    t.rate = None;
+    assert!(t.wait_exit(long));
+    assert_restored(&t.seen);
+}
+
+#[test]
+fn a_dumb_terminal_gets_plain_ascii_lines_and_no_escape_sequence() {
+    let mut cmd = Command::new(BIN);
+    cmd.args(["spin", "--cols", "30", "--rows", "8", "--frames", "3"]);
+    cmd.env("TERM", "dumb").env_remove("COLORTERM");
+    let mut session = Session::spawn(cmd).expect("a pty");
+    let out = drain(&mut session, Vec::new());
+    assert_eq!(exit_code(&session), 0);
+    assert!(!out.contains(&0x1b), "{:?}", String::from_utf8_lossy(&out));
+    let text = String::from_utf8(out).unwrap().replace("\r\n", "\n");
+    // Three frames of eight lines, the first the plain ascii render.
+    assert_eq!(text.lines().count(), 24, "{text}");
+    let first = String::from_utf8(run(&[
+        "render", "--cols", "30", "--rows", "8", "--glyphs", "ascii", "--color", "none",
+    ]))
+    .unwrap();
+    assert!(text.starts_with(&first), "{text}\n{first}");
+}
+
+#[test]
+fn without_a_controlling_terminal_spin_says_so() {
+    // setsid: a new session, no controlling terminal; stdout is still the
+    // pseudo-terminal.
+    let mut cmd = Command::new("setsid");
+    cmd.args(["-w", BIN, "spin"]);
+    let mut session = Session::spawn(cmd).expect("a pty");
+    let out = String::from_utf8(drain(&mut session, Vec::new())).unwrap();
+    assert_eq!(exit_code(&session), 1);
+    assert!(
+        out.starts_with("error: spin: no controlling terminal to read keys from (/dev/tty: "),
+        "{out}"
+    );
+    assert!(!out.contains("\x1b[?1049h"));
 }

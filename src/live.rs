@@ -1,0 +1,714 @@
+//! The interactive loop of `rastty spin`: a [`Player`] driven by the clock,
+//! the keys, the signals and the link to the terminal.
+//!
+//! **Never deaf.** One `poll` waits on the keyboard, the signal pipe and
+//! (while a frame is being sent) the terminal's readiness to take more, so
+//! a key is read the moment it arrives whatever the pacing: a late loop
+//! loses frames, never keys. The only wait that is not interruptible is the
+//! rendering of one frame.
+//!
+//! **Pacing.** Frame `k` is due at `k / fps` seconds; a frame the loop was
+//! too late for is skipped (the angle jumps ahead), never queued.
+//!
+//! **Slow links.** Frames are written without blocking, a piece at a time
+//! as the terminal takes them. After each frame comes a device status
+//! request (`CSI 5 n`), which the terminal answers once it has drawn the
+//! frame: that is how rastty learns how fast the terminal really drains
+//! what it is sent (the link rate, kB/s on the HUD). A new frame is
+//! rendered only when the terminal has room for it: while it keeps up, as
+//! many frames may be on their way as the round trip's own latency covers
+//! (one or two); once it falls behind, one at a time, so each frame is
+//! rendered at the clock's angle just before it is sent and a slow link
+//! lowers the frame rate instead of building a queue of stale frames. A
+//! terminal that never answers (it said nothing to the probe, or nothing
+//! within a second) is paced by the writes alone.
+//!
+//! **Signals and suspend.** SIGINT, SIGTERM, SIGHUP and SIGQUIT end the
+//! loop (the caller exits with 128 + the signal); Ctrl-Z and SIGTSTP restore
+//! the terminal and stop the process; SIGCONT takes the terminal over again
+//! and redraws in full; SIGWINCH resizes. The handlers are the loop's own
+//! and are given back when it returns.
+
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+use crate::animate::{Command, LiveStatus, Player};
+use crate::color::ColorDepth;
+use crate::terminal::input::{Input, Key, Parser};
+use crate::terminal::probe::{self, Capabilities};
+use crate::terminal::signals::{self, Signals};
+use crate::terminal::{self, Interest, Read, Screen, Tty, TtyError};
+
+/// How the loop runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LiveOptions {
+    /// Frames per second asked for.
+    pub fps: u32,
+    /// Stop after this many frames.
+    pub frames: Option<u64>,
+    /// Ask the terminal what it draws before drawing ([`probe`]).
+    pub probe: bool,
+    /// Alternate screen and cursor moves (`false`: plain lines, for a dumb
+    /// terminal).
+    pub full_screen: bool,
+    /// The deepest colour the `c` key may pick.
+    pub max_depth: ColorDepth,
+}
+
+/// How the loop ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exit {
+    /// A key asked to quit.
+    Quit,
+    /// The last of `--frames` was shown.
+    Done,
+    /// A signal (its number) asked to stop, or the terminal went away
+    /// (SIGHUP).
+    Signal(i32),
+}
+
+/// How the loop ended, and what to tell the user once the terminal is back
+/// (a glyph mode the terminal cannot draw, say).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Outcome {
+    pub exit: Exit,
+    pub messages: Vec<String>,
+}
+
+/// What a key asks for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Action {
+    /// A command for the player (quitting included).
+    Player(Command),
+    /// Restore the terminal and stop (Ctrl-Z).
+    Suspend,
+}
+
+/// The keys `spin` knows, as `--help` lists them.
+pub const KEYS: &str = "\
+Keys:
+  q, Esc, Ctrl-C   quit
+  space            pause
+  arrows           orbit the camera around its target
+  + / -            zoom in / out
+  m                next glyph mode (skipping those the terminal cannot draw)
+  c                next colour depth (up to what the terminal shows)
+  s                next shading
+  Ctrl-L           redraw
+  Ctrl-Z           suspend (fg resumes)";
+
+/// The action a key asks for.
+pub fn action_for(key: Key) -> Option<Action> {
+    let cmd = match key {
+        Key::Char('q') | Key::Esc | Key::Ctrl('c') | Key::Ctrl('\\') => Command::Quit,
+        Key::Ctrl('z') => return Some(Action::Suspend),
+        Key::Ctrl('l') => Command::Redraw,
+        Key::Char(' ') => Command::TogglePause,
+        Key::Left => Command::Orbit {
+            yaw: -5.0,
+            pitch: 0.0,
+        },
+        Key::Right => Command::Orbit {
+            yaw: 5.0,
+            pitch: 0.0,
+        },
+        Key::Up => Command::Orbit {
+            yaw: 0.0,
+            pitch: 5.0,
+        },
+        Key::Down => Command::Orbit {
+            yaw: 0.0,
+            pitch: -5.0,
+        },
+        Key::Char('+' | '=') => Command::Zoom(0.9),
+        Key::Char('-' | '_') => Command::Zoom(1.0 / 0.9),
+        Key::Char('m') => Command::NextGlyphs,
+        Key::Char('c') => Command::NextColor,
+        Key::Char('s') => Command::NextShading,
+        _ => return None,
+    };
+    Some(Action::Player(cmd))
+}
+
+/// Whether the terminal answers the status request sent after each frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Acks {
+    /// Not known yet (no probe): the first request tells.
+    Unknown,
+    Yes,
+    No,
+}
+
+/// A frame on its way to the terminal.
+#[derive(Clone, Copy, Debug)]
+struct Sent {
+    start: Instant,
+    /// When its last byte was written.
+    written: Option<Instant>,
+    bytes: usize,
+}
+
+/// Most frames on their way at once.
+const MAX_DEPTH: usize = 3;
+/// How long an answer may take before a terminal that never answered is
+/// taken not to, and before one that did is taken to have lost one.
+const FIRST_ANSWER: Duration = Duration::from_secs(1);
+const LOST_ANSWER: Duration = Duration::from_secs(5);
+
+/// Flow control and measurement of the way to the terminal: how many
+/// frames may be on their way, and how fast the terminal drains them. Pure
+/// bookkeeping over the times it is given, so it is tested without a
+/// terminal.
+#[derive(Clone, Debug)]
+pub struct Link {
+    period: Duration,
+    acks: Acks,
+    inflight: VecDeque<Sent>,
+    /// The shortest round trip seen: the link's latency without a queue.
+    min_rtt: Option<Duration>,
+    /// Bytes per second the terminal drains, smoothed.
+    rate: Option<f64>,
+    last_ack: Option<Instant>,
+    /// Whether the last frame came back within the latency and a frame
+    /// period: if not, the terminal is behind and frames go one at a time.
+    keeping_up: bool,
+}
+
+impl Link {
+    /// A link paced for `fps`; `caps` says whether the terminal answered
+    /// the probe, and how fast.
+    pub fn new(fps: u32, caps: &Capabilities, probed: bool) -> Link {
+        Link {
+            period: Duration::from_secs_f64(1.0 / fps.max(1) as f64),
+            acks: match (probed, caps.answers_status) {
+                (_, true) => Acks::Yes,
+                (true, false) => Acks::No,
+                (false, false) => Acks::Unknown,
+            },
+            inflight: VecDeque::with_capacity(MAX_DEPTH + 1),
+            min_rtt: caps.round_trip,
+            rate: None,
+            last_ack: None,
+            // Until the first frame comes back, the link is not known to
+            // keep up: one frame at a time, so that none waits behind it.
+            keeping_up: false,
+        }
+    }
+
+    /// Whether to follow each frame with a status request.
+    pub fn wants_acks(&self) -> bool {
+        self.acks != Acks::No
+    }
+
+    /// How many frames may be on their way now.
+    pub fn depth(&self) -> usize {
+        match self.acks {
+            Acks::No => 1,
+            Acks::Unknown => MAX_DEPTH,
+            Acks::Yes if !self.keeping_up => 1,
+            Acks::Yes => {
+                let latency = self.min_rtt.unwrap_or_default().as_secs_f64();
+                let periods = (latency / self.period.as_secs_f64()).ceil() as usize;
+                1 + periods.clamp(1, MAX_DEPTH - 1)
+            }
+        }
+    }
+
+    /// Whether a new frame may be sent at `now` (the previous one having
+    /// been written in full).
+    pub fn can_send(&mut self, now: Instant) -> bool {
+        if self.acks == Acks::No {
+            return true;
+        }
+        while let Some(front) = self.inflight.front() {
+            let since = front.written.unwrap_or(front.start);
+            let limit = if self.acks == Acks::Yes {
+                LOST_ANSWER
+            } else {
+                FIRST_ANSWER
+            };
+            if now.saturating_duration_since(since) < limit {
+                break;
+            }
+            if self.acks == Acks::Unknown {
+                self.acks = Acks::No;
+                self.inflight.clear();
+            } else {
+                self.inflight.pop_front();
+            }
+        }
+        self.inflight.len() < self.depth()
+    }
+
+    /// A frame of `bytes` starts on its way at `now`.
+    pub fn sent(&mut self, now: Instant, bytes: usize) {
+        if self.inflight.len() > MAX_DEPTH {
+            self.inflight.pop_front();
+        }
+        self.inflight.push_back(Sent {
+            start: now,
+            written: None,
+            bytes,
+        });
+    }
+
+    /// The last frame sent was written in full at `now`.
+    pub fn written(&mut self, now: Instant) {
+        let Some(last) = self.inflight.back_mut() else {
+            return;
+        };
+        last.written = Some(now);
+        if self.acks == Acks::No {
+            // No answers: what the writes took is all there is to measure,
+            // and only when they had to wait.
+            let took = now.saturating_duration_since(last.start);
+            let bytes = last.bytes as f64;
+            if took > Duration::from_millis(5) {
+                self.smooth(bytes / took.as_secs_f64());
+            }
+            self.inflight.clear();
+        }
+    }
+
+    /// The terminal answered a status request at `now`: the oldest frame
+    /// on its way has been drawn.
+    pub fn acked(&mut self, now: Instant) {
+        let Some(sent) = self.inflight.pop_front() else {
+            return;
+        };
+        self.acks = Acks::Yes;
+        if let Some(w) = sent.written {
+            let rtt = now.saturating_duration_since(w);
+            let min = self.min_rtt.map_or(rtt, |m| m.min(rtt));
+            self.min_rtt = Some(min);
+            self.keeping_up = rtt <= min + self.period;
+        }
+        // The terminal was busy with this frame from when it was sent, or
+        // from when it finished the one before, whichever was later.
+        let busy_from = self.last_ack.map_or(sent.start, |a| a.max(sent.start));
+        let busy = now.saturating_duration_since(busy_from).as_secs_f64();
+        if busy > 0.0 {
+            self.smooth(sent.bytes as f64 / busy);
+        }
+        self.last_ack = Some(now);
+    }
+
+    fn smooth(&mut self, sample: f64) {
+        self.rate = Some(self.rate.map_or(sample, |r| 0.7 * r + 0.3 * sample));
+    }
+
+    /// Bytes per second the terminal drains, when measured.
+    pub fn rate(&self) -> Option<f64> {
+        self.rate
+    }
+}
+
+/// Signals the loop handles.
+const HANDLED: [libc::c_int; 7] = [
+    libc::SIGINT,
+    libc::SIGTERM,
+    libc::SIGHUP,
+    libc::SIGQUIT,
+    libc::SIGTSTP,
+    libc::SIGCONT,
+    libc::SIGWINCH,
+];
+/// How long a notice (a new glyph mode…) stays up.
+const NOTICE_TIME: Duration = Duration::from_secs(2);
+/// How long a lone ESC waits for the rest of a sequence.
+const ESC_WAIT: Duration = Duration::from_millis(25);
+/// The status request that follows each frame.
+const STATUS_REQUEST: &[u8] = b"\x1b[5n";
+/// How long the last frame of `--frames` may take to write.
+const LAST_WRITE: Duration = Duration::from_secs(5);
+
+fn io_err(what: &'static str) -> impl FnOnce(std::io::Error) -> TtyError {
+    move |source| TtyError::Io { what, source }
+}
+
+/// Spins `player` in the terminal until a key, a signal, or (with
+/// `frames`) the last frame. The terminal and the signal handlers are
+/// restored before it returns.
+pub fn run(player: &mut Player, opts: &LiveOptions) -> Result<Outcome, TtyError> {
+    let tty = Tty::open()?;
+    let signals = Signals::install(&HANDLED).map_err(io_err("installing signal handlers"))?;
+    // Dropped before `signals`: the terminal is restored while the
+    // handlers are still ours.
+    let screen = Screen::enter(tty, opts.full_screen).map_err(io_err("entering raw mode"))?;
+    let mut live = Live {
+        screen,
+        signals,
+        player,
+        opts: *opts,
+        parser: Parser::new(),
+        inputs: Vec::with_capacity(64),
+        out: Vec::new(),
+        written: 0,
+        messages: Vec::new(),
+        last_input: Instant::now(),
+    };
+    let exit = live.run().map_err(io_err("writing frames"))?;
+    let messages = std::mem::take(&mut live.messages);
+    drop(live);
+    Ok(Outcome { exit, messages })
+}
+
+/// The loop's state.
+struct Live<'a> {
+    screen: Screen,
+    signals: Signals,
+    player: &'a mut Player,
+    opts: LiveOptions,
+    parser: Parser,
+    inputs: Vec<Input>,
+    /// The frame being sent, and how much of it is written.
+    out: Vec<u8>,
+    written: usize,
+    messages: Vec<String>,
+    last_input: Instant,
+}
+
+impl Live<'_> {
+    fn run(&mut self) -> std::io::Result<Exit> {
+        let caps = if self.opts.probe && self.opts.full_screen {
+            let mut early = Vec::new();
+            let caps = probe::probe(
+                self.screen.tty(),
+                &mut self.parser,
+                &mut early,
+                probe::DEADLINE,
+            )?;
+            self.inputs.extend(early);
+            caps
+        } else {
+            Capabilities::default()
+        };
+        self.adopt(&caps);
+        let mut link = Link::new(
+            self.opts.fps,
+            &caps,
+            self.opts.probe && self.opts.full_screen,
+        );
+        let fps = self.opts.fps.max(1) as f64;
+        let start = Instant::now();
+        let mut shown: Option<u64> = None;
+        let mut dirty = true;
+        let mut measured = fps as f32;
+        let mut last_frame: Option<Instant> = None;
+        let mut notice = (self.player.notice_serial(), Instant::now());
+        let mut buf = [0u8; 1024];
+        loop {
+            // Signals.
+            let mut sigs = self.signals.take();
+            for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP, libc::SIGQUIT] {
+                if signals::has(sigs, sig) {
+                    return Ok(Exit::Signal(sig));
+                }
+            }
+            if signals::has(sigs, libc::SIGTSTP) {
+                self.suspend(&mut link)?;
+                // The SIGCONT that woke us is handled by now.
+                sigs = (sigs | self.signals.take()) & !(1 << libc::SIGCONT);
+                dirty = true;
+            }
+            if signals::has(sigs, libc::SIGCONT) {
+                self.screen.resume()?;
+                self.abandon_frame(&mut link);
+                self.player.apply(Command::Redraw);
+                dirty = true;
+            }
+            let resized = signals::has(sigs, libc::SIGWINCH) || signals::has(sigs, libc::SIGCONT);
+            if let Some(ws) = self.screen.tty().size().filter(|_| resized) {
+                let (cols, rows) = ws.cells();
+                let o = self.player.options();
+                if (o.cols, o.rows) != (cols, rows) {
+                    self.player.apply(Command::Resize { cols, rows });
+                    dirty = true;
+                }
+            }
+
+            // Keys and answers.
+            loop {
+                match self.screen.tty().read(&mut buf) {
+                    Read::Bytes(n) => {
+                        self.parser.feed(&buf[..n], &mut self.inputs);
+                        self.last_input = Instant::now();
+                    }
+                    Read::Nothing => break,
+                    Read::Gone => return Ok(Exit::Signal(libc::SIGHUP)),
+                }
+            }
+            if self.parser.is_pending() && self.last_input.elapsed() >= ESC_WAIT {
+                self.parser.flush(&mut self.inputs);
+            }
+            let now = Instant::now();
+            let mut suspend = false;
+            for input in self.inputs.drain(..) {
+                match input {
+                    Input::Key(key) => match action_for(key) {
+                        Some(Action::Player(cmd)) => {
+                            if !self.player.apply(cmd) {
+                                return Ok(Exit::Quit);
+                            }
+                            dirty = true;
+                        }
+                        Some(Action::Suspend) => suspend = true,
+                        None => {}
+                    },
+                    Input::StatusOk => link.acked(now),
+                    _ => {}
+                }
+            }
+            if suspend {
+                self.suspend(&mut link)?;
+                dirty = true;
+            }
+            if self.player.notice_serial() != notice.0 {
+                notice = (self.player.notice_serial(), now);
+            } else if self.player.notice().is_some() && now - notice.1 >= NOTICE_TIME {
+                self.player.clear_notice();
+                dirty = true;
+            }
+
+            // The frame on its way.
+            if self.written < self.out.len() {
+                match self.screen.tty().write(&self.out[self.written..]) {
+                    Ok(n) => self.written += n,
+                    Err(_) => return Ok(Exit::Signal(libc::SIGHUP)),
+                }
+                if self.written == self.out.len() {
+                    link.written(Instant::now());
+                }
+            }
+
+            // The next frame, when it is due and the terminal has room.
+            let now = Instant::now();
+            let tick = ((now - start).as_secs_f64() * fps) as u64;
+            let idle = self.written == self.out.len();
+            if idle && (shown != Some(tick) || dirty) && link.can_send(now) {
+                // Frames the loop was too late for are skipped, not queued.
+                let mut step = shown.map_or(0, |s| tick.saturating_sub(s));
+                if let Some(n) = self.opts.frames {
+                    step = step.min((n - 1).saturating_sub(self.player.frame_number()));
+                }
+                self.player.advance(step);
+                if let Some(t) = last_frame {
+                    let dt = now.duration_since(t).as_secs_f32();
+                    if dt > 0.0 {
+                        measured = 0.9 * measured + 0.1 / dt;
+                    }
+                }
+                last_frame = Some(now);
+                let status = LiveStatus {
+                    fps: measured,
+                    link: link.rate(),
+                };
+                let bytes = self.player.prepare(status);
+                self.out.clear();
+                self.out.extend_from_slice(bytes);
+                self.written = 0;
+                if !self.out.is_empty() {
+                    if link.wants_acks() && self.opts.full_screen {
+                        self.out.extend_from_slice(STATUS_REQUEST);
+                    }
+                    link.sent(now, self.out.len());
+                }
+                shown = Some(tick);
+                dirty = false;
+                let last = self.opts.frames.is_some_and(|n| {
+                    self.player.frame_number() + 1 >= n && !self.player.is_paused()
+                });
+                if last {
+                    self.screen
+                        .tty()
+                        .write_all(&self.out[self.written..], LAST_WRITE)?;
+                    return Ok(Exit::Done);
+                }
+                continue;
+            }
+
+            // Wait for a key, a signal, room to write, or the next frame.
+            let sending = self.written < self.out.len();
+            let mut wait = if sending {
+                Duration::from_millis(100)
+            } else {
+                let next = start + Duration::from_secs_f64((tick + 1) as f64 / fps);
+                next.saturating_duration_since(Instant::now())
+                    .min(Duration::from_millis(100))
+            };
+            if self.parser.is_pending() {
+                wait = wait.min(ESC_WAIT);
+            }
+            let tty = self.screen.tty();
+            let fds = [
+                (tty.input_fd(), Interest::Read),
+                (self.signals.fd(), Interest::Read),
+                (tty.output_fd(), Interest::Write),
+            ];
+            let n = if sending { 3 } else { 2 };
+            terminal::poll(&fds[..n], wait)?;
+        }
+    }
+
+    /// Takes in what the probe found: a glyph mode the terminal cannot draw
+    /// falls back (said once, on the status line now and on stderr at the
+    /// end), `m` skips such modes, synchronized output is left out where
+    /// the terminal said it does not know it.
+    fn adopt(&mut self, caps: &Capabilities) {
+        self.player.set_usable_glyphs(|m| caps.usable(m));
+        self.player.set_max_depth(self.opts.max_depth);
+        if caps.sync == Some(false) {
+            self.player.encoder_mut().set_sync(false);
+        }
+        let asked = self.player.options().glyphs;
+        let best = caps.best(asked);
+        if best != asked {
+            self.player.set_glyphs(best);
+            self.player.set_notice(format!(
+                "{} glyphs are not one cell wide here: {}",
+                asked.name(),
+                best.name()
+            ));
+            self.messages.push(format!(
+                "this terminal does not draw {} glyphs one cell wide, so {} was used (--no-probe draws them anyway)",
+                asked.name(),
+                best.name()
+            ));
+        }
+    }
+
+    /// Drops the rest of a frame cut short (the terminal is restored with
+    /// CAN first, which ends any sequence it left open).
+    fn abandon_frame(&mut self, link: &mut Link) {
+        self.out.clear();
+        self.written = 0;
+        *link = Link {
+            inflight: VecDeque::with_capacity(MAX_DEPTH + 1),
+            ..link.clone()
+        };
+    }
+
+    /// Ctrl-Z or SIGTSTP: the terminal restored, the process stopped; when
+    /// continued, the terminal taken over again and redrawn in full.
+    fn suspend(&mut self, link: &mut Link) -> std::io::Result<()> {
+        self.screen.suspend();
+        self.signals.stop_self()?;
+        self.screen.resume()?;
+        self.abandon_frame(link);
+        self.player.apply(Command::Redraw);
+        if let Some(ws) = self.screen.tty().size() {
+            let (cols, rows) = ws.cells();
+            self.player.apply(Command::Resize { cols, rows });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_map_to_actions() {
+        let cmd = |k| {
+            action_for(k).and_then(|a| match a {
+                Action::Player(c) => Some(c),
+                Action::Suspend => None,
+            })
+        };
+        assert_eq!(cmd(Key::Char('q')), Some(Command::Quit));
+        assert_eq!(cmd(Key::Esc), Some(Command::Quit));
+        assert_eq!(cmd(Key::Ctrl('c')), Some(Command::Quit));
+        assert_eq!(cmd(Key::Char('c')), Some(Command::NextColor));
+        assert_eq!(cmd(Key::Char(' ')), Some(Command::TogglePause));
+        assert_eq!(cmd(Key::Char('m')), Some(Command::NextGlyphs));
+        assert_eq!(cmd(Key::Char('s')), Some(Command::NextShading));
+        assert_eq!(cmd(Key::Ctrl('l')), Some(Command::Redraw));
+        assert_eq!(
+            cmd(Key::Left),
+            Some(Command::Orbit {
+                yaw: -5.0,
+                pitch: 0.0
+            })
+        );
+        assert_eq!(cmd(Key::Char('+')), Some(Command::Zoom(0.9)));
+        assert_eq!(action_for(Key::Ctrl('z')), Some(Action::Suspend));
+        assert_eq!(action_for(Key::Char('x')), None);
+        assert_eq!(action_for(Key::Other), None);
+    }
+
+    fn answering(rtt_ms: u64) -> Capabilities {
+        Capabilities {
+            answers_status: true,
+            round_trip: Some(Duration::from_millis(rtt_ms)),
+            ..Capabilities::default()
+        }
+    }
+
+    #[test]
+    fn a_terminal_that_keeps_up_gets_two_frames_in_flight() {
+        let t0 = Instant::now();
+        let ms = |n| t0 + Duration::from_millis(n);
+        let mut link = Link::new(30, &answering(1), true);
+        assert!(link.wants_acks());
+        assert_eq!(link.depth(), 1, "not known to keep up yet");
+        link.sent(ms(0), 10_000);
+        link.written(ms(0));
+        assert!(!link.can_send(ms(1)));
+        link.acked(ms(1));
+        assert_eq!(link.depth(), 2);
+        link.sent(ms(1), 10_000);
+        link.written(ms(1));
+        assert!(link.can_send(ms(1)));
+        link.sent(ms(2), 10_000);
+        link.written(ms(2));
+        assert!(!link.can_send(ms(2)), "two on their way");
+        link.acked(ms(3));
+        assert!(link.can_send(ms(3)));
+        assert_eq!(link.depth(), 2);
+    }
+
+    #[test]
+    fn a_slow_link_gets_one_frame_at_a_time_and_its_rate_is_measured() {
+        let t0 = Instant::now();
+        let ms = |n| t0 + Duration::from_millis(n);
+        let mut link = Link::new(30, &answering(2), true);
+        // 32 kB at 16 kB/s: written at once (the kernel buffers it), drawn
+        // two seconds later.
+        link.sent(ms(0), 32_000);
+        link.written(ms(1));
+        link.acked(ms(2000));
+        assert_eq!(link.depth(), 1, "behind: one frame at a time");
+        let rate = link.rate().unwrap();
+        assert!((rate - 16_000.0).abs() < 1.0, "{rate}");
+        link.sent(ms(2000), 32_000);
+        link.written(ms(2001));
+        assert!(!link.can_send(ms(2500)), "waits for the answer");
+        link.acked(ms(4000));
+        assert!(link.can_send(ms(4000)));
+    }
+
+    #[test]
+    fn a_terminal_that_never_answers_is_paced_by_writes() {
+        let t0 = Instant::now();
+        let ms = |n| t0 + Duration::from_millis(n);
+        // Probed, no answer: no requests at all.
+        let silent = Link::new(30, &Capabilities::default(), true);
+        assert!(!silent.wants_acks());
+        // Not probed: requests until a second passes without an answer.
+        let mut link = Link::new(30, &Capabilities::default(), false);
+        assert!(link.wants_acks());
+        for i in 0..3 {
+            assert!(link.can_send(ms(i)));
+            link.sent(ms(i), 100);
+            link.written(ms(i));
+        }
+        assert!(!link.can_send(ms(500)));
+        assert!(link.can_send(ms(1100)));
+        assert!(!link.wants_acks());
+        // Writes that had to wait measure the rate.
+        link.sent(ms(2000), 10_000);
+        link.written(ms(3000));
+        assert!((link.rate().unwrap() - 10_000.0).abs() < 1.0);
+    }
+}

@@ -1,0 +1,274 @@
+//! What the terminal sends: keys, and the answers to the queries rastty
+//! makes (cursor position reports, mode reports, status reports), parsed
+//! from the raw bytes of the tty.
+//!
+//! rastty reads the tty itself rather than through crossterm: crossterm's
+//! `/dev/tty` source never reads on a zero timeout (a loop that is late
+//! polls with zero and so never sees a key), and it offers no way to read
+//! the answer to a query within a deadline, which the glyph probe needs.
+//! Only what `spin` uses is decoded; every other sequence is read whole and
+//! reported as [`Key::Other`], so it can never be mistaken for a key.
+//!
+//! A lone ESC is ambiguous (the Esc key, or the start of a sequence still
+//! arriving): [`Parser::feed`] keeps it pending, and [`Parser::flush`], called
+//! when no byte followed within a few milliseconds, makes it the Esc key.
+
+/// A key, as far as `spin` tells keys apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Key {
+    /// A printable character.
+    Char(char),
+    /// A control character: Ctrl and a letter (lower case) or `\`.
+    Ctrl(char),
+    Esc,
+    Enter,
+    Up,
+    Down,
+    Left,
+    Right,
+    /// Anything else (function keys, mouse reports, Alt combinations…).
+    Other,
+}
+
+/// One thing read from the terminal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    Key(Key),
+    /// A cursor position report (`CSI row ; col R`), 1-based.
+    CursorPosition {
+        row: u16,
+        col: u16,
+    },
+    /// A DEC private mode report (`CSI ? mode ; value $ y`).
+    ModeReport {
+        mode: u16,
+        value: u8,
+    },
+    /// The answer to a device status report (`CSI 0 n`): everything sent
+    /// before the query has been processed.
+    StatusOk,
+}
+
+/// The longest escape sequence kept; longer ones are dropped whole.
+const MAX_SEQUENCE: usize = 64;
+
+/// Bytes to inputs, across reads (a sequence may be split between two).
+#[derive(Clone, Debug, Default)]
+pub struct Parser {
+    pending: Vec<u8>,
+}
+
+impl Parser {
+    pub fn new() -> Parser {
+        Parser {
+            pending: Vec::with_capacity(MAX_SEQUENCE),
+        }
+    }
+
+    /// Whether bytes are waiting for more (a lone ESC, a partial sequence
+    /// or character).
+    pub fn is_pending(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    /// Parses `bytes`, appending what they complete to `out`.
+    pub fn feed(&mut self, bytes: &[u8], out: &mut Vec<Input>) {
+        for &b in bytes {
+            self.pending.push(b);
+            self.step(out);
+            if self.pending.len() > MAX_SEQUENCE {
+                self.pending.clear();
+                out.push(Input::Key(Key::Other));
+            }
+        }
+    }
+
+    /// Nothing more came: a pending lone ESC is the Esc key, anything else
+    /// pending is dropped as [`Key::Other`].
+    pub fn flush(&mut self, out: &mut Vec<Input>) {
+        match self.pending.as_slice() {
+            [] => return,
+            [0x1b] => out.push(Input::Key(Key::Esc)),
+            _ => out.push(Input::Key(Key::Other)),
+        }
+        self.pending.clear();
+    }
+
+    /// Tries to complete an input from `self.pending`.
+    fn step(&mut self, out: &mut Vec<Input>) {
+        let p = self.pending.as_slice();
+        let done = match p {
+            [0x1b] => return,
+            [0x1b, b'[', rest @ ..] => match rest.last() {
+                Some(&f) if (0x40..=0x7e).contains(&f) => csi(&rest[..rest.len() - 1], f),
+                _ => return,
+            },
+            [0x1b, b'O'] => return,
+            [0x1b, b'O', f] => match f {
+                b'A' => Input::Key(Key::Up),
+                b'B' => Input::Key(Key::Down),
+                b'C' => Input::Key(Key::Right),
+                b'D' => Input::Key(Key::Left),
+                _ => Input::Key(Key::Other),
+            },
+            // ESC ESC: the first is the Esc key; the second may start a
+            // sequence.
+            [0x1b, 0x1b] => {
+                out.push(Input::Key(Key::Esc));
+                self.pending.remove(0);
+                return;
+            }
+            // ESC and a character: Alt and that key.
+            [0x1b, _, ..] => match std::str::from_utf8(&p[1..]) {
+                Ok(_) => Input::Key(Key::Other),
+                Err(e) if e.error_len().is_none() => return,
+                Err(_) => Input::Key(Key::Other),
+            },
+            [b] if *b < 0x80 => Input::Key(control_or_char(*b)),
+            _ => match std::str::from_utf8(p) {
+                Ok(s) => Input::Key(s.chars().next().map_or(Key::Other, Key::Char)),
+                Err(e) if e.error_len().is_none() => return,
+                Err(_) => Input::Key(Key::Other),
+            },
+        };
+        out.push(done);
+        self.pending.clear();
+    }
+}
+
+fn control_or_char(b: u8) -> Key {
+    match b {
+        b'\r' | b'\n' => Key::Enter,
+        0x01..=0x1a => Key::Ctrl((b'a' + b - 1) as char),
+        0x1c => Key::Ctrl('\\'),
+        0x20..=0x7e => Key::Char(b as char),
+        _ => Key::Other,
+    }
+}
+
+/// A CSI sequence: parameter and intermediate bytes, and the final byte.
+fn csi(body: &[u8], f: u8) -> Input {
+    let private = body.first() == Some(&b'?');
+    let (params, inter) = {
+        let digits = if private { &body[1..] } else { body };
+        let end = digits
+            .iter()
+            .position(|b| !(b.is_ascii_digit() || *b == b';'))
+            .unwrap_or(digits.len());
+        (&digits[..end], &digits[end..])
+    };
+    let mut nums = [0u32; 2];
+    let mut n = 0;
+    for part in params.split(|&b| b == b';').take(2) {
+        nums[n] = part.iter().fold(0u32, |v, d| {
+            v.saturating_mul(10).saturating_add((d - b'0') as u32)
+        });
+        n += 1;
+    }
+    let clamp = |v: u32| v.min(u16::MAX as u32) as u16;
+    match (f, private, inter) {
+        (b'A', false, []) => Input::Key(Key::Up),
+        (b'B', false, []) => Input::Key(Key::Down),
+        (b'C', false, []) => Input::Key(Key::Right),
+        (b'D', false, []) => Input::Key(Key::Left),
+        (b'R', false, []) if n == 2 => Input::CursorPosition {
+            row: clamp(nums[0]),
+            col: clamp(nums[1]),
+        },
+        (b'n', false, []) if n == 1 && nums[0] == 0 => Input::StatusOk,
+        (b'y', true, b"$") if n == 2 => Input::ModeReport {
+            mode: clamp(nums[0]),
+            value: nums[1].min(255) as u8,
+        },
+        _ => Input::Key(Key::Other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(chunks: &[&[u8]]) -> Vec<Input> {
+        let mut p = Parser::new();
+        let mut out = Vec::new();
+        for c in chunks {
+            p.feed(c, &mut out);
+        }
+        p.flush(&mut out);
+        out
+    }
+
+    fn keys(k: &[Key]) -> Vec<Input> {
+        k.iter().map(|&k| Input::Key(k)).collect()
+    }
+
+    #[test]
+    fn keys_and_controls() {
+        assert_eq!(
+            parse(&[b"q \x03\x0c\x1a\x1c\r"]),
+            keys(&[
+                Key::Char('q'),
+                Key::Char(' '),
+                Key::Ctrl('c'),
+                Key::Ctrl('l'),
+                Key::Ctrl('z'),
+                Key::Ctrl('\\'),
+                Key::Enter
+            ])
+        );
+        assert_eq!(parse(&["é".as_bytes()]), keys(&[Key::Char('é')]));
+    }
+
+    #[test]
+    fn arrows_in_both_forms_and_split_across_reads() {
+        assert_eq!(
+            parse(&[b"\x1b[A\x1bOB\x1b[1;5C", b"\x1b", b"[", b"D"]),
+            keys(&[Key::Up, Key::Down, Key::Right, Key::Left])
+        );
+    }
+
+    #[test]
+    fn a_lone_esc_waits_for_flush() {
+        let mut p = Parser::new();
+        let mut out = Vec::new();
+        p.feed(b"\x1b", &mut out);
+        assert!(out.is_empty() && p.is_pending());
+        p.flush(&mut out);
+        assert_eq!(out, keys(&[Key::Esc]));
+        assert_eq!(parse(&[b"\x1b\x1b[A"]), keys(&[Key::Esc, Key::Up]));
+    }
+
+    #[test]
+    fn reports_are_not_keys() {
+        assert_eq!(
+            parse(&[b"\x1b[12;41R\x1b[?2026;2$y\x1b[0nq"]),
+            vec![
+                Input::CursorPosition { row: 12, col: 41 },
+                Input::ModeReport {
+                    mode: 2026,
+                    value: 2
+                },
+                Input::StatusOk,
+                Input::Key(Key::Char('q')),
+            ]
+        );
+        // Mouse reports, function keys and bracketed paste markers are read
+        // whole and never become keys that do something.
+        assert_eq!(
+            parse(&[b"\x1b[<0;3;4M\x1b[15~\x1b[200~"]),
+            keys(&[Key::Other, Key::Other, Key::Other])
+        );
+    }
+
+    #[test]
+    fn endless_sequences_are_cut() {
+        let mut long = b"\x1b[".to_vec();
+        long.extend(std::iter::repeat_n(b'1', 200));
+        // The first 64 bytes are dropped as one unknown input; the rest are
+        // plain digits, and the parser is back in step for the `q`.
+        let out = parse(&[&long, b"q"]);
+        assert_eq!(out[0], Input::Key(Key::Other));
+        assert_eq!(out.last(), Some(&Input::Key(Key::Char('q'))));
+        assert!(out.len() < 200);
+    }
+}

@@ -1,0 +1,287 @@
+//! Asking the terminal what it draws, before drawing with it.
+//!
+//! A terminal draws a character as wide as its own tables say, and those
+//! differ: Debian 12's C library gives the Unicode 16 octants no width, so
+//! tmux drops them and an octant frame smears. The only way to know is to
+//! ask: each family of glyphs a mode needs is written at the top-left
+//! corner and the cursor position read back (DSR 6, answered by a CPR); a
+//! family whose glyph does not move the cursor by exactly one cell is
+//! unusable, and the mode falls back to the best usable one (octant →
+//! sextant → quadrant → half; braille → sextant → …).
+//!
+//! The same round trip asks whether synchronized output (DEC mode 2026) is
+//! supported (DECRQM), and ends with a device status report (DSR 5), which
+//! every terminal that answers anything answers last: once it is in, no
+//! other answer is coming, so a terminal that ignores DECRQM costs no
+//! waiting. A terminal that answers nothing (a pipe, a multiplexer that
+//! swallows queries) costs the deadline, [`DEADLINE`], and nothing more:
+//! every family is then taken as usable, as without the probe.
+
+use std::io;
+use std::time::{Duration, Instant};
+
+use super::Tty;
+use super::input::{Input, Parser};
+use crate::blit::GlyphMode;
+
+/// The longest the probe waits for answers, in total.
+pub const DEADLINE: Duration = Duration::from_millis(150);
+
+/// A family of glyphs beyond the half blocks, which every terminal draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// Quadrant block elements (U+2596–U+259F).
+    Quadrant,
+    /// Sextants (U+1FB00–U+1FB3B).
+    Sextant,
+    /// Octants (U+1CD00–U+1CDE5) and the Unicode 16 quarter blocks beside
+    /// them, and the Unicode 13 middle quarters (U+1FBE6/7).
+    Octant,
+    /// Braille patterns (U+2800–U+28FF).
+    Braille,
+}
+
+impl Family {
+    pub const ALL: [Family; 4] = [
+        Family::Quadrant,
+        Family::Sextant,
+        Family::Octant,
+        Family::Braille,
+    ];
+
+    /// The characters written to test the family: one from each block of
+    /// Unicode the family's table draws from.
+    pub fn probes(self) -> &'static [char] {
+        match self {
+            Family::Quadrant => &['\u{259F}'],
+            Family::Sextant => &['\u{1FB00}'],
+            Family::Octant => &['\u{1CD00}', '\u{1CEA8}', '\u{1FBE6}'],
+            Family::Braille => &['\u{28FF}'],
+        }
+    }
+
+    /// The families a mode's glyphs come from.
+    pub fn of(mode: GlyphMode) -> &'static [Family] {
+        match mode {
+            GlyphMode::Ascii | GlyphMode::Block | GlyphMode::Half => &[],
+            GlyphMode::Quadrant => &[Family::Quadrant],
+            GlyphMode::Sextant => &[Family::Sextant],
+            GlyphMode::Octant => &[Family::Octant, Family::Quadrant],
+            GlyphMode::Braille => &[Family::Braille],
+        }
+    }
+}
+
+/// What the terminal said it can do; `None` where it did not answer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Capabilities {
+    /// Per family (in [`Family::ALL`] order): whether each probe glyph moved
+    /// the cursor by exactly one cell.
+    pub families: [Option<bool>; 4],
+    /// Whether synchronized output (mode 2026) is recognised.
+    pub sync: Option<bool>,
+    /// Whether it answered the status report: it answers queries, so one
+    /// can be sent after each frame to learn when the frame was drawn.
+    pub answers_status: bool,
+    /// How long the round trip took (with `answers_status`).
+    pub round_trip: Option<Duration>,
+}
+
+impl Capabilities {
+    /// Whether `mode`'s glyphs are drawn one cell wide (or not known not to
+    /// be).
+    pub fn usable(&self, mode: GlyphMode) -> bool {
+        Family::of(mode).iter().all(|f| {
+            let i = Family::ALL.iter().position(|g| g == f).unwrap_or(0);
+            self.families[i] != Some(false)
+        })
+    }
+
+    /// `mode`, or the best usable mode it falls back to.
+    pub fn best(&self, mode: GlyphMode) -> GlyphMode {
+        let chain: &[GlyphMode] = match mode {
+            GlyphMode::Octant => &[GlyphMode::Octant, GlyphMode::Sextant, GlyphMode::Quadrant],
+            GlyphMode::Braille => &[GlyphMode::Braille, GlyphMode::Sextant, GlyphMode::Quadrant],
+            GlyphMode::Sextant => &[GlyphMode::Sextant, GlyphMode::Quadrant],
+            other => return other,
+        };
+        chain
+            .iter()
+            .copied()
+            .find(|&m| self.usable(m))
+            .unwrap_or(GlyphMode::Half)
+    }
+
+    /// Reads the answers to [`query`], in the order they came.
+    pub fn from_answers(answers: &[Input]) -> Capabilities {
+        let mut caps = Capabilities::default();
+        let mut cprs = answers.iter().filter_map(|a| match *a {
+            Input::CursorPosition { col, .. } => Some(col),
+            _ => None,
+        });
+        for (i, f) in Family::ALL.iter().enumerate() {
+            let mut verdict = Some(true);
+            for _ in f.probes() {
+                // Each glyph is written at column 1: one cell wide leaves the
+                // cursor at column 2.
+                match cprs.next() {
+                    Some(col) => {
+                        if col != 2 {
+                            verdict = Some(false);
+                        }
+                    }
+                    None => verdict = None,
+                }
+            }
+            caps.families[i] = verdict;
+        }
+        for a in answers {
+            match *a {
+                Input::ModeReport { mode: 2026, value } => {
+                    caps.sync = Some(matches!(value, 1..=3));
+                }
+                Input::StatusOk => caps.answers_status = true,
+                _ => {}
+            }
+        }
+        caps
+    }
+}
+
+/// The bytes of the probe: each glyph at the top-left corner followed by a
+/// position request, the synchronized-output query, the status request,
+/// and the line cleared again.
+pub fn query() -> Vec<u8> {
+    let mut q = Vec::new();
+    for f in Family::ALL {
+        for &c in f.probes() {
+            q.extend_from_slice(b"\x1b[H");
+            let mut utf8 = [0; 4];
+            q.extend_from_slice(c.encode_utf8(&mut utf8).as_bytes());
+            q.extend_from_slice(b"\x1b[6n");
+        }
+    }
+    q.extend_from_slice(b"\x1b[?2026$p\x1b[5n\x1b[H\x1b[2K");
+    q
+}
+
+/// Sends the probe and reads the answers until the status report comes
+/// back or `deadline` passes. Keys read meanwhile are appended to `keys`,
+/// for the caller to act on.
+pub fn probe(
+    tty: &Tty,
+    parser: &mut Parser,
+    keys: &mut Vec<Input>,
+    deadline: Duration,
+) -> io::Result<Capabilities> {
+    let start = Instant::now();
+    let end = start + deadline;
+    tty.write_all(&query(), deadline)?;
+    let mut answers = Vec::new();
+    let mut inputs = Vec::new();
+    let mut buf = [0u8; 256];
+    let mut round_trip = None;
+    'read: loop {
+        let left = end.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            break;
+        }
+        super::wait_readable(tty.input_fd(), left)?;
+        loop {
+            match tty.read(&mut buf) {
+                super::Read::Bytes(n) => parser.feed(&buf[..n], &mut inputs),
+                super::Read::Nothing => break,
+                super::Read::Gone => break 'read,
+            }
+        }
+        for input in inputs.drain(..) {
+            match input {
+                Input::Key(_) => keys.push(input),
+                Input::StatusOk => {
+                    answers.push(input);
+                    round_trip = Some(start.elapsed());
+                    break 'read;
+                }
+                answer => answers.push(answer),
+            }
+        }
+    }
+    let mut caps = Capabilities::from_answers(&answers);
+    caps.round_trip = round_trip;
+    Ok(caps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cpr(col: u16) -> Input {
+        Input::CursorPosition { row: 1, col }
+    }
+
+    #[test]
+    fn a_glyph_that_does_not_advance_one_cell_is_unusable() {
+        // Quadrant, sextant, then the three octant probes, braille.
+        let answers = [
+            cpr(2),
+            cpr(2),
+            cpr(2),
+            cpr(1),
+            cpr(2),
+            cpr(2),
+            Input::StatusOk,
+        ];
+        let caps = Capabilities::from_answers(&answers);
+        assert_eq!(
+            caps.families,
+            [Some(true), Some(true), Some(false), Some(true)]
+        );
+        assert!(caps.answers_status);
+        assert_eq!(caps.sync, None);
+        assert!(!caps.usable(GlyphMode::Octant));
+        assert_eq!(caps.best(GlyphMode::Octant), GlyphMode::Sextant);
+        assert_eq!(caps.best(GlyphMode::Braille), GlyphMode::Braille);
+        // Two cells wide is as bad as none.
+        let mut wide = answers;
+        wide[3] = cpr(3);
+        assert_eq!(
+            Capabilities::from_answers(&wide).best(GlyphMode::Octant),
+            GlyphMode::Sextant
+        );
+    }
+
+    #[test]
+    fn falls_back_down_the_chain_and_silence_changes_nothing() {
+        let caps = Capabilities {
+            families: [Some(true), Some(false), Some(false), Some(false)],
+            ..Capabilities::default()
+        };
+        assert_eq!(caps.best(GlyphMode::Octant), GlyphMode::Quadrant);
+        assert_eq!(caps.best(GlyphMode::Braille), GlyphMode::Quadrant);
+        let none = Capabilities {
+            families: [Some(false); 4],
+            ..Capabilities::default()
+        };
+        assert_eq!(none.best(GlyphMode::Octant), GlyphMode::Half);
+        assert_eq!(none.best(GlyphMode::Ascii), GlyphMode::Ascii);
+        let silent = Capabilities::from_answers(&[]);
+        assert_eq!(silent.families, [None; 4]);
+        assert!(GlyphMode::ALL.iter().all(|&m| silent.best(m) == m));
+    }
+
+    #[test]
+    fn the_sync_report_is_read() {
+        let r = |value| Capabilities::from_answers(&[Input::ModeReport { mode: 2026, value }]).sync;
+        assert_eq!(r(2), Some(true));
+        assert_eq!(r(0), Some(false));
+        assert_eq!(r(4), Some(false));
+    }
+
+    #[test]
+    fn the_query_asks_once_per_probe_glyph() {
+        let q = String::from_utf8(query()).unwrap();
+        let glyphs: usize = Family::ALL.iter().map(|f| f.probes().len()).sum();
+        assert_eq!(q.matches("\x1b[6n").count(), glyphs);
+        assert!(q.contains("\x1b[?2026$p") && q.contains("\x1b[5n"));
+    }
+}
