@@ -1,7 +1,9 @@
-//! Stage 3: clipping in homogeneous space, before the perspective divide.
+//! Stage 3: clipping, for the few triangles that need it.
 //!
-//! A triangle is clipped (Sutherland–Hodgman) against seven planes, each a
-//! half-space `dist(p) ≥ 0` of clip-space points:
+//! Almost every triangle is inside every clip plane and skips this stage
+//! (the vertex stage's outcodes say so, in f32, at seven comparisons a
+//! vertex; the planner skips even that for geometry whose bounding box is
+//! inside). The rest are clipped here against seven planes:
 //!
 //! * `w ≥ W_MIN`: nothing is ever divided by a `w` that is zero, negative or
 //!   denormal, whatever the caller feeds in;
@@ -9,165 +11,92 @@
 //!   nearer); for a perspective camera the near plane also means
 //!   `w ≥ near > 0`, so geometry behind the eye disappears instead of being
 //!   mirrored onto the screen;
-//! * the guard band `|x| ≤ g_x·w`, `|y| ≤ g_y·w`: far outside the screen
-//!   (±2^20 samples), so almost nothing is ever clipped by it, but every
-//!   vertex the rasterizer sees stays inside the range where its `i64`
-//!   edge functions cannot overflow (see `raster`). The screen edges
-//!   themselves are never clipped against: the rasterizer's bounding box
-//!   does that for free and exactly.
+//! * the guard band `|x| ≤ g_x·w`, `|y| ≤ g_y·w`: 2^20 samples from the
+//!   grid's centre, far outside any screen, so that every vertex the
+//!   rasterizer sees is inside the range where its `i64` edge functions
+//!   cannot overflow (see `raster`). The screen's own edges are never
+//!   clipped against: the rasterizer's bounding box does that for free and
+//!   exactly.
 //!
-//! The result is a convex polygon of at most 10 vertices, held in a fixed
-//! array (no allocation), fanned into triangles.
+//! **Far-away endpoints cannot cancel.** The textbook new vertex,
+//! `a + (b − a)·t`, fails when both endpoints are far away and the new
+//! vertex is near: a floor reaching 1e16 units cut by the near plane, a
+//! triangle whose vertices are 1e20 samples out with an edge across the
+//! screen. `t` rounds, the product cancels, and the edge moves by a long way
+//! (or the triangle vanishes). Even f64 is not enough: the clip-space
+//! coordinates of a far vertex, rounded once, already carry an error larger
+//! than the whole scene near the eye.
 //!
-//! **Watertight clipping.** Where two triangles share an edge that crosses a
-//! plane, both must compute the same new vertex. The intersection is always
-//! computed from the inside endpoint towards the outside one, whatever the
-//! direction the triangle walks the edge, so the arithmetic, and the f32
-//! result, are identical for both.
+//! So clipping happens in the model's own homogeneous space, where the
+//! inputs are exact (f32 positions, `w = 1`), against the planes pulled
+//! back through the model-view-projection matrix (`π·M`). The new vertex
+//! where the edge `a → b` crosses plane `π` is `(π·a)·b − (π·b)·a`, written
+//! out per coordinate as `Σ_j π_j·(a_j·b_k − a_k·b_j)`: the 2×2 minors of the
+//! two endpoints (the line's Plücker coordinates), each taken by Kahan's
+//! fused-multiply-add algorithm, accurate to its own last bit however large
+//! the products it cancels, then summed with compensation. The huge terms
+//! cancel exactly inside the minors, so the error is relative to the new
+//! vertex, not to how far away its endpoints are. The point stays
+//! homogeneous (no division), rescaled by a power of two after each plane
+//! so it never overflows. Only the final vertices, inside the guard band,
+//! are taken to clip space and divided. Vertices anywhere up to f32's
+//! largest, 3.4e38, place their edges on screen as exactly as the snap to
+//! 1/256 of a sample allows (`tests/hard_cases.rs` sweeps 1e2 to 3.4e38 in
+//! all three projections, end to end).
 //!
-//! The cost, for scenes that do not need it: seven comparisons per vertex
-//! for the trivial accept test ([`Clipper::outcode`]); the planner skips even
-//! that for geometry whose bounding box is inside.
+//! **Watertight.** Where two triangles share an edge that crosses a plane,
+//! both compute the same new vertex: the arithmetic always goes from the
+//! inside endpoint to the outside one, whatever direction the triangle
+//! walks the edge. A vertex inside every plane keeps the position the
+//! vertex stage snapped, so a clipped triangle meets its unclipped
+//! neighbours exactly.
+//!
+//! The result is a convex polygon of at most [`MAX_POLYGON`] vertices, in a
+//! fixed array (no allocation), fanned into triangles.
 
-use glam::{Vec3, Vec4};
+use glam::{DMat4, DVec4, Vec3, Vec4};
+
+use crate::raster::FixedPoint;
+use crate::transform::Viewport;
 
 /// Smallest `w` that survives clipping.
-pub const W_MIN: f32 = 1e-5;
+pub const W_MIN: f64 = 1e-5;
 /// Half-width of the guard band in samples, measured from the grid's centre.
-pub const GUARD_SAMPLES: f32 = (1u32 << 20) as f32;
+pub const GUARD_SAMPLES: f64 = (1u32 << 20) as f64;
 /// Largest number of vertices a triangle clipped by seven planes can have.
 pub const MAX_POLYGON: usize = 10;
 
-/// A clip-space vertex and the attribute interpolated across it.
+/// A triangle's vertex going into the clipper.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ClipVertex {
-    pub pos: Vec4,
+    /// Position in model space (`w = 1` for a vertex of a mesh).
+    pub pos: DVec4,
     /// Colour channels in [0, 255].
     pub color: Vec3,
+    /// Where the vertex stage put it, when it is inside every clip plane:
+    /// kept as it is, so that neighbours that were not clipped meet it.
+    pub snapped: Option<Snapped>,
 }
 
-impl ClipVertex {
-    fn lerp(a: &ClipVertex, b: &ClipVertex, t: f32) -> ClipVertex {
-        ClipVertex {
-            pos: a.pos + (b.pos - a.pos) * t,
-            color: a.color + (b.color - a.color) * t,
-        }
-    }
+/// A vertex as the vertex stage placed it on screen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Snapped {
+    pub fixed: FixedPoint,
+    pub xy: [f32; 2],
+    pub z: f32,
+    pub inv_w: f32,
 }
 
-/// A plane `dist(p) = n·p + d`, inside where `dist ≥ 0`, and how to put a
-/// point exactly onto it: coordinate `axis` becomes `k·w` (or, for the `w`
-/// axis, `k`).
-#[derive(Clone, Copy, Debug)]
-struct Plane {
-    n: Vec4,
-    d: f32,
-    axis: usize,
-    k: f32,
-}
-
-impl Plane {
-    #[inline(always)]
-    fn dist(&self, p: Vec4) -> f32 {
-        self.n.dot(p) + self.d
-    }
-
-    /// Moves `p` onto the plane along one axis. A vertex made by clipping
-    /// lands there only up to rounding, and with far-away endpoints (1e30)
-    /// that rounding is as large as the guard band itself; set exactly, the
-    /// plane's own coordinate is right whatever the endpoints.
-    fn put_on(&self, p: &mut Vec4) {
-        if self.axis == 3 {
-            p.w = self.k;
-        } else {
-            p[self.axis] = self.k * p.w;
-        }
-    }
-}
-
-/// The seven clip planes for a grid of `width × height` samples.
-#[derive(Clone, Copy, Debug)]
-pub struct Clipper {
-    planes: [Plane; 7],
-    gx: f32,
-    gy: f32,
-}
-
-impl Clipper {
-    pub fn new(width: u32, height: u32) -> Clipper {
-        // The viewport maps NDC x to (x + 1)·W/2, so |x_screen − W/2| ≤ G
-        // samples is |x_ndc| ≤ 2G/W.
-        let gx = 2.0 * GUARD_SAMPLES / width.max(1) as f32;
-        let gy = 2.0 * GUARD_SAMPLES / height.max(1) as f32;
-        let p = |x, y, z, w, d, axis, k| Plane {
-            n: Vec4::new(x, y, z, w),
-            d,
-            axis,
-            k,
-        };
-        Clipper {
-            planes: [
-                p(0.0, 0.0, 0.0, 1.0, -W_MIN, 3, W_MIN),
-                p(0.0, 0.0, -1.0, 1.0, 0.0, 2, 1.0),
-                p(0.0, 0.0, 1.0, 1.0, 0.0, 2, -1.0),
-                p(-1.0, 0.0, 0.0, gx, 0.0, 0, gx),
-                p(1.0, 0.0, 0.0, gx, 0.0, 0, -gx),
-                p(0.0, -1.0, 0.0, gy, 0.0, 1, gy),
-                p(0.0, 1.0, 0.0, gy, 0.0, 1, -gy),
-            ],
-            gx,
-            gy,
-        }
-    }
-
-    /// Bit `i` set when the point is outside plane `i`. A NaN coordinate is
-    /// outside every plane.
-    #[inline]
-    pub fn outcode(&self, p: Vec4) -> u8 {
-        // The seven planes' distances written out (the same sums as
-        // `Plane::dist`, whose zero terms add nothing): this runs for every
-        // vertex of every frame.
-        let out = |d: f32| (d.is_nan() || d < 0.0) as u8;
-        let (gxw, gyw) = (self.gx * p.w, self.gy * p.w);
-        out(p.w - W_MIN)
-            | out(p.w - p.z) << 1
-            | out(p.z + p.w) << 2
-            | out(gxw - p.x) << 3
-            | out(p.x + gxw) << 4
-            | out(gyw - p.y) << 5
-            | out(p.y + gyw) << 6
-    }
-
-    /// Clips a triangle into `out` (cleared first). Returns what happened.
-    pub fn clip(&self, tri: &[ClipVertex; 3], out: &mut Polygon) -> Clipped {
-        out.len = 0;
-        let codes = tri.map(|v| self.outcode(v.pos));
-        if codes[0] & codes[1] & codes[2] != 0 {
-            return Clipped::Rejected;
-        }
-        out.verts[..3].copy_from_slice(tri);
-        out.len = 3;
-        if codes[0] | codes[1] | codes[2] == 0 {
-            return Clipped::Inside;
-        }
-        if tri.iter().any(|v| !v.pos.is_finite()) {
-            out.len = 0;
-            return Clipped::Rejected;
-        }
-        let mut scratch = Polygon::default();
-        for (i, plane) in self.planes.iter().enumerate() {
-            if (codes[0] | codes[1] | codes[2]) & (1 << i) == 0 {
-                continue;
-            }
-            clip_polygon(plane, out, &mut scratch);
-            std::mem::swap(out, &mut scratch);
-            if out.len < 3 {
-                out.len = 0;
-                return Clipped::Rejected;
-            }
-        }
-        Clipped::Clipped
-    }
+/// A vertex of the clipped polygon, on screen.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ScreenVertex {
+    pub fixed: FixedPoint,
+    /// Position in samples (unsnapped).
+    pub xy: [f64; 2],
+    /// Depth in the canonical cube.
+    pub z: f32,
+    pub inv_w: f32,
+    pub color: Vec3,
 }
 
 /// The outcome of clipping one triangle.
@@ -184,86 +113,312 @@ pub enum Clipped {
 /// A convex polygon of at most [`MAX_POLYGON`] vertices.
 #[derive(Clone, Copy, Debug)]
 pub struct Polygon {
-    verts: [ClipVertex; MAX_POLYGON],
+    verts: [ScreenVertex; MAX_POLYGON],
     len: usize,
 }
 
 impl Default for Polygon {
     fn default() -> Self {
         Polygon {
-            verts: [ClipVertex::default(); MAX_POLYGON],
+            verts: [ScreenVertex::default(); MAX_POLYGON],
             len: 0,
         }
     }
 }
 
 impl Polygon {
-    pub fn vertices(&self) -> &[ClipVertex] {
+    pub fn vertices(&self) -> &[ScreenVertex] {
         &self.verts[..self.len]
     }
 
     /// The polygon as a fan of triangles around its first vertex (correct:
     /// it is convex).
-    pub fn triangles(&self) -> impl Iterator<Item = [ClipVertex; 3]> + '_ {
+    pub fn triangles(&self) -> impl Iterator<Item = [ScreenVertex; 3]> + '_ {
         (1..self.len.saturating_sub(1)).map(|i| [self.verts[0], self.verts[i], self.verts[i + 1]])
     }
 }
 
-fn clip_polygon(plane: &Plane, input: &Polygon, out: &mut Polygon) {
-    out.len = 0;
-    let n = input.len;
-    for i in 0..n {
-        let a = &input.verts[i];
-        let b = &input.verts[(i + 1) % n];
-        let (da, db) = (plane.dist(a.pos), plane.dist(b.pos));
-        if da >= 0.0 {
-            out.verts[out.len] = *a;
-            out.len += 1;
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            // From the inside endpoint towards the outside one, so that a
-            // shared edge yields the same vertex in both triangles.
-            let (inside, outside, di, dout) = if da >= 0.0 {
-                (a, b, da, db)
-            } else {
-                (b, a, db, da)
-            };
-            let mut v = ClipVertex::lerp(inside, outside, di / (di - dout));
-            plane.put_on(&mut v.pos);
-            out.verts[out.len] = v;
-            out.len += 1;
+/// The clip planes for a grid of `width × height` samples.
+#[derive(Clone, Copy, Debug)]
+pub struct Clipper {
+    /// The guard band in NDC, per axis: `|x| ≤ gx·w` is `G` samples from
+    /// the centre.
+    gx: f64,
+    gy: f64,
+}
+
+/// A vertex during clipping: model-space homogeneous position, colour.
+#[derive(Clone, Copy, Debug, Default)]
+struct V {
+    pos: [f64; 4],
+    color: Vec3,
+    snapped: Option<Snapped>,
+}
+
+impl Clipper {
+    pub fn new(width: u32, height: u32) -> Clipper {
+        // The viewport maps NDC x to (x + 1)·W/2, so |x_screen − W/2| ≤ G
+        // samples is |x_ndc| ≤ 2G/W.
+        Clipper {
+            gx: 2.0 * GUARD_SAMPLES / width.max(1) as f64,
+            gy: 2.0 * GUARD_SAMPLES / height.max(1) as f64,
         }
     }
+
+    /// Bit `i` set when the point is outside plane `i` (w, near, far, then
+    /// the guard band's right, left, top and bottom). A NaN coordinate is
+    /// outside every plane. In f32: the vertex stage's trivial accept.
+    #[inline]
+    pub fn outcode(&self, p: Vec4) -> u8 {
+        let out = |d: f32| (d.is_nan() || d < 0.0) as u8;
+        let (gxw, gyw) = (self.gx as f32 * p.w, self.gy as f32 * p.w);
+        out(p.w - W_MIN as f32)
+            | out(p.w - p.z) << 1
+            | out(p.z + p.w) << 2
+            | out(gxw - p.x) << 3
+            | out(p.x + gxw) << 4
+            | out(gyw - p.y) << 5
+            | out(p.y + gyw) << 6
+    }
+
+    /// The seven planes pulled back into model space through `mvp`, in
+    /// outcode order: `π·p ≥ 0` inside.
+    fn planes(&self, mvp: &DMat4) -> [[f64; 4]; 7] {
+        let r = [0, 1, 2, 3].map(|k| mvp.row(k).to_array());
+        let comb = |a: f64, i: usize, b: f64, j: usize| -> [f64; 4] {
+            std::array::from_fn(|n| a * r[i][n] + b * r[j][n])
+        };
+        let mut w = r[3];
+        // w − W_MIN, where a model point's own w is its fourth coordinate.
+        w[3] -= W_MIN;
+        [
+            w,
+            comb(1.0, 3, -1.0, 2),
+            comb(1.0, 3, 1.0, 2),
+            comb(self.gx, 3, -1.0, 0),
+            comb(self.gx, 3, 1.0, 0),
+            comb(self.gy, 3, -1.0, 1),
+            comb(self.gy, 3, 1.0, 1),
+        ]
+    }
+
+    /// Clips a triangle given in model space, drawn with `mvp` through
+    /// `viewport`, into `out` (cleared first).
+    pub fn clip(
+        &self,
+        tri: &[ClipVertex; 3],
+        mvp: &DMat4,
+        viewport: &Viewport,
+        out: &mut Polygon,
+    ) -> Clipped {
+        out.len = 0;
+        if tri.iter().any(|v| !v.pos.is_finite()) || !mvp.is_finite() {
+            return Clipped::Rejected;
+        }
+        let mut a = [V::default(); MAX_POLYGON];
+        let mut b = [V::default(); MAX_POLYGON];
+        for (d, v) in a.iter_mut().zip(tri) {
+            *d = V {
+                pos: v.pos.to_array(),
+                color: v.color,
+                snapped: v.snapped,
+            };
+        }
+        let mut n = 3;
+        let mut cut = false;
+        for plane in self.planes(mvp) {
+            let inside = |v: &V| v.snapped.is_some() || dot(&plane, &v.pos) >= 0.0;
+            let outside = a[..n].iter().filter(|v| !inside(v)).count();
+            if outside == 0 {
+                continue;
+            }
+            if outside == n {
+                return Clipped::Rejected;
+            }
+            cut = true;
+            n = clip_polygon(&plane, &a[..n], &mut b, inside);
+            std::mem::swap(&mut a, &mut b);
+            if n < 3 {
+                return Clipped::Rejected;
+            }
+        }
+        let rows = [0, 1, 2, 3].map(|k| mvp.row(k).to_array());
+        let (half_w, half_h) = viewport.half();
+        let (dx, dy) = viewport.offset();
+        for v in &a[..n] {
+            let sv = match v.snapped {
+                Some(s) => ScreenVertex {
+                    fixed: s.fixed,
+                    xy: s.xy.map(f64::from),
+                    z: s.z,
+                    inv_w: s.inv_w,
+                    color: v.color,
+                },
+                None => {
+                    // Clip space, at the point's own homogeneous scale.
+                    let c = rows.map(|r| dot(&r, &v.pos));
+                    if !(c[3] > 0.0 && v.pos[3] > 0.0) {
+                        return Clipped::Rejected;
+                    }
+                    let xy = [
+                        c[0] / c[3] * half_w + half_w + dx,
+                        c[1] / c[3] * half_h + half_h + dy,
+                    ];
+                    let Some(fixed) = FixedPoint::snap64(xy) else {
+                        return Clipped::Rejected;
+                    };
+                    ScreenVertex {
+                        fixed,
+                        xy,
+                        z: (c[2] / c[3]) as f32,
+                        inv_w: (v.pos[3] / c[3]) as f32,
+                        color: v.color,
+                    }
+                }
+            };
+            out.verts[out.len] = sv;
+            out.len += 1;
+        }
+        if cut {
+            Clipped::Clipped
+        } else {
+            Clipped::Inside
+        }
+    }
+}
+
+/// `a + b` as an unevaluated sum `(s, e)`, exactly (Knuth's two-sum).
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// `a·b` as an unevaluated sum `(p, e)`, exactly.
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// `a·b − c·d` to within an ulp and a half of the result, however much the
+/// two products cancel (Kahan's algorithm).
+#[inline]
+fn diff_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let w = c * d;
+    let e = (-c).mul_add(d, w);
+    let f = a.mul_add(b, -w);
+    f + e
+}
+
+/// `Σ a_i·b_i`, as accurate as if computed in twice the precision and then
+/// rounded (Ogita, Rump and Oishi's Dot2).
+fn dot(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let (mut s, mut c) = two_prod(a[0], b[0]);
+    for i in 1..4 {
+        let (p, pe) = two_prod(a[i], b[i]);
+        let (t, te) = two_sum(s, p);
+        s = t;
+        c += pe + te;
+    }
+    s + c
+}
+
+/// Where the edge from `a` (inside `plane`) to `b` (outside) crosses it:
+/// `(π·a)·b − (π·b)·a`, per coordinate `Σ_j π_j·(a_j·b_k − a_k·b_j)`,
+/// rescaled by a power of two.
+fn cross(plane: &[f64; 4], a: &V, b: &V) -> V {
+    let mut pos = [0.0; 4];
+    for (k, p) in pos.iter_mut().enumerate() {
+        let minors: [f64; 4] =
+            std::array::from_fn(|j| diff_of_products(a.pos[j], b.pos[k], a.pos[k], b.pos[j]));
+        *p = dot(plane, &minors);
+    }
+    // A homogeneous point is the same point at any positive scale: keep it
+    // near 1 so that chains of clips never overflow. Exact (a power of 2).
+    let max = pos.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if max.is_normal() {
+        let e = ((max.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+        let scale = f64::from_bits(((1023 - e) as u64) << 52);
+        pos = pos.map(|v| v * scale);
+    }
+    let (da, db) = (dot(plane, &a.pos).max(0.0), dot(plane, &b.pos));
+    let t = (da / (da - db)) as f32;
+    V {
+        pos,
+        color: a.color + (b.color - a.color) * t,
+        snapped: None,
+    }
+}
+
+fn clip_polygon(
+    plane: &[f64; 4],
+    input: &[V],
+    out: &mut [V; MAX_POLYGON],
+    inside: impl Fn(&V) -> bool,
+) -> usize {
+    let mut len = 0;
+    for i in 0..input.len() {
+        let a = &input[i];
+        let b = &input[(i + 1) % input.len()];
+        if inside(a) {
+            out[len] = *a;
+            len += 1;
+        }
+        if inside(a) != inside(b) {
+            // From the inside endpoint to the outside one, so that a shared
+            // edge yields the same vertex in both triangles.
+            out[len] = if inside(a) {
+                cross(plane, a, b)
+            } else {
+                cross(plane, b, a)
+            };
+            len += 1;
+        }
+    }
+    len
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn v(x: f32, y: f32, z: f32, w: f32) -> ClipVertex {
+    fn v(x: f64, y: f64, z: f64, w: f64) -> ClipVertex {
         ClipVertex {
-            pos: Vec4::new(x, y, z, w),
+            pos: DVec4::new(x, y, z, w),
             color: Vec3::ZERO,
+            snapped: None,
         }
+    }
+
+    fn vp() -> Viewport {
+        Viewport::new(80.0, 48.0)
+    }
+
+    /// Clips with the identity as the model-view-projection: model space is
+    /// clip space.
+    fn clip(tri: &[ClipVertex; 3], out: &mut Polygon) -> Clipped {
+        Clipper::new(80, 48).clip(tri, &DMat4::IDENTITY, &vp(), out)
     }
 
     #[test]
     fn inside_triangle_is_untouched() {
-        let c = Clipper::new(80, 48);
         let tri = [
             v(0.0, 0.0, 0.0, 1.0),
             v(1.0, 0.0, 0.0, 1.0),
             v(0.0, 1.0, 0.5, 1.0),
         ];
         let mut out = Polygon::default();
-        assert_eq!(c.clip(&tri, &mut out), Clipped::Inside);
-        assert_eq!(out.vertices(), &tri[..]);
-        assert!(tri.iter().all(|v| c.outcode(v.pos) == 0));
+        assert_eq!(clip(&tri, &mut out), Clipped::Inside);
+        let xy: Vec<[f64; 2]> = out.vertices().iter().map(|v| v.xy).collect();
+        assert_eq!(xy, vec![[40.0, 24.0], [80.0, 24.0], [40.0, 48.0]]);
+        let c = Clipper::new(80, 48);
+        assert!(tri.iter().all(|v| c.outcode(v.pos.as_vec4()) == 0));
     }
 
     #[test]
     fn behind_the_eye_disappears_and_crossing_the_near_plane_splits() {
-        let c = Clipper::new(80, 48);
         let mut out = Polygon::default();
         // All three with w < 0.
         let behind = [
@@ -271,7 +426,7 @@ mod tests {
             v(1.0, 0.0, 0.0, -2.0),
             v(0.0, 1.0, 0.0, -1.0),
         ];
-        assert_eq!(c.clip(&behind, &mut out), Clipped::Rejected);
+        assert_eq!(clip(&behind, &mut out), Clipped::Rejected);
         assert_eq!(out.triangles().count(), 0);
         // One vertex past the near plane (z > w): a quad, two triangles.
         let one = [
@@ -279,24 +434,23 @@ mod tests {
             v(1.0, 0.0, 0.0, 1.0),
             v(0.0, 1.0, 0.0, 1.0),
         ];
-        assert_eq!(c.clip(&one, &mut out), Clipped::Clipped);
+        assert_eq!(clip(&one, &mut out), Clipped::Clipped);
         assert_eq!(out.triangles().count(), 2);
-        // Two vertices past it: one triangle.
+        // Two vertices past it: one triangle, on or in front of the plane.
         let two = [
             v(0.0, 0.0, 2.0, 1.0),
             v(1.0, 0.0, 2.0, 1.0),
             v(0.0, 1.0, 0.0, 1.0),
         ];
-        assert_eq!(c.clip(&two, &mut out), Clipped::Clipped);
+        assert_eq!(clip(&two, &mut out), Clipped::Clipped);
         assert_eq!(out.triangles().count(), 1);
         for p in out.vertices() {
-            assert!(p.pos.z <= p.pos.w + 1e-6 && p.pos.w > 0.0);
+            assert!(p.z <= 1.0 && p.inv_w > 0.0, "{p:?}");
         }
     }
 
     #[test]
     fn nothing_left_has_w_at_or_below_zero() {
-        let c = Clipper::new(80, 48);
         let mut out = Polygon::default();
         for w in [-1.0, 0.0, 1e-30, 1e-6] {
             let tri = [
@@ -304,9 +458,12 @@ mod tests {
                 v(1.0, 0.0, 0.0, 1.0),
                 v(0.0, 1.0, 0.0, 1.0),
             ];
-            c.clip(&tri, &mut out);
+            clip(&tri, &mut out);
             for p in out.vertices() {
-                assert!(p.pos.w >= W_MIN * 0.999, "w = {w}: {p:?}");
+                assert!(
+                    p.inv_w > 0.0 && p.inv_w <= (1.0 / W_MIN) as f32 * 1.001,
+                    "w = {w}: {p:?}"
+                );
             }
         }
     }
@@ -314,6 +471,7 @@ mod tests {
     #[test]
     fn outcode_agrees_with_the_planes() {
         let c = Clipper::new(80, 48);
+        let planes = c.planes(&DMat4::IDENTITY);
         let mut x = 0x9e37_79b9u32;
         let mut next = || {
             x ^= x << 13;
@@ -323,8 +481,8 @@ mod tests {
         };
         for _ in 0..10_000 {
             let p = Vec4::new(next(), next(), next(), next() * 0.05);
-            let slow = c.planes.iter().enumerate().fold(0u8, |code, (i, pl)| {
-                code | (((pl.dist(p).is_nan() || pl.dist(p) < 0.0) as u8) << i)
+            let slow = planes.iter().enumerate().fold(0u8, |code, (i, pl)| {
+                code | (((dot(pl, &p.as_dvec4().to_array()) as f32) < 0.0) as u8) << i
             });
             assert_eq!(c.outcode(p), slow, "{p}");
         }
@@ -332,46 +490,52 @@ mod tests {
     }
 
     #[test]
-    fn nan_is_rejected() {
-        let c = Clipper::new(80, 48);
+    fn nan_and_infinity_are_rejected() {
         let mut out = Polygon::default();
-        let tri = [
-            v(f32::NAN, 0.0, 0.0, 1.0),
-            v(1.0, 0.0, 0.0, 1.0),
-            v(0.0, 1.0, 0.0, 1.0),
-        ];
-        assert_eq!(c.clip(&tri, &mut out), Clipped::Rejected);
-        let tri = [
-            v(f32::INFINITY, 0.0, 0.0, 1.0),
-            v(1.0, 0.0, 0.0, 1.0),
-            v(0.0, 1.0, 0.0, 1.0),
-        ];
-        assert_eq!(c.clip(&tri, &mut out), Clipped::Rejected);
+        for bad in [f64::NAN, f64::INFINITY] {
+            let tri = [
+                v(bad, 0.0, 0.0, 1.0),
+                v(1.0, 0.0, 0.0, 1.0),
+                v(0.0, 1.0, 0.0, 1.0),
+            ];
+            assert_eq!(clip(&tri, &mut out), Clipped::Rejected);
+        }
     }
 
     #[test]
     fn a_shared_edge_clips_to_the_same_vertex_from_both_sides() {
-        let c = Clipper::new(80, 48);
         let (a, b) = (v(0.3, -0.2, 3.0, 1.0), v(-0.4, 0.7, -0.5, 1.0));
         let mut p1 = Polygon::default();
         let mut p2 = Polygon::default();
-        c.clip(&[a, b, v(0.9, 0.9, 0.0, 1.0)], &mut p1);
-        c.clip(&[b, a, v(-0.9, -0.9, 0.0, 1.0)], &mut p2);
-        let new1: Vec<_> = p1
-            .vertices()
-            .iter()
-            .filter(|p| *p != &a && *p != &b)
-            .map(|p| p.pos)
-            .collect();
-        let new2: Vec<_> = p2
-            .vertices()
-            .iter()
-            .filter(|p| *p != &a && *p != &b)
-            .map(|p| p.pos)
-            .collect();
+        clip(&[a, b, v(0.9, 0.9, 0.0, 1.0)], &mut p1);
+        clip(&[b, a, v(-0.9, -0.9, 0.0, 1.0)], &mut p2);
+        let new1: Vec<_> = p1.vertices().iter().map(|p| p.xy).collect();
+        let new2: Vec<_> = p2.vertices().iter().map(|p| p.xy).collect();
         assert!(
-            new1.iter().any(|p| new2.contains(p)),
+            new1.iter().filter(|p| new2.contains(p)).count() >= 2,
             "{new1:?} vs {new2:?}"
         );
+    }
+
+    #[test]
+    fn far_endpoints_do_not_move_the_edge() {
+        // The hypotenuse from (s, −s) to (−s, s) passes through the centre
+        // for every s: so must the clipped edge, to the last bit of the
+        // snap: its two ends are exact mirror images about the centre.
+        let centre = FixedPoint::snap([40.0, 24.0]).unwrap();
+        let mut out = Polygon::default();
+        for s in [1e5, 1e9, 1e16, 1e20, 1e30, 3.4e38] {
+            let tri = [v(-s, -s, 0.0, 1.0), v(s, -s, 0.0, 1.0), v(-s, s, 0.0, 1.0)];
+            assert_eq!(clip(&tri, &mut out), Clipped::Clipped, "{s}");
+            let vs = out.vertices();
+            let mirrored = vs.iter().any(|a| {
+                vs.iter().any(|b| {
+                    a.fixed.x.0 > centre.x.0
+                        && a.fixed.x.0 + b.fixed.x.0 == 2 * centre.x.0
+                        && a.fixed.y.0 + b.fixed.y.0 == 2 * centre.y.0
+                })
+            });
+            assert!(mirrored, "s = {s}: {vs:?}");
+        }
     }
 }

@@ -68,6 +68,21 @@ impl Fixed {
         }
     }
 
+    /// Snaps a coordinate given in f64 (the clip path's), as
+    /// [`Fixed::snap`] does.
+    pub fn snap64(v: f64) -> Option<Fixed> {
+        if v.is_finite() && v.abs() <= MAX_COORD as f64 {
+            // Exact: a power-of-two scale, then truncation and a difference
+            // of nearby values, as in `round_half_away`.
+            let s = v * ONE as f64;
+            let t = s as i64;
+            let frac = s - t as f64;
+            Some(Fixed(t + (frac >= 0.5) as i64 - (frac <= -0.5) as i64))
+        } else {
+            None
+        }
+    }
+
     /// The centre of sample `i`: `i + 0.5`.
     pub const fn sample_centre(i: u32) -> Fixed {
         Fixed(i as i64 * ONE + ONE / 2)
@@ -104,6 +119,14 @@ impl FixedPoint {
         Some(FixedPoint {
             x: Fixed::snap(p[0])?,
             y: Fixed::snap(p[1])?,
+        })
+    }
+
+    /// Snaps a point given in samples, in f64.
+    pub fn snap64(p: [f64; 2]) -> Option<FixedPoint> {
+        Some(FixedPoint {
+            x: Fixed::snap64(p[0])?,
+            y: Fixed::snap64(p[1])?,
         })
     }
 }

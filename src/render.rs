@@ -27,10 +27,10 @@
 
 use std::time::{Duration, Instant};
 
-use glam::{Mat3, Mat4, Vec3, Vec4};
+use glam::{DMat4, Mat3, Mat4, Vec3};
 
 use crate::blit::{self, GlyphMode, Split};
-use crate::clip::{ClipVertex, Clipped, Clipper, Polygon};
+use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
 use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
@@ -204,19 +204,26 @@ pub struct FrameTimes {
     pub blit: Duration,
 }
 
-/// One group's matrices, computed once per frame: model to clip space,
+/// One group's matrices, computed once per frame: model to clip space (in
+/// f32 for the vertex stage, and the same matrix in f64 for the clip path,
+/// where coordinates up to f32's largest must neither overflow nor cancel),
 /// model to world, and the normals' (the inverse transpose).
 #[derive(Clone, Copy)]
 struct Transforms {
     mvp: Mat4,
+    mvp64: DMat4,
     model: Mat4,
     normal: Mat3,
 }
 
 impl Transforms {
     fn new(vp: Mat4, model: Mat4) -> Transforms {
+        // Composed in f64: a model scaled towards f32's largest would
+        // overflow the f32 product (its vertices then take the f64 path).
+        let mvp64 = vp.as_dmat4() * model.as_dmat4();
         Transforms {
-            mvp: vp * model,
+            mvp: mvp64.as_mat4(),
+            mvp64,
             model,
             normal: Mat3::from_mat4(model).inverse().transpose(),
         }
@@ -226,7 +233,6 @@ impl Transforms {
 /// A vertex after the vertex stage.
 #[derive(Clone, Copy, Debug, Default)]
 struct Vert {
-    clip: Vec4,
     /// Position and unit normal in the turned world (where lights live).
     world: Vec3,
     normal: Vec3,
@@ -244,14 +250,18 @@ struct Vert {
     inv_w: f32,
 }
 
-/// An outcode bit of no clip plane: the vertex is inside them all but its
-/// screen position could not be snapped, so it takes the clip path.
-const UNSNAPPED: u8 = 1 << 7;
+/// An outcode bit of no clip plane: the vertex's f32 clip position is not
+/// finite (coordinates near f32's largest overflow in the product) or its
+/// screen position could not be snapped; it takes the clip path, which
+/// works in f64. Never a reason to reject a triangle outright.
+const F64_PATH: u8 = 1 << 7;
+/// The outcode bits of the clip planes.
+const PLANES: u8 = F64_PATH - 1;
 
 /// A triangle after the divide: screen positions in samples, depth, `1/w`,
 /// colours.
 struct ScreenTriangle {
-    xy: [[f32; 2]; 3],
+    xy: [[f64; 2]; 3],
     z: [f32; 3],
     inv_w: [f32; 3],
     color: [Vec3; 3],
@@ -435,13 +445,8 @@ impl Renderer {
             let model = turn * mesh.model;
             let tests =
                 p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.shape.bounds);
-            self.vertex_stage(
-                stage,
-                &Transforms::new(vp, model),
-                &mesh.positions,
-                &mesh.normals,
-                tests,
-            );
+            let transforms = Transforms::new(vp, model);
+            self.vertex_stage(stage, &transforms, &mesh.positions, &mesh.normals, tests);
             self.times.vertices += lap();
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
@@ -452,7 +457,8 @@ impl Renderer {
                     Some(c) => face.map(|i| c[i as usize]),
                     None => [mesh.face_colors[f]; 3],
                 };
-                self.triangle(stage, v, base, cull);
+                let model = face.map(|i| mesh.positions[i as usize]);
+                self.triangle(stage, v, base, cull, (model, &transforms.mvp64));
             }
             self.verts = verts;
             self.times.triangles += lap();
@@ -470,6 +476,7 @@ impl Renderer {
                 [&verts[0], &verts[1], &verts[2]],
                 tri.color.at_vertices(),
                 cull,
+                (tri.vertices, &loose.mvp64),
             );
             self.verts = verts;
         }
@@ -512,6 +519,7 @@ impl Renderer {
             mvp,
             model,
             normal: normal_matrix,
+            ..
         } = *t;
         let smooth = stage.shading == Shading::Smooth;
         self.verts.clear();
@@ -526,14 +534,15 @@ impl Renderer {
             .extend(positions.iter().zip(normals).map(|(&p, &n)| {
                 let clip = mvp * p.extend(1.0);
                 // Inside bounds need no test: every plane's code is 0.
-                let code = if clip_tests {
+                let code = if !clip.is_finite() {
+                    F64_PATH
+                } else if clip_tests {
                     stage.clipper.outcode(clip)
                 } else {
                     0
                 };
                 let normal = (normal_matrix * n).normalize_or_zero();
                 let mut v = Vert {
-                    clip,
                     world: model.transform_point3(p),
                     normal,
                     bad_normal: !n.is_finite(),
@@ -551,21 +560,30 @@ impl Renderer {
                         Some(f) => v.fixed = f,
                         // Cannot happen inside the guard band; if it did, the
                         // clip path deals with it.
-                        None => v.code = UNSNAPPED,
+                        None => v.code = F64_PATH,
                     }
                 }
                 v
             }));
     }
 
-    /// Sets up, lights, clips if it must, and rasterizes one triangle.
-    fn triangle(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], cull: Cull) {
+    /// Sets up, lights, clips if it must, and rasterizes one triangle;
+    /// `model` is its vertices' model-space positions and the matrix taking
+    /// them to clip space, for the clip path.
+    fn triangle(
+        &mut self,
+        stage: &Stage,
+        v: [&Vert; 3],
+        base: [Rgb; 3],
+        cull: Cull,
+        model: ([Vec3; 3], &DMat4),
+    ) {
         self.stats.triangles_in += 1;
         if v.iter().any(|v| v.bad_normal) {
             self.stats.dropped_non_finite_normals += 1;
             return;
         }
-        if v[0].code & v[1].code & v[2].code != 0 {
+        if v[0].code & v[1].code & v[2].code & PLANES != 0 {
             self.stats.clip_rejected += 1;
             return;
         }
@@ -583,7 +601,7 @@ impl Renderer {
                 return;
             };
             let screen = ScreenTriangle {
-                xy: v.map(|v| v.xy),
+                xy: v.map(|v| v.xy.map(f64::from)),
                 z: v.map(|v| v.z),
                 inv_w: v.map(|v| v.inv_w),
                 color: early.unwrap_or_else(|| self.shade(stage, v, base, !setup.ccw)),
@@ -596,20 +614,31 @@ impl Renderer {
         let face = (v[1].world - v[0].world).cross(v[2].world - v[0].world);
         let back = face.dot(stage.eye.to_eye(v[0].world)) < 0.0;
         let color = self.shade(stage, v, base, back);
+        let (positions, mvp) = model;
         let verts = [0, 1, 2].map(|i| ClipVertex {
-            pos: v[i].clip,
+            pos: positions[i].as_dvec3().extend(1.0),
             color: color[i],
+            snapped: (v[i].code == 0).then_some(Snapped {
+                fixed: v[i].fixed,
+                xy: v[i].xy,
+                z: v[i].z,
+                inv_w: v[i].inv_w,
+            }),
         });
         let mut poly = self.poly;
-        match stage.clipper.clip(&verts, &mut poly) {
+        match stage.clipper.clip(&verts, mvp, &stage.viewport, &mut poly) {
             Clipped::Rejected => self.stats.clip_rejected += 1,
             Clipped::Clipped | Clipped::Inside => {
                 self.stats.clipped += 1;
                 for tri in poly.triangles() {
-                    let screen = to_screen(&tri, &stage.viewport);
-                    if let Some(setup) =
-                        self.setup(Setup::new(screen.xy, self.fb.grid(), cull), stage.exact)
-                    {
+                    let screen = ScreenTriangle {
+                        xy: tri.map(|v| v.xy),
+                        z: tri.map(|v| v.z),
+                        inv_w: tri.map(|v| v.inv_w),
+                        color: tri.map(|v| v.color),
+                    };
+                    let setup = Setup::from_fixed(tri.map(|v| v.fixed), self.fb.grid(), cull);
+                    if let Some(setup) = self.setup(setup, stage.exact) {
                         self.fill(&setup, &screen, stage);
                     }
                 }
@@ -745,7 +774,7 @@ impl Renderer {
     /// do, their areas add up (and the coverage is capped at 1).
     fn accumulate_exact(&mut self, t: &ScreenTriangle) {
         let grid = self.fb.grid();
-        let tri = t.xy.map(|[x, y]| [x as f64, y as f64]);
+        let tri = t.xy;
         let color = (t.color[0] + t.color[1] + t.color[2]) / 3.0;
         let lo = |k: usize| {
             tri.iter()
@@ -815,24 +844,6 @@ impl Renderer {
 fn front_facing(v: [&Vert; 3]) -> bool {
     let [a, b, c] = v.map(|v| v.fixed);
     (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0) > 0
-}
-
-fn to_screen(tri: &[ClipVertex; 3], viewport: &transform::Viewport) -> ScreenTriangle {
-    let mut xy = [[0.0; 2]; 3];
-    let mut z = [0.0; 3];
-    let mut inv_w = [0.0; 3];
-    for (i, v) in tri.iter().enumerate() {
-        let p = v.pos;
-        inv_w[i] = 1.0 / p.w;
-        xy[i] = viewport.apply(p.x * inv_w[i], p.y * inv_w[i]);
-        z[i] = p.z * inv_w[i];
-    }
-    ScreenTriangle {
-        xy,
-        z,
-        inv_w,
-        color: tri.map(|v| v.color),
-    }
 }
 
 /// Renders one frame of `scene`.

@@ -139,6 +139,16 @@ impl Viewport {
         Viewport { dx, dy, ..self }
     }
 
+    /// Half the grid's width and height, in samples.
+    pub fn half(&self) -> (f64, f64) {
+        (self.half_w as f64, self.half_h as f64)
+    }
+
+    /// The shift of [`Viewport::shifted`].
+    pub fn offset(&self) -> (f64, f64) {
+        (self.dx as f64, self.dy as f64)
+    }
+
     /// Canonical `(x, y)` to samples.
     #[inline(always)]
     pub fn apply(&self, x: f32, y: f32) -> [f32; 2] {

@@ -94,21 +94,30 @@ fn strips_cover_each_sample_once() {
 }
 
 /// The clip and divide path of the renderer, for triangles given in clip
-/// space: what a projection with varying w produces.
+/// space (with z = 0): what a projection with varying w produces. The
+/// clipper works in model space, so each vertex goes in as the model point
+/// (x, y, w), which a matrix takes to clip space (x, y, 0, w).
 fn projected_counts(tris: &[[Vec4; 3]], grid: Grid) -> Vec<u32> {
+    let mvp = glam::DMat4::from_cols_array_2d(&[
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+        [0.0, 0.0, 0.0, 0.0],
+    ]);
     let clipper = Clipper::new(grid.width, grid.height);
     let vp = Viewport::new(grid.width as f32, grid.height as f32);
     let mut c = vec![0; grid.len()];
     let mut poly = Polygon::default();
     for t in tris {
-        let verts = t.map(|pos| ClipVertex {
-            pos,
+        assert!(t.iter().all(|p| p.z == 0.0));
+        let verts = t.map(|p| ClipVertex {
+            pos: glam::DVec4::new(p.x as f64, p.y as f64, p.w as f64, 1.0),
             color: Vec3::ZERO,
+            snapped: None,
         });
-        clipper.clip(&verts, &mut poly);
+        clipper.clip(&verts, &mvp, &vp, &mut poly);
         for sub in poly.triangles() {
-            let xy = sub.map(|v| vp.apply(v.pos.x / v.pos.w, v.pos.y / v.pos.w));
-            if let Ok(s) = Setup::new(xy, grid, Cull::None) {
+            if let Ok(s) = Setup::from_fixed(sub.map(|v| v.fixed), grid, Cull::None) {
                 s.walk(grid, Traversal::Incremental, |x, y, _| {
                     c[(y * grid.width + x) as usize] += 1
                 });
@@ -493,6 +502,133 @@ fn huge_coordinates_neither_overflow_nor_move_the_edges() {
             cols as usize * rows as usize,
             "far = {far}: covers the screen"
         );
+    }
+}
+
+/// The sizes the sweeps use: every power of ten from 1e2 to 1e38, and
+/// f32's largest.
+fn sweep() -> Vec<f32> {
+    (2..=38)
+        .map(|e| format!("1e{e}").parse().unwrap())
+        .chain([f32::MAX])
+        .collect()
+}
+
+/// The samples a scene file covers, rendered `cols × rows` in half blocks
+/// (square samples, so the projections keep 45° at 45°).
+fn covered_by(src: &str, cols: u16, rows: u16) -> BTreeSet<(u32, u32)> {
+    let scene = Scene::parse(src, "sweep.toml").unwrap();
+    let mut r = Renderer::new();
+    r.render(
+        &scene,
+        &RenderOptions {
+            cols,
+            rows,
+            glyphs: GlyphMode::Half,
+            ..RenderOptions::default()
+        },
+    );
+    let fb = r.framebuffer();
+    let g = fb.grid();
+    (0..g.height)
+        .flat_map(|y| (0..g.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.get(x, y).is_some())
+        .collect()
+}
+
+const PROJECTIONS: [&str; 3] = [
+    "projection = \"none\"",
+    "projection = \"orthographic\"",
+    "projection = \"perspective\"",
+];
+
+#[test]
+fn a_hypotenuse_through_the_centre_stays_there_from_1e2_to_f32_max_in_every_projection() {
+    // Vertices (−s, −s), (s, −s), (−s, s): the hypotenuse runs through the
+    // screen's centre for every s. The grid (41 × 24 samples) is chosen so
+    // that no sample centre lies on it (checked), so the exact answer needs
+    // no tie-break: the samples strictly on the (−s, −s) side.
+    let (cols, rows) = (41u16, 12u16);
+    let (w, h) = (cols as i64, 2 * rows as i64);
+    for projection in PROJECTIONS {
+        // The hypotenuse's direction on screen, from the camera's matrices:
+        // (1, −1) in the world becomes (m00 − m01, m10 − m11) in clip space
+        // (w is the same at every vertex), then the viewport's scale.
+        let scene = Scene::parse(
+            &format!("[camera]\n{projection}\n[[triangle]]\nvertices = [[-1.0,-1.0,0.0],[1.0,-1.0,0.0],[-1.0,1.0,0.0]]\n"),
+            "s",
+        )
+        .unwrap();
+        let aspect = cols as f32 * 0.5 / rows as f32;
+        let m = scene.camera.view_projection(aspect).as_dmat4();
+        let d = [
+            (m.x_axis.x - m.y_axis.x) * w as f64,
+            (m.x_axis.y - m.y_axis.y) * h as f64,
+        ];
+        let side = |u: f64, v: f64| d[0] * v - d[1] * u;
+        // The interior's side: towards (−1, −1).
+        let inner = side(
+            -(m.x_axis.x + m.y_axis.x) * w as f64,
+            -(m.x_axis.y + m.y_axis.y) * h as f64,
+        )
+        .signum();
+        let mut expected = BTreeSet::new();
+        for y in 0..h {
+            for x in 0..w {
+                let (u, v) = (
+                    x as f64 + 0.5 - w as f64 / 2.0,
+                    y as f64 + 0.5 - h as f64 / 2.0,
+                );
+                let e = side(u, v) / (d[0] * d[0] + d[1] * d[1]).sqrt();
+                assert!(
+                    e.abs() > 0.01,
+                    "{projection}: sample ({x}, {y}) is on the line"
+                );
+                if e.signum() == inner {
+                    expected.insert((x as u32, y as u32));
+                }
+            }
+        }
+        assert!(expected.len() > 400 && expected.len() < 600);
+        for s in sweep() {
+            let src = format!(
+                "[camera]\n{projection}\n[[triangle]]\nvertices = [[-{s:e},-{s:e},0.0],[{s:e},-{s:e},0.0],[-{s:e},{s:e},0.0]]\n"
+            );
+            assert_eq!(
+                covered_by(&src, cols, rows),
+                expected,
+                "{projection}, s = {s:e}"
+            );
+        }
+    }
+}
+
+/// Rows `0..rows/2` of every column: the lower half of the screen.
+fn lower_half(w: u32, h: u32) -> BTreeSet<(u32, u32)> {
+    (0..h / 2)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .collect()
+}
+
+#[test]
+fn a_floor_out_to_f32_max_fills_the_lower_half_exactly() {
+    // The eye at (0, 0, 5), the floor at y = −1 reaching ±s in x and z:
+    // each sample row below the centre sees it (at a distance of 2.5 to 58
+    // units, within near and far, and within ±s for s ≥ 100); no row above
+    // does. As two loose triangles, and as a mesh: a cube flattened into a
+    // slab, scale = [s, 0.01, s].
+    let (cols, rows) = (40u16, 12u16);
+    let expected = lower_half(40, 24);
+    for s in sweep() {
+        let floor = format!(
+            "[[triangle]]\nvertices = [[-{s:e},-1.0,-{s:e}],[{s:e},-1.0,-{s:e}],[{s:e},-1.0,{s:e}]]\n\
+             [[triangle]]\nvertices = [[-{s:e},-1.0,-{s:e}],[{s:e},-1.0,{s:e}],[-{s:e},-1.0,{s:e}]]\n"
+        );
+        assert_eq!(covered_by(&floor, cols, rows), expected, "floor, s = {s:e}");
+        let slab = format!(
+            "[[mesh]]\nshape = \"cube\"\nscale = [{s:e}, 0.01, {s:e}]\ntranslate = [0.0, -1.006, 0.0]\n"
+        );
+        assert_eq!(covered_by(&slab, cols, rows), expected, "slab, s = {s:e}");
     }
 }
 
