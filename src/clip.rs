@@ -145,6 +145,8 @@ pub struct Clipper {
     /// the centre.
     gx: f64,
     gy: f64,
+    /// The smallest `w` kept.
+    w_min: f64,
 }
 
 /// A vertex during clipping: model-space homogeneous position, colour.
@@ -162,6 +164,16 @@ impl Clipper {
         Clipper {
             gx: 2.0 * GUARD_SAMPLES / width.max(1) as f64,
             gy: 2.0 * GUARD_SAMPLES / height.max(1) as f64,
+            w_min: W_MIN,
+        }
+    }
+
+    /// Keeps `w` down to `w_min` (≤ [`W_MIN`]) rather than [`W_MIN`]: for a
+    /// perspective camera whose near plane is nearer than that.
+    pub fn with_w_min(self, w_min: f64) -> Clipper {
+        Clipper {
+            w_min: w_min.clamp(f32::MIN_POSITIVE as f64, W_MIN),
+            ..self
         }
     }
 
@@ -172,7 +184,7 @@ impl Clipper {
     pub fn outcode(&self, p: Vec4) -> u8 {
         let out = |d: f32| (d.is_nan() || d < 0.0) as u8;
         let (gxw, gyw) = (self.gx as f32 * p.w, self.gy as f32 * p.w);
-        out(p.w - W_MIN as f32)
+        out(p.w - self.w_min as f32)
             | out(p.w - p.z) << 1
             | out(p.z + p.w) << 2
             | out(gxw - p.x) << 3
@@ -190,7 +202,7 @@ impl Clipper {
         };
         let mut w = r[3];
         // w − W_MIN, where a model point's own w is its fourth coordinate.
-        w[3] -= W_MIN;
+        w[3] -= self.w_min;
         [
             w,
             comb(1.0, 3, -1.0, 2),

@@ -351,7 +351,7 @@ impl Renderer {
 
         let turn = transform::rotation(opts.turn);
         let vp = scene.camera.view_projection(opts.aspect());
-        let clipper = Clipper::new(grid.width, grid.height);
+        let clipper = Clipper::new(grid.width, grid.height).with_w_min(scene.camera.w_min());
         let p = plan::plan(scene, opts, vp, turn, &clipper);
         self.plan = Some(p);
         let cam = &scene.camera;
@@ -466,9 +466,8 @@ impl Renderer {
         let cull = opts.cull.unwrap_or(Cull::None);
         let loose = Transforms::new(vp, turn);
         for tri in &scene.triangles {
-            let normal = (tri.vertices[1] - tri.vertices[0])
-                .cross(tri.vertices[2] - tri.vertices[0])
-                .normalize_or_zero();
+            let [a, b, c] = tri.vertices;
+            let normal = transform::face_normal(a, b, c);
             self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], p.clip.run);
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
@@ -541,7 +540,7 @@ impl Renderer {
                 } else {
                     0
                 };
-                let normal = (normal_matrix * n).normalize_or_zero();
+                let normal = transform::direction(normal_matrix * n);
                 let mut v = Vert {
                     world: model.transform_point3(p),
                     normal,
@@ -611,8 +610,8 @@ impl Renderer {
         }
         // Clipped: lit before clipping (colours are interpolated along the
         // cut edges), facing told in the world.
-        let face = (v[1].world - v[0].world).cross(v[2].world - v[0].world);
-        let back = face.dot(stage.eye.to_eye(v[0].world)) < 0.0;
+        let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
+        let back = face.dot(transform::direction(stage.eye.to_eye(v[0].world))) < 0.0;
         let color = self.shade(stage, v, base, back);
         let (positions, mvp) = model;
         let verts = [0, 1, 2].map(|i| ClipVertex {
@@ -665,9 +664,7 @@ impl Renderer {
             Shading::None => base,
             Shading::Flat => {
                 self.stats.lighting_evaluations += 1;
-                let face = (v[1].world - v[0].world)
-                    .cross(v[2].world - v[0].world)
-                    .normalize_or_zero();
+                let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
                 let light = stage.lights.lambert(face * side);
                 base.map(|b| b * light)
             }
@@ -728,7 +725,11 @@ impl Renderer {
         };
         let flat = !stage.full && t.color[0] == t.color[1] && t.color[1] == t.color[2];
         // Weights e_i, or e_i / w_i for perspective correction, renormalised.
-        let [a, b, c] = if stage.perspective { t.inv_w } else { [1.0; 3] };
+        let [a, b, c] = if stage.perspective {
+            unit_scale(t.inv_w)
+        } else {
+            [1.0; 3]
+        };
         let [ca, cb, cc] = t.color;
         let interpolate = move |e: [i64; 3]| {
             let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
@@ -844,6 +845,25 @@ impl Renderer {
 fn front_facing(v: [&Vert; 3]) -> bool {
     let [a, b, c] = v.map(|v| v.fixed);
     (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0) > 0
+}
+
+/// `v` times the power of two that brings its largest entry into [1, 2):
+/// exact, and the same weights for a scene and that scene scaled by any
+/// power of two (a scene 1e-30 across has `1/w` near 1e30, whose products
+/// with the edge values would overflow f32).
+fn unit_scale(v: [f32; 3]) -> [f32; 3] {
+    let max = v[0].max(v[1]).max(v[2]);
+    if !max.is_normal() {
+        return v;
+    }
+    let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
+    match 127 - e {
+        k @ 1..=254 => {
+            let scale = f32::from_bits((k as u32) << 23);
+            v.map(|x| x * scale)
+        }
+        _ => v,
+    }
 }
 
 /// Renders one frame of `scene`.

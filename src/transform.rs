@@ -19,7 +19,7 @@
 //! 1/256 of a sample in `raster` is exact for the ±2^12-sample screens a
 //! terminal has.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
 /// The view frustum's planes as the notes name them: `l, r, b, t` on the
 /// near plane, `n` and `f` as (negative) z values.
@@ -159,6 +159,51 @@ impl Viewport {
     }
 }
 
+/// The same view transform in f64: the eye may be 1e30 away, or 1e-30 from
+/// its target (f32 would overflow or underflow normalising the direction).
+pub fn view64(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
+    let f = (target - eye).normalize();
+    let s = f.cross(up).normalize();
+    let u = s.cross(f);
+    DMat4::from_cols_array_2d(&[
+        [s.x, s.y, s.z, -s.dot(eye)],
+        [u.x, u.y, u.z, -u.dot(eye)],
+        [-f.x, -f.y, -f.z, f.dot(eye)],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
+    .transpose()
+}
+
+/// The perspective projection of [`perspective`] and [`Frustum::from_fov`],
+/// in f64 (a near distance of 1e-38 neither underflows nor overflows).
+pub fn perspective64(fov_y_degrees: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+    let (n, f) = (-near, -far);
+    let t = (fov_y_degrees.to_radians() / 2.0).tan() * near;
+    let r = aspect * t;
+    // M_ortho · M_persp→ortho, multiplied out (l = −r, b = −t), negated.
+    let m = [
+        [2.0 * n / (2.0 * r), 0.0, 0.0, 0.0],
+        [0.0, 2.0 * n / (2.0 * t), 0.0, 0.0],
+        [0.0, 0.0, (n + f) / (n - f), -2.0 * n * f / (n - f)],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
+    -DMat4::from_cols_array_2d(&m).transpose()
+}
+
+/// The orthographic projection of [`orthographic`] and
+/// [`Frustum::orthographic_box`], in f64.
+pub fn orthographic64(height: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+    let (t, n, f) = (height / 2.0, -near, -far);
+    let r = aspect * t;
+    let m = [
+        [1.0 / r, 0.0, 0.0, 0.0],
+        [0.0, 1.0 / t, 0.0, 0.0],
+        [0.0, 0.0, 2.0 / (n - f), -(n + f) / (n - f)],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
+    DMat4::from_cols_array_2d(&m).transpose()
+}
+
 /// The view transform `M_view = R_view · T_view`: the eye to the origin,
 /// looking down −z with `up` along +y. This is exactly glam's right-handed
 /// `camera::rh::view::look_at_mat4`.
@@ -176,6 +221,32 @@ pub fn model(scale: Vec3, rotate_degrees: Vec3, translate: Vec3) -> Mat4 {
 pub fn rotation(degrees: Vec3) -> Mat4 {
     let r = degrees * (std::f32::consts::PI / 180.0);
     Mat4::from_rotation_z(r.z) * Mat4::from_rotation_y(r.y) * Mat4::from_rotation_x(r.x)
+}
+
+/// `v` scaled by the power of two that brings its largest component into
+/// [1, 2): exact, so that what is computed from it next (a cross product, a
+/// length) neither underflows for a scene 1e-30 across nor overflows for
+/// one 1e30 across, and comes out the same, bit for bit, at any
+/// power-of-two scale. Zero and non-finite vectors are returned as they are.
+pub fn pow2_unit(v: Vec3) -> Vec3 {
+    let max = v.abs().max_element();
+    if !max.is_normal() {
+        return v;
+    }
+    let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
+    v * f32::from_bits(((127 - e) as u32) << 23)
+}
+
+/// The unit normal of triangle `a, b, c` (counter-clockwise seen from its
+/// front), or zero for a degenerate one; scale-free (see [`pow2_unit`]).
+pub fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Vec3 {
+    let n = pow2_unit(b - a).cross(pow2_unit(c - a));
+    pow2_unit(n).normalize_or_zero()
+}
+
+/// `v` in unit length, or zero; scale-free (see [`pow2_unit`]).
+pub fn direction(v: Vec3) -> Vec3 {
+    pow2_unit(v).normalize_or_zero()
 }
 
 /// The homogeneous divide: clip space to the canonical cube.
@@ -210,6 +281,21 @@ mod tests {
         let fr = Frustum::from_fov(60.0, 1.5, 2.0, 10.0);
         assert!(close(fr.t, (30f32).to_radians().tan() * 2.0));
         assert!(close(fr.r / fr.t, 1.5));
+    }
+
+    #[test]
+    fn the_f64_projections_are_the_notes_matrices() {
+        for (fov, aspect, n, f) in [(45.0, 1.5, 0.1, 100.0), (90.0, 0.5, 2.0, 30.0)] {
+            let a = perspective(&Frustum::from_fov(fov, aspect, n, f)).as_dmat4();
+            let b = perspective64(fov as f64, aspect as f64, n as f64, f as f64);
+            assert!(a.abs_diff_eq(b, 1e-5), "{a} {b}");
+            let a = orthographic(&Frustum::orthographic_box(3.0, aspect, n, f)).as_dmat4();
+            let b = orthographic64(3.0, aspect as f64, n as f64, f as f64);
+            assert!(a.abs_diff_eq(b, 1e-6), "{a} {b}");
+        }
+        let v = view(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y).as_dmat4();
+        let v64 = view64(DVec3::new(1.0, 2.0, 3.0), DVec3::ZERO, DVec3::Y);
+        assert!(v.abs_diff_eq(v64, 1e-6));
     }
 
     #[test]

@@ -340,3 +340,32 @@ fn a_path_that_is_not_utf8_is_named_as_best_it_can() {
         "error: tests/data/\u{fffd}\u{fffd}.toml: No such file or directory (os error 2)\n"
     );
 }
+
+/// `--frames` is a count, never a capacity: the largest is streamed until
+/// the reader goes away, with no allocation sized by it.
+#[test]
+fn a_huge_frame_count_streams_until_the_reader_stops() {
+    use std::io::Read;
+    for frames in ["18446744073709551615", "100000000000"] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_rastty"))
+            .args(["spin", "--frames", frames, "--cols", "20", "--rows", "6"])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut out = child.stdout.take().unwrap();
+        let mut first = [0u8; 1];
+        out.read_exact(&mut first).unwrap();
+        drop(out);
+        let status = child.wait().unwrap();
+        let mut err = String::new();
+        child
+            .stderr
+            .take()
+            .unwrap()
+            .read_to_string(&mut err)
+            .unwrap();
+        assert!(status.success(), "{frames}: {status:?} {err}");
+        assert!(err.is_empty(), "{frames}: {err}");
+    }
+}

@@ -632,6 +632,86 @@ fn a_floor_out_to_f32_max_fills_the_lower_half_exactly() {
     }
 }
 
+/// A lit scene of overlapping, colour-interpolated triangles seen in
+/// perspective, every length multiplied by `k`.
+fn scene_at_scale(k: f32) -> String {
+    let p = |x: f32, y: f32, z: f32| format!("[{:e},{:e},{:e}]", x * k, y * k, z * k);
+    format!(
+        "[camera]\neye = {}\ntarget = {}\nnear = {:e}\nfar = {:e}\n\
+         [[triangle]]\nvertices = [{}, {}, {}]\ncolors = [\"#ff0000\", \"#00ff00\", \"#0000ff\"]\n\
+         [[triangle]]\nvertices = [{}, {}, {}]\ncolor = \"#ffcc00\"\n\
+         [[light]]\ndirection = [-1.0, -1.0, -1.0]\n",
+        p(0.5, 1.0, 5.0),
+        p(0.0, 0.0, 0.0),
+        0.5 * k,
+        50.0 * k,
+        p(-1.5, -1.0, 0.0),
+        p(1.5, -1.0, -1.0),
+        p(0.0, 1.5, 0.5),
+        p(-1.0, 1.0, -0.5),
+        p(1.0, 0.8, 0.6),
+        p(0.2, -1.2, 0.2),
+    )
+}
+
+#[test]
+fn cameras_are_judged_by_direction_and_relative_size() {
+    // The same scene at every power-of-two scale from 2^-100 (1e-30) to
+    // 2^100 (1e30): f32 arithmetic scales exactly by powers of two, so the
+    // frames are identical, cell for cell, colours included.
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 14,
+        glyphs: GlyphMode::Half,
+        ..RenderOptions::default()
+    };
+    let frame = |k: f32| {
+        let scene = Scene::parse(&scene_at_scale(k), "scaled.toml").unwrap();
+        rastty::render(&scene, &opts)
+    };
+    let unit = frame(1.0);
+    assert!(unit.cells().iter().filter(|c| c.bg.is_some()).count() > 50);
+    for e in [-100, -60, -20, 20, 60, 100] {
+        let scaled = frame(2f32.powi(e));
+        assert_eq!(scaled.to_string(), unit.to_string(), "scale 2^{e}");
+        assert!(scaled == unit, "scale 2^{e}: the colours differ");
+    }
+    // What is really wrong is said so.
+    let err = |src: &str| Scene::parse(src, "c.toml").unwrap_err().to_string();
+    let tri = "[[triangle]]\nvertices = [[0.0,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0]]\n";
+    assert!(
+        err(&format!("[camera]\nnear = 1e-40\n{tri}")).contains("near = 1e-40 is subnormal"),
+        "{}",
+        err(&format!("[camera]\nnear = 1e-40\n{tri}"))
+    );
+    assert!(
+        err(&format!(
+            "[camera]\nprojection = \"orthographic\"\nheight = 1e-40\n{tri}"
+        ))
+        .contains("height = 1e-40 is too small")
+    );
+    assert!(
+        err(&format!(
+            "[camera]\neye = [0.0, 0.0, 1e30]\nup = [0.0, 0.0, 1.0]\n{tri}"
+        ))
+        .contains("up must not be parallel")
+    );
+    assert!(
+        err(&format!(
+            "[camera]\neye = [1e30, 0.0, 0.0]\ntarget = [1e30, 0.0, 0.0]\n{tri}"
+        ))
+        .contains("eye and target are the same point")
+    );
+    // An eye 1e30 away, or 1e-30 from its target, is not wrong.
+    for eye in [
+        "[0.0, 0.0, 1e30]",
+        "[0.0, 0.0, 1e-30]",
+        "[1e-30, 1e-30, 1e-30]",
+    ] {
+        Scene::parse(&format!("[camera]\neye = {eye}\n{tri}"), "c.toml").unwrap();
+    }
+}
+
 // 7. NaN and infinity.
 
 #[test]

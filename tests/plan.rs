@@ -98,6 +98,38 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
         })
 }
 
+/// A cube or a sphere with one corner pushed in (by as little as a
+/// millionth of its size: convex to the eye, not to the planner), its
+/// positions moved far from the origin and the model transform bringing
+/// them back.
+fn near_convex_mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
+    (
+        prop::sample::select(vec![Shape::Cube, Shape::Sphere]),
+        color(),
+        prop_oneof![Just(0.0f32), 1e-6f32..1e-3, 1e-3f32..0.3],
+        any::<prop::sample::Index>(),
+        prop::sample::select(vec![0.0f32, 1e3, 1e5, 1e6]),
+        (0.0f32..360.0, 0.0f32..360.0),
+        prop::sample::select(vec![Cull::Back, Cull::None]),
+    )
+        .prop_map(|(shape, c, dent, corner, far, (rx, ry), cull)| {
+            let mut m = shape.mesh(c);
+            let target = m.positions[corner.index(m.positions.len())];
+            let offset = Vec3::new(far, -0.5 * far, 0.25 * far);
+            for p in &mut m.positions {
+                if *p == target {
+                    *p *= 1.0 - dent;
+                }
+                *p += offset;
+            }
+            m.analyze();
+            m.model = rastty::transform::model(Vec3::ONE, Vec3::new(rx, ry, 0.0), Vec3::ZERO)
+                * glam::Mat4::from_translation(-offset);
+            m.cull = cull;
+            m
+        })
+}
+
 fn camera() -> impl Strategy<Value = Camera> {
     (
         prop::sample::select(vec![0u8, 1, 2]),
@@ -203,6 +235,58 @@ proptest! {
         let lone = Scene { camera, meshes: vec![mesh], lights, ..Scene::default() };
         same_both_ways(&lone, &opts).map_err(TestCaseError::fail)?;
     }
+
+    /// Lone meshes that are nearly convex, far from the origin: the depth
+    /// test is skipped only where it cannot matter.
+    #[test]
+    fn lone_near_convex_meshes_far_from_the_origin_are_the_same_planned_or_full(
+        mesh in near_convex_mesh(),
+        camera in camera(),
+        lights in prop::collection::vec(light(), 0..2),
+        opts in options(),
+    ) {
+        let lone = Scene { camera, meshes: vec![mesh], lights, ..Scene::default() };
+        same_both_ways(&lone, &opts).map_err(TestCaseError::fail)?;
+    }
+}
+
+#[test]
+fn a_shallow_dent_far_from_the_origin_keeps_the_depth_test() {
+    // The case: a cube whose top corner is pushed in by a
+    // thousandth, its positions a million units out. Not convex: the
+    // depth test runs, and the frame is the full pipeline's.
+    let mut m = Shape::Cube.mesh(Rgb::WHITE);
+    let corner = Vec3::splat(0.6);
+    let offset = Vec3::new(1e6, 0.0, 0.0);
+    for p in &mut m.positions {
+        if *p == corner {
+            *p *= 0.999;
+        }
+        *p += offset;
+    }
+    m.analyze();
+    assert!(m.shape.closed && !m.shape.closed_convex);
+    m.model = glam::Mat4::from_translation(-offset);
+    let scene = Scene {
+        meshes: vec![m],
+        lights: vec![Light::default()],
+        ..Scene::default()
+    };
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 14,
+        turn: Vec3::new(30.0, 40.0, 0.0),
+        ..RenderOptions::default()
+    };
+    same_both_ways(&scene, &opts).unwrap();
+    let mut r = Renderer::new();
+    r.render(&scene, &opts);
+    assert!(r.plan().unwrap().depth.run);
+    // The same cube undented is convex, however far out.
+    let mut cube = Shape::Cube.mesh(Rgb::WHITE);
+    cube.positions.iter_mut().for_each(|p| *p += offset);
+    cube.analyze();
+    assert!(cube.shape.closed_convex);
 }
 
 fn example(name: &str) -> Scene {

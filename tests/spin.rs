@@ -218,6 +218,9 @@ struct Fake {
     /// Whether position and status requests are answered at all.
     answer: bool,
     rate: Option<f64>,
+    /// Bytes the rate allows now, and when that was reckoned.
+    tokens: f64,
+    last_pump: f64,
     start: std::time::Instant,
     /// `(time, bytes seen by then)`, one entry per read.
     arrivals: Vec<(Duration, usize)>,
@@ -238,6 +241,8 @@ impl Fake {
             cpr_cols: cpr_cols.iter().rev().copied().collect(),
             answer,
             rate,
+            tokens: 0.0,
+            last_pump: 0.0,
             start: std::time::Instant::now(),
             arrivals: Vec::new(),
             eof: false,
@@ -253,9 +258,14 @@ impl Fake {
     fn pump(&mut self) -> bool {
         let mut buf = [0u8; 4096];
         let budget = match self.rate {
-            Some(r) => ((self.elapsed().as_secs_f64() * r) as usize)
-                .saturating_sub(self.seen.len())
-                .min(buf.len()),
+            // A token bucket holding 50 ms of the rate: an idle link does
+            // not save up for a burst.
+            Some(r) => {
+                let now = self.elapsed().as_secs_f64();
+                self.tokens = (self.tokens + (now - self.last_pump) * r).min(r * 0.05);
+                self.last_pump = now;
+                (self.tokens as usize).min(buf.len())
+            }
             None => buf.len(),
         };
         if budget == 0 || self.eof {
@@ -278,6 +288,7 @@ impl Fake {
             std::thread::sleep(Duration::from_millis(2));
             return false;
         }
+        self.tokens -= n as f64;
         self.seen.extend_from_slice(&buf[..n]);
         self.arrivals.push((self.elapsed(), self.seen.len()));
         self.answer_queries();
@@ -541,6 +552,8 @@ fn ctrl_z_and_sigtstp_suspend_and_fg_resumes_with_the_terminal_sane_at_each_step
         cpr_cols: Vec::new(),
         answer: true,
         rate: None,
+        tokens: 0.0,
+        last_pump: 0.0,
         start: std::time::Instant::now(),
         arrivals: Vec::new(),
         eof: false,

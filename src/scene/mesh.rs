@@ -8,7 +8,7 @@
 //! than three vertices are cut into triangles by ear clipping, which is
 //! right for non-convex polygons where a fan is not.
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{DVec3, Mat4, Vec2, Vec3};
 
 use crate::color::Rgb;
 use crate::raster::Cull;
@@ -42,11 +42,12 @@ pub struct MeshShape {
     /// The bounding box of the finite positions, `[min, max]` (`None`
     /// when a position is not finite, or there are none).
     pub bounds: Option<[Vec3; 2]>,
-    /// Closed (every edge shared by exactly two faces, walked in opposite
-    /// directions), consistently wound, and convex (every position on the
-    /// inner side of every face's plane). Its faces seen from one side then
-    /// never overlap on screen, which lets the planner skip the depth
-    /// buffer. `false` when unsure (including meshes too big to check).
+    /// Closed: every edge (corners matched by position) shared by exactly
+    /// two faces walking it in opposite directions, so consistently wound.
+    pub closed: bool,
+    /// Closed and convex: its faces seen from one side then never overlap
+    /// on screen, which lets the planner skip the depth buffer. Decided
+    /// exactly (see [`Mesh::analyze`]); `false` when unsure.
     pub closed_convex: bool,
 }
 
@@ -101,6 +102,20 @@ impl Mesh {
 
     /// Recomputes [`Mesh::shape`]; call it after changing the positions or
     /// faces.
+    ///
+    /// Closed and convex are decided exactly and in `O(n log n)`: corners
+    /// are matched by position (a sort), every edge must be walked once in
+    /// each direction (a sort of the edge keys), and then the surface is
+    /// convex when it is locally convex everywhere: at every edge the far
+    /// vertex of one face lies on the inner side of the other face's plane
+    /// (or on it), by Shewchuk's exact orientation predicate on the f32
+    /// positions, so a dent of any depth anywhere is found, however far the
+    /// mesh is from the origin; at every vertex the faces turn once around
+    /// it (their angles sum to at most 2π); and the surface is one piece
+    /// with the topology of a sphere (V − E + F = 2). A closed surface that
+    /// is locally convex at every point bounds a convex body (Tietze; van
+    /// Heijenoort for immersed surfaces). A degenerate face or any doubt
+    /// makes the answer no.
     pub fn analyze(&mut self) {
         let finite = !self.positions.is_empty() && self.positions.iter().all(|p| p.is_finite());
         let bounds = finite.then(|| {
@@ -111,102 +126,163 @@ impl Mesh {
                 .fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
             [lo, hi]
         });
+        let (closed, convex) = if finite {
+            topology(&self.positions, &self.faces)
+        } else {
+            (false, false)
+        };
         self.shape = MeshShape {
             bounds,
-            closed_convex: finite
-                && closed(&self.positions, &self.faces)
-                && convex(&self.positions, &self.faces),
+            closed,
+            closed_convex: convex,
         };
     }
 
-    /// The centre and radius of a sphere around all positions (the centre of
-    /// the bounding box, and the farthest position from it).
-    pub fn bounds(&self) -> (Vec3, f32) {
-        let finite = self.positions.iter().filter(|p| p.is_finite());
-        let (lo, hi) = finite.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
+    /// The centre and radius of a sphere around all finite positions (the
+    /// centre of the bounding box, and the farthest position from it), in
+    /// f64: any f32 positions, from subnormal to f32's largest, neither
+    /// overflow nor underflow here. `None` without a finite position.
+    pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
+        let mut finite = self.positions.iter().filter(|p| p.is_finite());
+        let first = finite.next()?.as_dvec3();
+        let (lo, hi) = finite.fold((first, first), |(lo, hi), p| {
+            (lo.min(p.as_dvec3()), hi.max(p.as_dvec3()))
         });
-        if lo.x > hi.x {
-            return (Vec3::ZERO, 1.0);
-        }
-        let centre = (lo + hi) / 2.0;
+        let centre = lo * 0.5 + hi * 0.5;
         let radius = self
             .positions
             .iter()
             .filter(|p| p.is_finite())
-            .map(|p| p.distance(centre))
-            .fold(0.0f32, f32::max);
-        (centre, radius)
+            .map(|p| p.as_dvec3().distance(centre))
+            .fold(0.0f64, f64::max);
+        Some((centre, radius))
     }
 
-    /// Centres the mesh on the origin and scales it to fit the unit sphere
-    /// (the model transform, which is replaced).
+    /// Centres the mesh on the origin and scales it to fit the unit sphere,
+    /// by moving its positions (computed in f64, then rounded once), so a
+    /// model of any size the file can hold is seen whole, and the model
+    /// transform stays the identity (no subnormal scale factors).
     pub fn fit_unit_sphere(&mut self) {
-        let (centre, radius) = self.bounds();
-        let scale = if radius > 0.0 && radius.is_finite() {
-            1.0 / radius
-        } else {
-            1.0
+        let Some((centre, radius)) = self.bounding_sphere() else {
+            return;
         };
-        self.model = Mat4::from_scale(Vec3::splat(scale)) * Mat4::from_translation(-centre);
+        let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
+        for p in &mut self.positions {
+            *p = ((p.as_dvec3() - centre) * scale).as_vec3();
+        }
+        self.model = Mat4::IDENTITY;
+        self.analyze();
     }
 }
 
-/// Whether every edge is shared by exactly two faces walking it in opposite
-/// directions. Corners are matched by position, so a cube whose faces have
-/// vertices of their own still counts as closed.
-fn closed(positions: &[Vec3], faces: &[[u32; 3]]) -> bool {
-    use std::collections::HashMap;
-    // −0.0 and 0.0 are the same position.
+/// One id per distinct position (−0.0 and 0.0 are one), for each
+/// position index; and how many there are.
+pub fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
     let key = |i: u32| {
         positions[i as usize]
             .to_array()
             .map(|v| (v + 0.0).to_bits())
     };
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
-    let id: Vec<u32> = (0..positions.len() as u32)
-        .map(|i| {
-            let n = ids.len() as u32;
-            *ids.entry(key(i)).or_insert(n)
-        })
-        .collect();
-    // For each undirected edge, how often it is walked low→high and
-    // high→low: closed and consistently wound is exactly once each way.
-    let mut edges: HashMap<(u32, u32), [u32; 2]> = HashMap::with_capacity(faces.len() * 3);
-    for f in faces {
-        let v = f.map(|i| id[i as usize]);
-        if v[0] == v[1] || v[1] == v[2] || v[2] == v[0] {
-            return false;
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    order.sort_unstable_by_key(|&i| key(i));
+    let mut id = vec![0u32; positions.len()];
+    let mut n = 0u32;
+    for (k, &i) in order.iter().enumerate() {
+        if k > 0 && key(order[k - 1]) != key(i) {
+            n += 1;
         }
-        for k in 0..3 {
-            let (a, b) = (v[k], v[(k + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert([0, 0]);
-            e[(a > b) as usize] += 1;
-        }
+        id[i as usize] = n;
     }
-    !faces.is_empty() && edges.values().all(|&e| e == [1, 1])
+    (
+        id,
+        if positions.is_empty() {
+            0
+        } else {
+            n as usize + 1
+        },
+    )
 }
 
-/// Whether every position lies on the inner side of every face's plane
-/// (within a tolerance relative to the mesh's size). Quadratic, so meshes
-/// of more than 4,000 faces are reported as not convex.
-fn convex(positions: &[Vec3], faces: &[[u32; 3]]) -> bool {
-    if faces.len() > 4000 {
-        return false;
+/// Whether the mesh is closed, and whether it is closed and convex (see
+/// [`Mesh::analyze`]).
+fn topology(positions: &[Vec3], faces: &[[u32; 3]]) -> (bool, bool) {
+    if faces.is_empty() {
+        return (false, false);
     }
-    let scale = positions
+    let (id, _) = weld(positions);
+    // Every directed edge: (low id, high id, walked high→low?), face, and
+    // the corner opposite it.
+    let mut edges: Vec<(u64, u32, u8)> = Vec::with_capacity(faces.len() * 3);
+    for (f, face) in faces.iter().enumerate() {
+        let v = face.map(|i| id[i as usize]);
+        if v[0] == v[1] || v[1] == v[2] || v[2] == v[0] {
+            return (false, false);
+        }
+        for k in 0..3 {
+            let (a, b) = (v[k] as u64, v[(k + 1) % 3] as u64);
+            let key = (a.min(b) << 33) | (a.max(b) << 1) | (a > b) as u64;
+            edges.push((key, f as u32, ((k + 2) % 3) as u8));
+        }
+    }
+    edges.sort_unstable_by_key(|e| e.0);
+    // Closed and consistently wound: each undirected edge exactly twice,
+    // once each way.
+    let pairs = edges.chunks(2);
+    let closed = edges.len().is_multiple_of(2)
+        && pairs
+            .clone()
+            .all(|p| p[0].0 | 1 == p[1].0 && p[0].0 & 1 == 0)
+        && edges
+            .windows(3)
+            .step_by(2)
+            .all(|w| w[0].0 >> 1 != w[2].0 >> 1);
+    if !closed {
+        return (false, false);
+    }
+    // One piece, a sphere's topology: V − E + F = 2 over the positions used.
+    let mut used = vec![false; positions.len()];
+    faces
         .iter()
-        .fold(0.0f32, |m, p| m.max(p.abs().max_element()))
-        .max(1e-30);
-    faces.iter().all(|f| {
-        let [a, b, c] = f.map(|i| positions[i as usize]);
-        let n = (b - a).cross(c - a);
-        let len = n.length();
-        len == 0.0
-            || positions
-                .iter()
-                .all(|&p| n.dot(p - a) <= 1e-5 * scale * len)
-    })
+        .flatten()
+        .for_each(|&i| used[id[i as usize] as usize] = true);
+    let v = used.iter().filter(|&&u| u).count() as i64;
+    if v - (edges.len() / 2) as i64 + faces.len() as i64 != 2 {
+        return (true, false);
+    }
+    let point = |i: u32| {
+        let p = positions[i as usize];
+        robust::Coord3D {
+            x: p.x as f64,
+            y: p.y as f64,
+            z: p.z as f64,
+        }
+    };
+    // Locally convex at every edge: the far corner of the second face on
+    // or below (inside) the first face's plane.
+    for p in pairs {
+        let (f, g) = (faces[p[0].1 as usize], faces[p[1].1 as usize]);
+        let far = g[p[1].2 as usize];
+        if robust::orient3d(point(f[0]), point(f[1]), point(f[2]), point(far)) < 0.0 {
+            return (true, false);
+        }
+    }
+    // At every vertex the faces turn once around it: their angles there
+    // sum to at most 2π (a flat vertex inside a face sums to 2π, up to
+    // rounding; a cone wound twice, to nearly 4π).
+    let mut angle = vec![0.0f64; positions.len()];
+    for face in faces {
+        let p = face.map(|i| positions[i as usize].as_dvec3());
+        for k in 0..3 {
+            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            let turn = a.cross(b).length().atan2(a.dot(b));
+            if turn.is_nan() || turn <= 0.0 {
+                return (true, false);
+            }
+            angle[id[face[k] as usize] as usize] += turn;
+        }
+    }
+    let full = std::f64::consts::TAU * (1.0 + 1e-9);
+    (true, angle.iter().all(|&a| a <= full))
 }
 
 /// Angle-weighted vertex normals; a vertex on no face (or only degenerate
@@ -215,20 +291,20 @@ pub fn vertex_normals(positions: &[Vec3], faces: &[[u32; 3]]) -> Vec<Vec3> {
     let mut sum = vec![Vec3::ZERO; positions.len()];
     for f in faces {
         let p = f.map(|i| positions[i as usize]);
-        let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        let n = crate::transform::face_normal(p[0], p[1], p[2]);
         if !n.is_finite() {
             continue;
         }
         for k in 0..3 {
-            let a = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
-            let b = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
+            let a = crate::transform::direction(p[(k + 1) % 3] - p[k]);
+            let b = crate::transform::direction(p[(k + 2) % 3] - p[k]);
             let angle = a.dot(b).clamp(-1.0, 1.0).acos();
             sum[f[k] as usize] += n * angle;
         }
     }
     sum.into_iter()
         .map(|n| {
-            let n = n.normalize_or_zero();
+            let n = crate::transform::direction(n);
             if n == Vec3::ZERO { Vec3::Z } else { n }
         })
         .collect()
@@ -408,11 +484,20 @@ mod tests {
         let mut m = Mesh::new("sq", p, vec![[0, 1, 2], [0, 2, 3]], Rgb::WHITE);
         assert!(m.normals.iter().all(|n| (*n - Vec3::Z).length() < 1e-6));
         m.fit_unit_sphere();
-        let far = m
-            .positions
-            .iter()
-            .map(|&p| m.model.transform_point3(p).length())
-            .fold(0.0, f32::max);
+        let far = m.positions.iter().map(|p| p.length()).fold(0.0, f32::max);
         assert!((far - 1.0).abs() < 1e-6);
+        // Any size an f32 can hold fits the same.
+        for size in [1e-30f32, 1e-23, 1e20, 1e30, f32::MAX] {
+            let p = vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(size, 0.0, 0.0),
+                Vec3::new(size, size, 0.0),
+            ];
+            let mut m = Mesh::new("t", p, vec![[0, 1, 2]], Rgb::WHITE);
+            m.fit_unit_sphere();
+            let far = m.positions.iter().map(|p| p.length()).fold(0.0, f32::max);
+            assert!((far - 1.0).abs() < 1e-6, "{size}: {far}");
+            assert_eq!(m.model, Mat4::IDENTITY);
+        }
     }
 }

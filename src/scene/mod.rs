@@ -66,7 +66,7 @@ pub use shapes::Shape;
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 use crate::raster::Cull;
-use crate::transform::{self, Frustum};
+use crate::transform;
 
 /// Everything there is to draw, in world coordinates. `Scene::default()`
 /// is empty, seen by the default camera.
@@ -144,22 +144,45 @@ impl Default for Camera {
 
 impl Camera {
     /// `M_projection · M_view` for a view whose physical width/height ratio
-    /// is `aspect`.
+    /// is `aspect`, composed in f64 and rounded once to f32 (so that an eye
+    /// 1e30 away, or a scene 1e-30 across, loses nothing in the product).
     pub fn view_projection(&self, aspect: f32) -> Mat4 {
-        let view = transform::view(self.eye, self.target, self.up);
+        self.view_projection64(aspect).as_mat4()
+    }
+
+    /// [`Camera::view_projection`] in f64.
+    pub fn view_projection64(&self, aspect: f32) -> glam::DMat4 {
+        let view = transform::view64(
+            self.eye.as_dvec3(),
+            self.target.as_dvec3(),
+            self.up.as_dvec3(),
+        );
+        let aspect = aspect as f64;
         match self.projection {
             Projection::Perspective { fov_y, near, far } => {
-                transform::perspective(&Frustum::from_fov(fov_y, aspect, near, far)) * view
+                transform::perspective64(fov_y as f64, aspect, near as f64, far as f64) * view
             }
             Projection::Orthographic { height, near, far } => {
-                transform::orthographic(&Frustum::orthographic_box(height, aspect, near, far))
-                    * view
+                transform::orthographic64(height as f64, aspect, near as f64, far as f64) * view
             }
-            Projection::None => Mat4::IDENTITY,
+            Projection::None => glam::DMat4::IDENTITY,
         }
     }
 
-    /// Why this camera cannot be used, if it cannot.
+    /// The smallest `w` a clipped vertex may keep: 1e-5, or for a
+    /// perspective camera whose near plane is closer than that, half the
+    /// near distance (the scene is tiny: what matters is `w` relative to
+    /// `near`).
+    pub fn w_min(&self) -> f64 {
+        match self.projection {
+            Projection::Perspective { near, .. } => crate::clip::W_MIN.min(near as f64 * 0.5),
+            _ => crate::clip::W_MIN,
+        }
+    }
+
+    /// Why this camera cannot be used, if it cannot. Judged by direction and
+    /// by relative size (in f64), never by absolute size: an eye 1e30 away
+    /// and one 1e-30 from its target are both fine.
     pub fn check(&self) -> std::result::Result<(), String> {
         let finite = [self.eye, self.target, self.up]
             .iter()
@@ -180,11 +203,22 @@ impl Camera {
                         "near must be > 0 for a perspective camera, not {near}"
                     ));
                 }
+                if near < f32::MIN_POSITIVE {
+                    return Err(format!(
+                        "near = {near:e} is subnormal: f32 keeps no precision there; use a near of at least {:e} (scale the scene up if it is that small)",
+                        f32::MIN_POSITIVE
+                    ));
+                }
                 (near, far)
             }
             Projection::Orthographic { height, near, far } => {
                 if !(height > 0.0 && height.is_finite()) {
                     return Err(format!("height must be > 0, not {height}"));
+                }
+                if height < MIN_HEIGHT {
+                    return Err(format!(
+                        "height = {height:e} is too small: the projection's scale 2/height overflows f32 in a narrow view; use a height of at least {MIN_HEIGHT:e} (scale the scene up if it is that small)"
+                    ));
                 }
                 (near, far)
             }
@@ -194,18 +228,35 @@ impl Camera {
                 "far ({far}) must be finite and greater than near ({near})"
             ));
         }
-        let forward = self.target - self.eye;
-        if forward.length_squared() == 0.0 {
-            return Err("camera eye and target are the same point".into());
+        let (eye, target, up) = (
+            self.eye.as_dvec3(),
+            self.target.as_dvec3(),
+            self.up.as_dvec3(),
+        );
+        let forward = target - eye;
+        if forward == glam::DVec3::ZERO {
+            return Err(format!(
+                "camera eye and target are the same point, {}",
+                self.eye
+            ));
         }
-        if forward.cross(self.up).length_squared()
-            <= 1e-12 * forward.length_squared() * self.up.length_squared()
-        {
-            return Err("camera up must not be parallel to the view direction (or zero)".into());
+        if up == glam::DVec3::ZERO {
+            return Err("camera up must not be zero".into());
+        }
+        // The angle between up and the view direction, scale-free.
+        let sin = forward.normalize().cross(up.normalize()).length();
+        if sin.is_nan() || sin <= 1e-6 {
+            return Err(
+                "camera up must not be parallel to the view direction (target − eye)".into(),
+            );
         }
         Ok(())
     }
 }
+
+/// The smallest orthographic height accepted: with the narrowest view
+/// (aspect 1/80,000), `2/width` still fits f32.
+pub const MIN_HEIGHT: f32 = 1e-30;
 
 /// The colour of a mesh whose file gives none.
 pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);

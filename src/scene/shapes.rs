@@ -86,7 +86,10 @@ fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
 }
 
 /// A `nu × nv` grid of quads wrapped by `f(u, v)` over [0,1)², with the seam
-/// (and, for the sphere, the poles) sharing vertices.
+/// (and, for the sphere, the poles) sharing vertices. Each quad is cut
+/// along the diagonal that folds outwards: the four corners, rounded to
+/// f32, are seldom exactly coplanar, and the other diagonal would leave a
+/// dent a millionth deep, enough for the sphere not to be convex.
 fn grid(nu: u32, nv: u32, f: impl Fn(f32, f32) -> Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let mut positions = Vec::new();
     for j in 0..=nv {
@@ -99,8 +102,22 @@ fn grid(nu: u32, nv: u32, f: impl Fn(f32, f32) -> Vec3) -> (Vec<Vec3>, Vec<[u32;
     for j in 0..nv {
         for i in 0..nu {
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-            faces.push([a, b, c]);
-            faces.push([a, c, d]);
+            let p = |i: u32| {
+                let v = positions[i as usize];
+                robust::Coord3D {
+                    x: v.x as f64,
+                    y: v.y as f64,
+                    z: v.z as f64,
+                }
+            };
+            // d on or below (inside) the plane of a, b, c: a–c folds out.
+            if robust::orient3d(p(a), p(b), p(c), p(d)) >= 0.0 {
+                faces.push([a, b, c]);
+                faces.push([a, c, d]);
+            } else {
+                faces.push([a, b, d]);
+                faces.push([b, c, d]);
+            }
         }
     }
     // Triangles with two corners on a pole have no area: leave them out.
