@@ -1,8 +1,7 @@
 //! The accuracy knobs of `rastty bench`, under criterion, for tracking
 //! regressions: a frame of the bunny at 200×60 cells with each coverage,
-//! interpolation and two-colour setting, the precision workload's tilings
-//! with each edge-function precision, and a frame's encoding with each
-//! colour depth and metric. (Traversals: `benches/raster.rs`.)
+//! interpolation, two-colour and precision setting, and a frame's encoding
+//! with each colour depth and metric. (Traversals: `benches/raster.rs`.)
 //!
 //! `cargo bench --bench accuracy`
 
@@ -12,6 +11,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rastty::blit::Split;
 use rastty::color::Metric;
 use rastty::encode::Encoder;
+use rastty::raster::Precision;
 use rastty::render::{Aa, Interpolation};
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
@@ -54,11 +54,11 @@ fn knobs(c: &mut Criterion) {
             },
         );
     }
-    for precision in rastty::bench::Precision::ALL {
-        // The tilings of `rastty bench`, drawn once per iteration.
-        group.bench_function(format!("precision/{precision:?}"), |b| {
-            b.iter(|| rastty::bench::precision_errors(precision, 1).0)
-        });
+    for precision in Precision::ALL {
+        frame(
+            format!("precision/{}", precision.name()),
+            RenderOptions { precision, ..base },
+        );
     }
     let rendered = rastty::render(&scene, &base);
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {

@@ -15,50 +15,107 @@ pub fn area_in_square(t: [[f64; 2]; 3], corner: [f64; 2]) -> f64 {
 
 /// The area of triangle `t` inside the rectangle `[lo, hi]`.
 pub fn area_in_rect(t: [[f64; 2]; 3], lo: [f64; 2], hi: [f64; 2]) -> f64 {
-    // At most 3 + 4 vertices after four clips.
-    let mut a = [[0.0; 2]; 8];
-    let mut b = [[0.0; 2]; 8];
-    a[..3].copy_from_slice(&t);
-    let mut n = 3;
-    // (axis, bound, keep the side below the bound?)
-    for (axis, bound, below) in [
-        (0, lo[0], false),
-        (0, hi[0], true),
-        (1, lo[1], false),
-        (1, hi[1], true),
-    ] {
-        let inside = |p: &[f64; 2]| {
-            if below {
-                p[axis] <= bound
-            } else {
-                p[axis] >= bound
-            }
+    polygon_area_in_rect(&t, lo, hi)
+}
+
+/// Most vertices a clipped polygon here can have.
+const MAX: usize = 16;
+
+/// A convex polygon of at most 16 vertices, on the stack.
+#[derive(Clone, Copy, Debug)]
+pub struct Poly {
+    v: [[f64; 2]; MAX],
+    n: usize,
+}
+
+impl Poly {
+    /// A polygon from its vertices (at most 16), in either winding.
+    pub fn new(points: &[[f64; 2]]) -> Poly {
+        let mut p = Poly {
+            v: [[0.0; 2]; MAX],
+            n: points.len().min(MAX),
         };
-        let mut m = 0;
-        for i in 0..n {
-            let (p, q) = (a[i], a[(i + 1) % n]);
-            if inside(&p) {
-                b[m] = p;
-                m += 1;
-            }
-            if inside(&p) != inside(&q) {
-                let s = (bound - p[axis]) / (q[axis] - p[axis]);
-                let mut r = [p[0] + (q[0] - p[0]) * s, p[1] + (q[1] - p[1]) * s];
-                r[axis] = bound;
-                b[m] = r;
-                m += 1;
-            }
+        p.v[..p.n].copy_from_slice(&points[..p.n]);
+        if p.signed_area2() < 0.0 {
+            p.v[..p.n].reverse();
         }
-        std::mem::swap(&mut a, &mut b);
-        n = m;
-        if n < 3 {
-            return 0.0;
+        p
+    }
+
+    pub fn vertices(&self) -> &[[f64; 2]] {
+        &self.v[..self.n]
+    }
+
+    fn signed_area2(&self) -> f64 {
+        let v = self.vertices();
+        (0..v.len())
+            .map(|i| {
+                let (a, b) = (v[i], v[(i + 1) % v.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum()
+    }
+
+    /// The area.
+    pub fn area(&self) -> f64 {
+        if self.n < 3 {
+            0.0
+        } else {
+            self.signed_area2().abs() / 2.0
         }
     }
-    let twice: f64 = (0..n)
-        .map(|i| a[i][0] * a[(i + 1) % n][1] - a[(i + 1) % n][0] * a[i][1])
-        .sum();
-    twice.abs() / 2.0
+
+    /// What is left on the side of `keep(p) ≥ 0`, for an affine `keep`
+    /// (Sutherland–Hodgman against one line).
+    fn clip(&self, keep: impl Fn([f64; 2]) -> f64) -> Poly {
+        let mut out = Poly {
+            v: [[0.0; 2]; MAX],
+            n: 0,
+        };
+        let v = self.vertices();
+        for i in 0..v.len() {
+            let (p, q) = (v[i], v[(i + 1) % v.len()]);
+            let (dp, dq) = (keep(p), keep(q));
+            if dp >= 0.0 && out.n < MAX {
+                out.v[out.n] = p;
+                out.n += 1;
+            }
+            if (dp >= 0.0) != (dq >= 0.0) && out.n < MAX {
+                let t = dp / (dp - dq);
+                out.v[out.n] = [p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t];
+                out.n += 1;
+            }
+        }
+        out
+    }
+
+    /// The part inside the rectangle `[lo, hi]`.
+    pub fn in_rect(&self, lo: [f64; 2], hi: [f64; 2]) -> Poly {
+        self.clip(|p| p[0] - lo[0])
+            .clip(|p| hi[0] - p[0])
+            .clip(|p| p[1] - lo[1])
+            .clip(|p| hi[1] - p[1])
+    }
+
+    /// The part inside another convex polygon.
+    pub fn intersect(&self, other: &Poly) -> Poly {
+        let mut out = *self;
+        let w = other.vertices();
+        for i in 0..w.len() {
+            let (a, b) = (w[i], w[(i + 1) % w.len()]);
+            // Counter-clockwise: inside is to the left of each edge.
+            out = out.clip(|p| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]));
+            if out.n < 3 {
+                break;
+            }
+        }
+        out
+    }
+}
+
+/// The area of a convex polygon inside the rectangle `[lo, hi]`.
+pub fn polygon_area_in_rect(points: &[[f64; 2]], lo: [f64; 2], hi: [f64; 2]) -> f64 {
+    Poly::new(points).in_rect(lo, hi).area()
 }
 
 #[cfg(test)]
@@ -110,5 +167,18 @@ mod tests {
             ),
             0.5
         );
+    }
+
+    #[test]
+    fn two_triangles_overlap_by_their_common_part() {
+        // Two right triangles over the unit square, one on each diagonal:
+        // they share a quarter of it.
+        let a = Poly::new(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let b = Poly::new(&[[1.0, 0.0], [1.0, 1.0], [0.0, 0.0]]);
+        assert!((a.intersect(&b).area() - 0.25).abs() < 1e-15);
+        assert!((a.intersect(&b).in_rect([0.0, 0.0], [0.5, 0.5]).area() - 0.125).abs() < 1e-15);
+        // Disjoint: nothing.
+        let c = Poly::new(&[[2.0, 2.0], [3.0, 2.0], [2.0, 3.0]]);
+        assert_eq!(a.intersect(&c).area(), 0.0);
     }
 }

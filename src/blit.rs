@@ -124,6 +124,18 @@ impl GlyphMode {
         }
     }
 
+    /// The pattern of foreground samples a glyph of this mode draws (the
+    /// inverse of [`GlyphMode::glyph`]); `None` for a character the mode
+    /// does not draw with. A search: for tools, not for frames.
+    pub fn pattern(self, ch: char) -> Option<u8> {
+        let n = self.samples();
+        let masks = 0..=((1u16 << n) - 1) as u8;
+        match self {
+            GlyphMode::Ascii | GlyphMode::Block => None,
+            _ => masks.into_iter().find(|&m| self.glyph(m) == ch),
+        }
+    }
+
     /// One cell from its samples (see the module doc for their order), with
     /// the exact two-colour split.
     pub fn cell(self, samples: &[Option<Rgb>], depth: ColorDepth, background: Option<Rgb>) -> Cell {
@@ -392,6 +404,16 @@ pub enum Split {
     WidestChannel,
 }
 
+impl Split {
+    /// The name the command line uses (`--split widest-channel`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Split::Exhaustive => "exhaustive",
+            Split::WidestChannel => "widest-channel",
+        }
+    }
+}
+
 /// The cheaper split: samples above the mean of the widest channel are the
 /// foreground. 0 when all colours are equal.
 pub fn split_widest_channel(colors: &[Rgb]) -> u8 {
@@ -489,6 +511,22 @@ mod tests {
 
     const RED: Rgb = Rgb::new(255, 0, 0);
     const BLUE: Rgb = Rgb::new(0, 0, 255);
+
+    #[test]
+    fn pattern_inverts_glyph() {
+        for mode in [
+            GlyphMode::Half,
+            GlyphMode::Quadrant,
+            GlyphMode::Sextant,
+            GlyphMode::Octant,
+            GlyphMode::Braille,
+        ] {
+            for m in 0..=((1u16 << mode.samples()) - 1) as u8 {
+                assert_eq!(mode.pattern(mode.glyph(m)), Some(m), "{mode:?} {m:#x}");
+            }
+        }
+        assert_eq!(GlyphMode::Half.pattern('x'), None);
+    }
 
     #[test]
     fn ramps_skip_blank_for_drawn_samples() {

@@ -9,7 +9,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use rastty::animate::Axis;
 use rastty::blit::Split;
 use rastty::encode::Rep;
-use rastty::raster::Cull;
+use rastty::raster::{Cull, Precision};
 use rastty::render::{Aa, Interpolation};
 use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, Traversal};
@@ -151,6 +151,10 @@ pub struct ViewArgs {
     /// chafa's fast path: for comparison)
     #[arg(long, value_enum, default_value_t = Split::Exhaustive)]
     pub split: Split,
+    /// How edge functions are evaluated (f64 and f32 skip the snap and are
+    /// not watertight: for comparison)
+    #[arg(long, value_enum, default_value_t = Precision::Fixed)]
+    pub precision: Precision,
     /// Run every pipeline stage on every primitive, even those the scene
     /// does not need (the same picture, slower: for comparison)
     #[arg(long)]

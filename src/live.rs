@@ -301,6 +301,15 @@ impl Link {
     pub fn rate(&self) -> Option<f64> {
         self.rate
     }
+
+    /// Status requests sent and not yet answered.
+    pub fn outstanding(&self) -> usize {
+        if self.acks == Acks::No {
+            0
+        } else {
+            self.inflight.len()
+        }
+    }
 }
 
 /// Signals the loop handles.
@@ -321,6 +330,10 @@ const ESC_WAIT: Duration = Duration::from_millis(25);
 const STATUS_REQUEST: &[u8] = b"\x1b[5n";
 /// How long the last frame of `--frames` may take to write.
 const LAST_WRITE: Duration = Duration::from_secs(5);
+/// How long the loop waits, before it stops or suspends, for the answers
+/// to the status requests still out: an answer that came later would be
+/// read by the shell (as `^[[0n`, or by readline as a key).
+const LAST_ANSWERS: Duration = Duration::from_millis(250);
 
 fn io_err(what: &'static str) -> impl FnOnce(std::io::Error) -> TtyError {
     move |source| TtyError::Io { what, source }
@@ -369,7 +382,45 @@ struct Live<'a> {
 }
 
 impl Live<'_> {
+    /// Runs the loop; before returning, collects the answers still due.
     fn run(&mut self) -> std::io::Result<Exit> {
+        let mut link = None;
+        let exit = self.frames(&mut link)?;
+        if let Some(link) = &mut link {
+            self.collect_answers(link);
+        }
+        Ok(exit)
+    }
+
+    /// Reads (and drops, keys included) what the terminal sends until every
+    /// status request is answered or [`LAST_ANSWERS`] passes.
+    fn collect_answers(&mut self, link: &mut Link) {
+        let end = Instant::now() + LAST_ANSWERS;
+        let mut buf = [0u8; 256];
+        while link.outstanding() > 0 {
+            let left = end.saturating_duration_since(Instant::now());
+            if left.is_zero()
+                || terminal::wait_readable(self.screen.tty().input_fd(), left).is_err()
+            {
+                return;
+            }
+            loop {
+                match self.screen.tty().read(&mut buf) {
+                    Read::Bytes(n) => self.parser.feed(&buf[..n], &mut self.inputs),
+                    Read::Nothing => break,
+                    Read::Gone => return,
+                }
+            }
+            let now = Instant::now();
+            for input in self.inputs.drain(..) {
+                if input == Input::StatusOk {
+                    link.acked(now);
+                }
+            }
+        }
+    }
+
+    fn frames(&mut self, link_out: &mut Option<Link>) -> std::io::Result<Exit> {
         let caps = if self.opts.probe && self.opts.full_screen {
             let mut early = Vec::new();
             let caps = probe::probe(
@@ -384,11 +435,11 @@ impl Live<'_> {
             Capabilities::default()
         };
         self.adopt(&caps);
-        let mut link = Link::new(
+        let link = link_out.insert(Link::new(
             self.opts.fps,
             &caps,
             self.opts.probe && self.opts.full_screen,
-        );
+        ));
         let fps = self.opts.fps.max(1) as f64;
         let start = Instant::now();
         let mut shown: Option<u64> = None;
@@ -406,14 +457,14 @@ impl Live<'_> {
                 }
             }
             if signals::has(sigs, libc::SIGTSTP) {
-                self.suspend(&mut link)?;
+                self.suspend(link)?;
                 // The SIGCONT that woke us is handled by now.
                 sigs = (sigs | self.signals.take()) & !(1 << libc::SIGCONT);
                 dirty = true;
             }
             if signals::has(sigs, libc::SIGCONT) {
                 self.screen.resume()?;
-                self.abandon_frame(&mut link);
+                self.abandon_frame(link);
                 self.player.apply(Command::Redraw);
                 dirty = true;
             }
@@ -460,7 +511,7 @@ impl Live<'_> {
                 }
             }
             if suspend {
-                self.suspend(&mut link)?;
+                self.suspend(link)?;
                 dirty = true;
             }
             if self.player.notice_serial() != notice.0 {
@@ -591,6 +642,7 @@ impl Live<'_> {
     /// Ctrl-Z or SIGTSTP: the terminal restored, the process stopped; when
     /// continued, the terminal taken over again and redrawn in full.
     fn suspend(&mut self, link: &mut Link) -> std::io::Result<()> {
+        self.collect_answers(link);
         self.screen.suspend();
         self.signals.stop_self()?;
         self.screen.resume()?;

@@ -238,5 +238,6 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         aa: view.aa,
         interpolation: view.interpolation,
         split: view.split,
+        precision: view.precision,
     }
 }

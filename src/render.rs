@@ -35,7 +35,10 @@ use crate::color::{ColorDepth, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
 use crate::plan::{self, Pipeline, Plan};
-use crate::raster::{Cull, FixedPoint, Grid, RasterStats, Rejected, Setup, Traversal};
+use crate::raster::{
+    Coverage, Cull, FixedPoint, FloatSetup, Grid, Precision, RasterStats, Rejected, Setup,
+    Traversal,
+};
 use crate::scene::{Projection, Scene};
 use crate::shade::{Lights, Shading};
 use crate::transform;
@@ -71,6 +74,8 @@ pub struct RenderOptions {
     pub interpolation: Interpolation,
     /// How two-colour cells split their samples.
     pub split: Split,
+    /// How edge functions are evaluated.
+    pub precision: Precision,
 }
 
 /// How attributes are interpolated across a triangle.
@@ -82,6 +87,16 @@ pub enum Interpolation {
     /// Screen-space weights as they are: cheaper, and wrong under
     /// perspective (for measuring what correctness costs).
     Affine,
+}
+
+impl Interpolation {
+    /// The name the command line uses (`--interpolation affine`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Interpolation::Perspective => "perspective",
+            Interpolation::Affine => "affine",
+        }
+    }
 }
 
 /// How a sample's colour is found.
@@ -122,6 +137,16 @@ const ORDERED_16: [(f32, f32); 16] = {
 impl Aa {
     pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
 
+    /// The name the command line uses (`--aa 16x`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Aa::None => "none",
+            Aa::X4 => "4x",
+            Aa::X16 => "16x",
+            Aa::Exact => "exact",
+        }
+    }
+
     /// How many times a frame's geometry is drawn.
     pub fn passes(self) -> u64 {
         self.offsets().len() as u64
@@ -153,6 +178,7 @@ impl Default for RenderOptions {
             aa: Aa::None,
             interpolation: Interpolation::default(),
             split: Split::default(),
+            precision: Precision::default(),
         }
     }
 }
@@ -277,6 +303,7 @@ struct Stage {
     lights: Lights,
     shading: Shading,
     traversal: Traversal,
+    precision: Precision,
     /// From the plan: depth-test; interpolate through 1/w; the full
     /// pipeline (light before culling, interpolate one-colour triangles).
     depth: bool,
@@ -314,6 +341,8 @@ pub struct Renderer {
     times: FrameTimes,
     /// Anti-aliasing's per-sample sums: red, green, blue, weight.
     acc: Vec<[f32; 4]>,
+    /// The last frame's anti-aliasing.
+    aa: Aa,
 }
 
 impl Default for Renderer {
@@ -333,6 +362,7 @@ impl Renderer {
             plan: None,
             times: FrameTimes::default(),
             acc: Vec::new(),
+            aa: Aa::None,
         }
     }
 
@@ -371,10 +401,12 @@ impl Renderer {
             lights: Lights::new(if lit { &scene.lights } else { &[] }),
             shading: if lit { opts.shading } else { Shading::None },
             traversal: opts.traversal,
+            precision: opts.precision,
             eye,
         };
 
         self.times.plan += lap();
+        self.aa = opts.aa;
         let n = grid.len();
         match opts.aa {
             Aa::None => {
@@ -593,19 +625,37 @@ impl Renderer {
             let early = stage
                 .full
                 .then(|| self.shade(stage, v, base, !front_facing(v)));
-            let Some(setup) = self.setup(
-                Setup::from_fixed(v.map(|v| v.fixed), self.fb.grid(), cull),
-                stage.exact,
-            ) else {
-                return;
-            };
-            let screen = ScreenTriangle {
-                xy: v.map(|v| v.xy.map(f64::from)),
+            let fixed = v.map(|v| v.fixed);
+            let xy = v.map(|v| v.xy.map(f64::from));
+            let screen = |color| ScreenTriangle {
+                xy,
                 z: v.map(|v| v.z),
                 inv_w: v.map(|v| v.inv_w),
-                color: early.unwrap_or_else(|| self.shade(stage, v, base, !setup.ccw)),
+                color,
             };
-            self.fill(&setup, &screen, stage);
+            let grid = self.fb.grid();
+            match stage.precision {
+                Precision::Fixed => {
+                    if let Some(s) = self.setup(Setup::from_fixed(fixed, grid, cull), stage.exact) {
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
+                        self.fill(&s, &screen(c), stage);
+                    }
+                }
+                Precision::F64 => {
+                    let setup = FloatSetup::<f64>::new(xy, grid, cull);
+                    if let Some(s) = self.setup(setup, stage.exact) {
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
+                        self.fill(&s, &screen(c), stage);
+                    }
+                }
+                Precision::F32 => {
+                    let setup = FloatSetup::<f32>::new(xy, grid, cull);
+                    if let Some(s) = self.setup(setup, stage.exact) {
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
+                        self.fill(&s, &screen(c), stage);
+                    }
+                }
+            }
             return;
         }
         // Clipped: lit before clipping (colours are interpolated along the
@@ -636,9 +686,26 @@ impl Renderer {
                         inv_w: tri.map(|v| v.inv_w),
                         color: tri.map(|v| v.color),
                     };
-                    let setup = Setup::from_fixed(tri.map(|v| v.fixed), self.fb.grid(), cull);
-                    if let Some(setup) = self.setup(setup, stage.exact) {
-                        self.fill(&setup, &screen, stage);
+                    let grid = self.fb.grid();
+                    match stage.precision {
+                        Precision::Fixed => {
+                            let setup = Setup::from_fixed(tri.map(|v| v.fixed), grid, cull);
+                            if let Some(s) = self.setup(setup, stage.exact) {
+                                self.fill(&s, &screen, stage);
+                            }
+                        }
+                        Precision::F64 => {
+                            let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
+                            if let Some(s) = self.setup(setup, stage.exact) {
+                                self.fill(&s, &screen, stage);
+                            }
+                        }
+                        Precision::F32 => {
+                            let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
+                            if let Some(s) = self.setup(setup, stage.exact) {
+                                self.fill(&s, &screen, stage);
+                            }
+                        }
                     }
                 }
             }
@@ -678,7 +745,7 @@ impl Renderer {
 
     /// A set-up screen triangle, counted; `None` when it was rejected or
     /// covers no sample.
-    fn setup(&mut self, setup: Result<Setup, Rejected>, exact: bool) -> Option<Setup> {
+    fn setup<C: Coverage>(&mut self, setup: Result<C, Rejected>, exact: bool) -> Option<C> {
         match setup {
             Ok(s) => {
                 self.stats.raster.triangles_drawn += 1;
@@ -696,7 +763,7 @@ impl Renderer {
     /// Walks a set-up triangle and writes its samples: depth-tested, or
     /// (when the plan skips depth) only where still empty; one colour, or
     /// interpolated, through `1/w` where the plan asks for it.
-    fn fill(&mut self, setup: &Setup, t: &ScreenTriangle, stage: &Stage) {
+    fn fill<C: Coverage>(&mut self, setup: &C, t: &ScreenTriangle, stage: &Stage) {
         if stage.exact {
             self.accumulate_exact(t);
             return;
@@ -705,7 +772,7 @@ impl Renderer {
         let stats = &mut self.stats;
         let fb = &mut self.fb;
         let mut covered = 0u64;
-        let inv_area = 1.0 / setup.area2 as f32;
+        let inv_area = setup.inv_area();
         // Attributes in the setup's vertex order (which starts from the
         // lowest vertex, so the sums below do not depend on the order the
         // triangle was given in).
@@ -719,8 +786,9 @@ impl Renderer {
         };
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
         let use_depth = stage.depth;
-        let depth = move |e: [i64; 3]| {
-            let z = (e[0] as f32 * z0 + e[1] as f32 * z1 + e[2] as f32 * z2) * inv_area;
+        let depth = move |e: C::Weights| {
+            let e = C::f32(e);
+            let z = (e[0] * z0 + e[1] * z1 + e[2] * z2) * inv_area;
             z.clamp(z_lo, z_hi)
         };
         let flat = !stage.full && t.color[0] == t.color[1] && t.color[1] == t.color[2];
@@ -731,27 +799,28 @@ impl Renderer {
             [1.0; 3]
         };
         let [ca, cb, cc] = t.color;
-        let interpolate = move |e: [i64; 3]| {
-            let (wa, wb, wc) = (e[0] as f32 * a, e[1] as f32 * b, e[2] as f32 * c);
+        let interpolate = move |e: C::Weights| {
+            let e = C::f32(e);
+            let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
             Rgb::from_f32(((ca * wa + cb * wb + cc * wc) / (wa + wb + wc)).to_array())
         };
         let one = Rgb::from_f32(ca.to_array());
         let tr = stage.traversal;
         // One tight loop per combination, so that each inlines.
         let tested = match (flat, use_depth) {
-            (true, false) => setup.walk(grid, tr, |x, y, _| {
+            (true, false) => setup.walk_samples(grid, tr, |x, y, _| {
                 covered += 1;
                 fb.set_if_empty(x, y, one);
             }),
-            (true, true) => setup.walk(grid, tr, |x, y, e| {
+            (true, true) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 fb.set_if_nearer(x, y, depth(e), one);
             }),
-            (false, false) => setup.walk(grid, tr, |x, y, e| {
+            (false, false) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 fb.set_if_empty(x, y, interpolate(e));
             }),
-            (false, true) => setup.walk(grid, tr, |x, y, e| {
+            (false, true) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 fb.set_if_nearer(x, y, depth(e), interpolate(e));
             }),
@@ -823,6 +892,27 @@ impl Renderer {
 
     pub fn framebuffer(&self) -> &Framebuffer {
         &self.fb
+    }
+
+    /// How much of each sample's square the last frame covered, in [0, 1],
+    /// row by row from the bottom, before it became a colour: 0 or 1
+    /// without anti-aliasing, the share of sub-samples hit with `4x` and
+    /// `16x`, the summed area (capped at 1) with `exact`. What `rastty
+    /// bench` measures the coverage knob by.
+    pub fn coverage(&self, out: &mut Vec<f32>) {
+        out.clear();
+        match self.aa {
+            Aa::None => out.extend(
+                self.fb
+                    .samples()
+                    .iter()
+                    .map(|s| if s.is_some() { 1.0 } else { 0.0 }),
+            ),
+            aa => {
+                let passes = aa.passes() as f32;
+                out.extend(self.acc.iter().map(|a| (a[3] / passes).min(1.0)));
+            }
+        }
     }
 
     pub fn stats(&self) -> &FrameStats {

@@ -944,7 +944,7 @@ fn depth_stays_within_its_vertices_and_coplanar_overlaps_resolve_the_same_way() 
 }
 
 #[test]
-fn one_thread_no_tiles_so_nothing_else_can_vary() {
+fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     // The renderer is single-threaded and walks whole triangles: there is
     // no thread count or tile size to change the frame. Rendering the same
     // frame twice, with a fresh renderer and a reused one, is bit for bit
