@@ -351,8 +351,9 @@ fn cross(plane: &[f64; 4], a: &V, b: &V) -> V {
     // near 1 so that chains of clips never overflow. Exact (a power of 2).
     let max = pos.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if max.is_normal() {
-        let e = ((max.to_bits() >> 52) & 0x7ff) as i64 - 1023;
-        let scale = f64::from_bits(((1023 - e) as u64) << 52);
+        let e = ((max.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        // 2^-e, exact even where it is subnormal (e = 1023).
+        let scale = 2f64.powi(-e);
         pos = pos.map(|v| v * scale);
     }
     let (da, db) = (dot(plane, &a.pos).max(0.0), dot(plane, &b.pos));

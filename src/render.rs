@@ -943,17 +943,13 @@ fn front_facing(v: [&Vert; 3]) -> bool {
 /// with the edge values would overflow f32).
 fn unit_scale(v: [f32; 3]) -> [f32; 3] {
     let max = v[0].max(v[1]).max(v[2]);
-    if !max.is_normal() {
+    let scaled = transform::pow2_unit(Vec3::new(max, 0.0, 0.0)).x;
+    if scaled == max {
         return v;
     }
-    let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
-    match 127 - e {
-        k @ 1..=254 => {
-            let scale = f32::from_bits((k as u32) << 23);
-            v.map(|x| x * scale)
-        }
-        _ => v,
-    }
+    // The same power of two for all three: exact.
+    let k = scaled / max;
+    v.map(|x| x * k)
 }
 
 /// Renders one frame of `scene`.

@@ -234,7 +234,14 @@ pub fn pow2_unit(v: Vec3) -> Vec3 {
         return v;
     }
     let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
-    v * f32::from_bits(((127 - e) as u32) << 23)
+    // 2^-e in two factors, each a normal f32 (2^-127 alone is not).
+    let (a, b) = (-e / 2, -e - (-e / 2));
+    v * pow2(a) * pow2(b)
+}
+
+/// 2^e for −126 ≤ e ≤ 127.
+fn pow2(e: i32) -> f32 {
+    f32::from_bits(((e + 127) as u32) << 23)
 }
 
 /// The unit normal of triangle `a, b, c` (counter-clockwise seen from its
@@ -281,6 +288,16 @@ mod tests {
         let fr = Frustum::from_fov(60.0, 1.5, 2.0, 10.0);
         assert!(close(fr.t, (30f32).to_radians().tan() * 2.0));
         assert!(close(fr.r / fr.t, 1.5));
+    }
+
+    #[test]
+    fn pow2_unit_brings_any_vector_to_one_and_two() {
+        for e in [-126, -100, 0, 100, 126, 127] {
+            let k = 2f64.powi(e) as f32;
+            let v = Vec3::new(1.5, -0.75, 0.25) * k;
+            assert_eq!(pow2_unit(v), Vec3::new(1.5, -0.75, 0.25), "2^{e}");
+        }
+        assert_eq!(pow2_unit(Vec3::ZERO), Vec3::ZERO);
     }
 
     #[test]

@@ -712,6 +712,121 @@ fn cameras_are_judged_by_direction_and_relative_size() {
     }
 }
 
+/// A temporary directory of the test's own.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rastty-hard-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The built-in cube as OBJ text, its top face cut into four triangles
+/// around its centre, which is pushed in by `dent`, every position moved
+/// by `offset`.
+fn cube_obj(dent: f32, offset: Vec3) -> String {
+    let cube = rastty::scene::Shape::Cube.mesh(Rgb::WHITE);
+    let mut positions = cube.positions.clone();
+    let mut faces = Vec::new();
+    for pair in cube.faces.chunks(2) {
+        let quad = [pair[0][0], pair[0][1], pair[0][2], pair[1][2]];
+        if quad.iter().all(|&i| cube.positions[i as usize].y > 0.5) {
+            positions.push(Vec3::new(0.0, 0.6 - dent, 0.0));
+            let centre = positions.len() as u32 - 1;
+            for k in 0..4 {
+                faces.push([quad[k], quad[(k + 1) % 4], centre]);
+            }
+        } else {
+            faces.extend_from_slice(pair);
+        }
+    }
+    let mut text = String::new();
+    for p in positions {
+        let p = p + offset;
+        text += &format!("v {:e} {:e} {:e}\n", p.x, p.y, p.z);
+    }
+    for f in faces {
+        text += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    text
+}
+
+#[test]
+fn a_dented_cube_far_from_the_origin_is_drawn_with_its_depth_test() {
+    // Through a model file and a scene file, as a user would: the cube's
+    // positions a million units out (where f32 steps by 1/16), its top
+    // face dented by an eighth of a unit (a fifth of its half-width),
+    // and `translate` bringing it back. The planner must see the dent.
+    let dir = scratch("dent");
+    let far = Vec3::new(1e6, 0.0, 0.0);
+    std::fs::write(dir.join("dented.obj"), cube_obj(0.125, far)).unwrap();
+    let src = "[[mesh]]\npath = \"dented.obj\"\ntranslate = [-1e6, 0.0, 0.0]\nrotate = [30.0, 40.0, 0.0]\n\
+               [[light]]\ndirection = [-1.0, -1.0, -1.0]\n";
+    let scene = Scene::parse_in(src, "dent.toml", Some(&dir)).unwrap();
+    assert!(!scene.meshes[0].shape.closed_convex);
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 14,
+        ..RenderOptions::default()
+    };
+    let mut planned = Renderer::new();
+    planned.render(&scene, &opts);
+    assert!(planned.plan().unwrap().depth.run);
+    let mut full = Renderer::new();
+    full.render(
+        &scene,
+        &RenderOptions {
+            pipeline: rastty::plan::Pipeline::Full,
+            ..opts
+        },
+    );
+    assert_eq!(planned.frame(), full.frame());
+    // Undented it is convex, far out or not, and the depth test is skipped.
+    std::fs::write(dir.join("cube.obj"), cube_obj(0.0, far)).unwrap();
+    let cube = Scene::parse_in(&src.replace("dented", "cube"), "cube.toml", Some(&dir)).unwrap();
+    assert!(cube.meshes[0].shape.closed_convex);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn a_model_of_any_size_fits_the_view_the_same() {
+    // The same model at every scale an f32 can hold, written exactly (the
+    // scales are powers of two), fitted in f64: the same frame.
+    let dir = scratch("fit");
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 14,
+        ..RenderOptions::default()
+    };
+    let frame_at = |e: i32| {
+        let k = 2f32.powi(e);
+        let mut text = String::new();
+        for (x, y, z) in [
+            (-1.0f32, -0.5, 0.2),
+            (1.0, -0.7, -0.3),
+            (0.1, 1.2, 0.0),
+            (0.3, 0.1, 0.9),
+        ] {
+            text += &format!("v {:e} {:e} {:e}\n", x * k, y * k, z * k);
+        }
+        text += "f 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+        let path = dir.join(format!("m{e}.obj"));
+        std::fs::write(&path, text).unwrap();
+        rastty::render(&Scene::of_model(&path).unwrap(), &opts)
+    };
+    let unit = frame_at(0);
+    let drawn = unit
+        .cells()
+        .iter()
+        .filter(|c| c.ch != ' ' || c.bg.is_some());
+    assert!(drawn.count() > 20);
+    // 1.3e-23, 7.4e19, 1.3e30, and the largest power of two below f32's max.
+    for e in [-76, 66, 100, 126] {
+        let scaled = frame_at(e);
+        assert_eq!(scaled.to_string(), unit.to_string(), "2^{e}");
+        assert!(scaled == unit, "2^{e}: the colours differ");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
 // 7. NaN and infinity.
 
 #[test]
