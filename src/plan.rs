@@ -134,7 +134,7 @@ pub fn plan(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4, clipper: 
         let groups = scene
             .meshes
             .iter()
-            .map(|m| (turn * m.model, m.shape.bounds))
+            .map(|m| (turn * m.model, m.bounds))
             .chain((!scene.triangles.is_empty()).then(|| (turn, loose_bounds(scene))));
         let mut any = false;
         for (model, bounds) in groups {
@@ -177,7 +177,7 @@ fn depth(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4) -> Decision 
     }
     if let [mesh] = scene.meshes.as_slice() {
         let cull = opts.cull.unwrap_or(mesh.cull);
-        if scene.triangles.is_empty() && mesh.shape.closed_convex && cull == Cull::Back {
+        if scene.triangles.is_empty() && cull == Cull::Back && mesh.is_convex() {
             return Decision::skip(
                 "one closed convex mesh with back faces culled: its front faces never overlap",
             );

@@ -475,22 +475,23 @@ impl Renderer {
         let p = self.plan.expect("planned");
         for mesh in &scene.meshes {
             let model = turn * mesh.model;
-            let tests =
-                p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.shape.bounds);
+            let tests = p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.bounds);
             let transforms = Transforms::new(vp, model);
             self.vertex_stage(stage, &transforms, &mesh.positions, &mesh.normals, tests);
             self.times.vertices += lap();
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
-            for (f, face) in mesh.faces.iter().enumerate() {
-                let v = face.map(|i| &verts[i as usize]);
-                let base = match &mesh.colors {
-                    Some(c) => face.map(|i| c[i as usize]),
-                    None => [mesh.face_colors[f]; 3],
-                };
-                let model = face.map(|i| mesh.positions[i as usize]);
-                self.triangle(stage, v, base, cull, (model, &transforms.mvp64));
+            for (run, color) in mesh.runs(mesh.color) {
+                for face in &mesh.faces[run] {
+                    let v = face.map(|i| &verts[i as usize]);
+                    let base = match &mesh.colors {
+                        Some(c) => face.map(|i| c[i as usize]),
+                        None => [color; 3],
+                    };
+                    let model = face.map(|i| mesh.positions[i as usize]);
+                    self.triangle(stage, v, base, cull, (model, &transforms.mvp64));
+                }
             }
             self.verts = verts;
             self.times.triangles += lap();

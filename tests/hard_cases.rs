@@ -761,7 +761,7 @@ fn a_dented_cube_far_from_the_origin_is_drawn_with_its_depth_test() {
     let src = "[[mesh]]\npath = \"dented.obj\"\ntranslate = [-1e6, 0.0, 0.0]\nrotate = [30.0, 40.0, 0.0]\n\
                [[light]]\ndirection = [-1.0, -1.0, -1.0]\n";
     let scene = Scene::parse_in(src, "dent.toml", Some(&dir)).unwrap();
-    assert!(!scene.meshes[0].shape.closed_convex);
+    assert!(!scene.meshes[0].is_convex());
     let opts = RenderOptions {
         cols: 40,
         rows: 14,
@@ -782,7 +782,7 @@ fn a_dented_cube_far_from_the_origin_is_drawn_with_its_depth_test() {
     // Undented it is convex, far out or not, and the depth test is skipped.
     std::fs::write(dir.join("cube.obj"), cube_obj(0.0, far)).unwrap();
     let cube = Scene::parse_in(&src.replace("dented", "cube"), "cube.toml", Some(&dir)).unwrap();
-    assert!(cube.meshes[0].shape.closed_convex);
+    assert!(cube.meshes[0].is_convex());
     std::fs::remove_dir_all(dir).ok();
 }
 
@@ -861,7 +861,7 @@ fn nan_and_infinity_drop_the_primitive_and_are_counted() {
     }
     // Normals: a mesh with one NaN normal loses exactly the faces using it.
     let mut mesh = rastty::scene::Shape::Cube.mesh(Rgb::WHITE);
-    mesh.normals[0] = Vec3::NAN;
+    mesh.geometry_mut().normals[0] = Vec3::NAN;
     let users = mesh.faces.iter().filter(|f| f.contains(&0)).count() as u64;
     let mut scene = Scene::of_mesh(mesh);
     scene.meshes[0].cull = Cull::None;

@@ -5,7 +5,6 @@
 use std::path::Path;
 
 use proptest::prelude::*;
-use rastty::Rgb;
 use rastty::scene::{Scene, obj, stl};
 
 fn model(name: &str) -> Vec<u8> {
@@ -32,8 +31,8 @@ fn mutate(mut base: Vec<u8>, edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
 
 fn all_loaders(bytes: &[u8]) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/models");
-    let _ = obj::parse(bytes, "fuzz.obj", &dir, Rgb::WHITE);
-    let _ = stl::parse(bytes, "fuzz.stl", Rgb::WHITE);
+    let _ = obj::parse(bytes, "fuzz.obj", &dir);
+    let _ = stl::parse(bytes, "fuzz.stl");
     let _ = Scene::parse(&String::from_utf8_lossy(bytes), "fuzz.toml");
 }
 

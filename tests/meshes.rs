@@ -64,7 +64,8 @@ fn fox() {
 #[test]
 fn fox_wears_its_material_colours() {
     let scene = model("fox.obj");
-    let kd: Vec<Rgb> = scene.meshes[0].face_colors.clone();
+    let mesh = &scene.meshes[0];
+    let kd: Vec<Rgb> = (0..mesh.faces.len()).map(|f| mesh.face_color(f)).collect();
     // fox.mtl's Kd values: brown-black, brown, white-ish and more.
     assert!(kd.contains(&Rgb::from_f32([
         0.564712 * 255.0,

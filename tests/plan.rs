@@ -114,15 +114,16 @@ fn near_convex_mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
     )
         .prop_map(|(shape, c, dent, corner, far, (rx, ry), cull)| {
             let mut m = shape.mesh(c);
-            let target = m.positions[corner.index(m.positions.len())];
+            let g = m.geometry_mut();
+            let target = g.positions[corner.index(g.positions.len())];
             let offset = Vec3::new(far, -0.5 * far, 0.25 * far);
-            for p in &mut m.positions {
+            for p in &mut g.positions {
                 if *p == target {
                     *p *= 1.0 - dent;
                 }
                 *p += offset;
             }
-            m.analyze();
+            g.analyze();
             m.model = rastty::transform::model(Vec3::ONE, Vec3::new(rx, ry, 0.0), Vec3::ZERO)
                 * glam::Mat4::from_translation(-offset);
             m.cull = cull;
@@ -212,7 +213,7 @@ proptest! {
         background in prop::option::of(color()),
         opts in options(),
     ) {
-        let scene = Scene { background, camera, triangles, meshes, lights };
+        let scene = Scene { background, camera, triangles, meshes, lights, ..Scene::default() };
         if let Err(e) = same_both_ways(&scene, &opts) {
             prop_assert!(false, "{}", e);
         }
@@ -258,14 +259,15 @@ fn a_shallow_dent_far_from_the_origin_keeps_the_depth_test() {
     let mut m = Shape::Cube.mesh(Rgb::WHITE);
     let corner = Vec3::splat(0.6);
     let offset = Vec3::new(1e6, 0.0, 0.0);
-    for p in &mut m.positions {
+    let g = m.geometry_mut();
+    for p in &mut g.positions {
         if *p == corner {
             *p *= 0.999;
         }
         *p += offset;
     }
-    m.analyze();
-    assert!(m.shape.closed && !m.shape.closed_convex);
+    g.analyze();
+    assert!(m.closed && !m.is_convex());
     m.model = glam::Mat4::from_translation(-offset);
     let scene = Scene {
         meshes: vec![m],
@@ -284,9 +286,10 @@ fn a_shallow_dent_far_from_the_origin_keeps_the_depth_test() {
     assert!(r.plan().unwrap().depth.run);
     // The same cube undented is convex, however far out.
     let mut cube = Shape::Cube.mesh(Rgb::WHITE);
-    cube.positions.iter_mut().for_each(|p| *p += offset);
-    cube.analyze();
-    assert!(cube.shape.closed_convex);
+    let g = cube.geometry_mut();
+    g.positions.iter_mut().for_each(|p| *p += offset);
+    g.analyze();
+    assert!(cube.is_convex());
 }
 
 fn example(name: &str) -> Scene {

@@ -4,5 +4,5 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let _ = rastty::scene::obj::parse(data, "fuzz.obj", std::path::Path::new("."), rastty::Rgb::WHITE);
+    let _ = rastty::scene::obj::parse(data, "fuzz.obj", std::path::Path::new("."));
 });

@@ -49,18 +49,24 @@
 //! name the file, line and column. Mesh files' own errors name their file
 //! and line.
 
+pub mod file;
 pub mod mesh;
 pub mod obj;
+pub mod polygon;
 pub mod shapes;
 pub mod stl;
 
 use std::path::Path;
 
+use std::sync::Arc;
+
 use glam::{Mat4, Vec3};
+use rustc_hash::FxHashMap;
 use serde::Deserialize;
 use toml::Spanned;
 
-pub use mesh::{Light, Mesh};
+pub use file::Limits;
+pub use mesh::{Geometry, Light, MaterialRun, Mesh};
 pub use shapes::Shape;
 
 use crate::color::Rgb;
@@ -79,6 +85,9 @@ pub struct Scene {
     pub triangles: Vec<Triangle>,
     pub meshes: Vec<Mesh>,
     pub lights: Vec<Light>,
+    /// What loading found but did not draw (non-finite vertices, line
+    /// elements…), one line each, for the user to be told.
+    pub notes: Vec<String>,
 }
 
 /// A triangle and its colouring.
@@ -265,7 +274,7 @@ impl Scene {
     /// A scene of one model, centred and scaled to fit the view, lit from
     /// the upper right: what `rastty spin MODEL` shows.
     pub fn of_mesh(mut mesh: Mesh) -> Scene {
-        mesh.fit_unit_sphere();
+        mesh.geometry_mut().fit_unit_sphere();
         Scene {
             background: None,
             camera: Camera {
@@ -275,6 +284,7 @@ impl Scene {
             triangles: Vec::new(),
             meshes: vec![mesh],
             lights: vec![Light::default()],
+            notes: Vec::new(),
         }
     }
 
@@ -295,26 +305,54 @@ impl Scene {
     /// A model file (`.obj` or `.stl`) or, when `name` is one, a built-in
     /// shape, as [`Scene::of_mesh`].
     pub fn of_model(name: &Path) -> Result<Scene> {
-        Ok(Scene::of_mesh(load_mesh(name, DEFAULT_MESH_COLOR)?))
+        Scene::of_model_within(name, &Limits::default())
     }
 
-    /// Whether `path` names a model rather than a scene file: an `.obj` or
-    /// `.stl` extension, or a built-in shape's name.
-    pub fn is_model(path: &Path) -> bool {
+    /// [`Scene::of_model`], the file within `limits`.
+    pub fn of_model_within(name: &Path, limits: &Limits) -> Result<Scene> {
+        let (geometry, notes) = load_geometry(name, limits)?;
+        let mut scene = Scene::of_mesh(Mesh::of(geometry, DEFAULT_MESH_COLOR));
+        scene.notes = notes;
+        Ok(scene)
+    }
+
+    /// What `path` names, by its extension: a model, a scene, or (without
+    /// one, when no such file exists) a built-in shape.
+    pub fn kind(path: &Path) -> Result<Kind> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        matches!(ext.as_deref(), Some("obj" | "stl"))
-            || (!path.exists() && path.to_str().and_then(Shape::from_name).is_some())
+        match ext.as_deref() {
+            Some("obj" | "stl") => Ok(Kind::Model),
+            Some("toml") => Ok(Kind::Scene),
+            None if !path.exists() && path.to_str().and_then(Shape::from_name).is_some() => {
+                Ok(Kind::Model)
+            }
+            None => Ok(Kind::Scene),
+            Some(other) => Err(Error::Invalid(format!(
+                "{}: rastty does not read .{other} files; it reads models (.obj with its .mtl, .stl), scenes (.toml) and the shapes cube, sphere and torus",
+                path.display()
+            ))),
+        }
     }
 
-    /// A scene file or a model, told apart by [`Scene::is_model`].
+    /// Whether `path` names a model rather than a scene file (see
+    /// [`Scene::kind`]).
+    pub fn is_model(path: &Path) -> bool {
+        matches!(Scene::kind(path), Ok(Kind::Model))
+    }
+
+    /// A scene file or a model, told apart by [`Scene::kind`].
     pub fn open(path: &Path) -> Result<Scene> {
-        if Scene::is_model(path) {
-            Scene::of_model(path)
-        } else {
-            Scene::load(path)
+        Scene::open_within(path, &Limits::default())
+    }
+
+    /// [`Scene::open`], every file within `limits`.
+    pub fn open_within(path: &Path, limits: &Limits) -> Result<Scene> {
+        match Scene::kind(path)? {
+            Kind::Model => Scene::of_model_within(path, limits),
+            Kind::Scene => Scene::load_within(path, limits),
         }
     }
 
@@ -325,13 +363,21 @@ impl Scene {
 
     /// Reads and parses a scene file.
     pub fn load(path: &Path) -> Result<Scene> {
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        Scene::load_within(path, &Limits::default())
+    }
+
+    /// [`Scene::load`], every file within `limits`.
+    pub fn load_within(path: &Path, limits: &Limits) -> Result<Scene> {
+        use std::io::Read;
+        let (mut f, size) = file::open(path, limits)?;
+        let mut bytes = Vec::with_capacity(size as usize);
+        f.read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
         let name = path.display().to_string();
         let src = String::from_utf8(bytes).map_err(|e| {
             let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
             Error::parse_at(&name, &text, e.utf8_error().valid_up_to(), "not UTF-8 text")
         })?;
-        Scene::parse_in(&src, &name, path.parent())
+        Scene::parse_with(&src, &name, path.parent(), limits)
     }
 
     /// Parses a scene from TOML text; `name` is used in error messages.
@@ -342,116 +388,155 @@ impl Scene {
 
     /// Parses a scene whose mesh paths are relative to `dir`.
     pub fn parse_in(src: &str, name: &str, dir: Option<&Path>) -> Result<Scene> {
-        let def: SceneDef = toml::from_str(src).map_err(|e| {
-            let offset = e.span().map_or(0, |s| s.start);
-            Error::parse_at(name, src, offset, e.message().trim_end())
-        })?;
-        let at =
-            |span: std::ops::Range<usize>, msg: String| Error::parse_at(name, src, span.start, msg);
+        Scene::parse_with(src, name, dir, &Limits::default())
+    }
 
-        let camera = match def.camera {
-            None => Camera::default(),
-            Some(c) => {
+    /// Parses a scene whose mesh paths are relative to `dir`, its model
+    /// files within `limits`.
+    ///
+    /// The text is read in chunks of whole tables of about 64 KiB, each
+    /// deserialized on its own, so that memory stays a small multiple of
+    /// the file (a TOML document tree of 200,000 triangles at once is 40
+    /// times its text). A model file named by several meshes, and a shape,
+    /// is loaded once and shared.
+    pub fn parse_with(src: &str, name: &str, dir: Option<&Path>, limits: &Limits) -> Result<Scene> {
+        let mut scene = Scene::default();
+        let mut camera_at: Option<usize> = None;
+        let mut loaded: FxHashMap<std::path::PathBuf, Arc<Geometry>> = FxHashMap::default();
+        for (start, end) in chunks(src, CHUNK) {
+            let text = &src[start..end];
+            let def: SceneDef = toml::from_str(text).map_err(|e| {
+                let offset = start + e.span().map_or(0, |s| s.start);
+                Error::parse_at(name, src, offset, e.message().trim_end())
+            })?;
+            let at = |span: std::ops::Range<usize>, msg: String| {
+                Error::parse_at(name, src, start + span.start, msg)
+            };
+            if let Some(b) = def.background {
+                scene.background = Some(b);
+            }
+            if let Some(c) = def.camera {
                 let span = c.span();
+                if camera_at.is_some() {
+                    return Err(at(span, "a second [camera]: a scene has one".into()));
+                }
+                camera_at = Some(start + span.start);
                 let camera = c.into_inner().into_camera();
                 camera.check().map_err(|m| at(span, m))?;
-                camera
+                scene.camera = camera;
             }
-        };
-        let mut triangles = Vec::with_capacity(def.triangle.len());
-        for t in def.triangle {
-            let span = t.span();
-            let t = t.into_inner();
-            if t.vertices.iter().flatten().any(|c| !c.is_finite()) {
-                return Err(at(span, "triangle vertices must be finite numbers".into()));
+            for t in def.triangle {
+                let span = t.span();
+                let t = t.into_inner();
+                if t.vertices.iter().flatten().any(|c| !c.is_finite()) {
+                    return Err(at(span, "triangle vertices must be finite numbers".into()));
+                }
+                let color = match (t.color, t.colors) {
+                    (Some(_), Some(_)) => {
+                        return Err(at(
+                            span,
+                            "a triangle takes `color` or `colors`, not both".into(),
+                        ));
+                    }
+                    (Some(c), None) => TriangleColor::Flat(c),
+                    (None, Some(c)) => TriangleColor::PerVertex(c),
+                    (None, None) => TriangleColor::Flat(Rgb::WHITE),
+                };
+                scene.triangles.push(Triangle {
+                    vertices: t.vertices.map(Vec3::from),
+                    color,
+                });
             }
-            let color = match (t.color, t.colors) {
-                (Some(_), Some(_)) => {
+            for m in def.mesh {
+                let span = m.span();
+                let m = m.into_inner();
+                let finite = Vec3::from(m.translate).is_finite()
+                    && Vec3::from(m.rotate).is_finite()
+                    && m.scale.vec().is_finite();
+                if !finite {
                     return Err(at(
                         span,
-                        "a triangle takes `color` or `colors`, not both".into(),
+                        "mesh translate, rotate and scale must be finite numbers".into(),
                     ));
                 }
-                (Some(c), None) => TriangleColor::Flat(c),
-                (None, Some(c)) => TriangleColor::PerVertex(c),
-                (None, None) => TriangleColor::Flat(Rgb::WHITE),
-            };
-            triangles.push(Triangle {
-                vertices: t.vertices.map(Vec3::from),
-                color,
-            });
-        }
-        let mut meshes = Vec::with_capacity(def.mesh.len());
-        for m in def.mesh {
-            let span = m.span();
-            let m = m.into_inner();
-            let finite = Vec3::from(m.translate).is_finite()
-                && Vec3::from(m.rotate).is_finite()
-                && m.scale.vec().is_finite();
-            if !finite {
-                return Err(at(
-                    span,
-                    "mesh translate, rotate and scale must be finite numbers".into(),
-                ));
-            }
-            let color = m.color.unwrap_or(DEFAULT_MESH_COLOR);
-            let mut mesh = match (&m.path, &m.shape) {
-                (Some(p), None) => {
-                    let p = dir.map_or_else(|| Path::new(p).to_path_buf(), |d| d.join(p));
-                    load_mesh(&p, color)?
+                let color = m.color.unwrap_or(DEFAULT_MESH_COLOR);
+                let geometry = match (&m.path, &m.shape) {
+                    (Some(p), None) => {
+                        let p = dir.map_or_else(|| Path::new(p).to_path_buf(), |d| d.join(p));
+                        if Scene::kind(&p)? != Kind::Model || p.extension().is_none() {
+                            return Err(at(
+                                span,
+                                format!(
+                                    "{}: a mesh's path names a model file (.obj or .stl)",
+                                    p.display()
+                                ),
+                            ));
+                        }
+                        match loaded.get(&p) {
+                            Some(g) => Arc::clone(g),
+                            None => {
+                                let (g, notes) = load_geometry(&p, limits)?;
+                                scene.notes.extend(notes);
+                                loaded.insert(p, Arc::clone(&g));
+                                g
+                            }
+                        }
+                    }
+                    (None, Some(s)) => Shape::from_name(s)
+                        .ok_or_else(|| {
+                            at(
+                                span.clone(),
+                                format!(
+                                    "unknown shape {s:?}: expected \"cube\", \"sphere\" or \"torus\""
+                                ),
+                            )
+                        })?
+                        .geometry(),
+                    _ => {
+                        return Err(at(
+                            span,
+                            "a mesh takes `path` or `shape`, exactly one".into(),
+                        ));
+                    }
+                };
+                let mut mesh = Mesh::of(geometry, color);
+                mesh.model =
+                    transform::model(m.scale.vec(), Vec3::from(m.rotate), Vec3::from(m.translate));
+                if let Some(cull) = m.cull {
+                    mesh.cull = cull.into();
                 }
-                (None, Some(s)) => Shape::from_name(s)
-                    .ok_or_else(|| {
-                        at(
-                            span.clone(),
-                            format!(
-                                "unknown shape {s:?}: expected \"cube\", \"sphere\" or \"torus\""
-                            ),
-                        )
-                    })?
-                    .mesh(color),
-                _ => {
+                scene.meshes.push(mesh);
+            }
+            for l in def.light {
+                let span = l.span();
+                if scene.lights.len() == crate::shade::MAX_LIGHTS {
                     return Err(at(
                         span,
-                        "a mesh takes `path` or `shape`, exactly one".into(),
+                        format!("at most {} lights", crate::shade::MAX_LIGHTS),
                     ));
                 }
-            };
-            mesh.model =
-                transform::model(m.scale.vec(), Vec3::from(m.rotate), Vec3::from(m.translate));
-            mesh.cull = m.cull.into();
-            meshes.push(mesh);
-        }
-        if let Some(extra) = def.light.get(crate::shade::MAX_LIGHTS) {
-            return Err(at(
-                extra.span(),
-                format!("at most {} lights", crate::shade::MAX_LIGHTS),
-            ));
-        }
-        let mut lights = Vec::with_capacity(def.light.len());
-        for l in def.light {
-            let span = l.span();
-            let l = l.into_inner();
-            let d = Vec3::from(l.direction);
-            if !d.is_finite() || d.length_squared() == 0.0 {
-                return Err(at(
-                    span,
-                    "light direction must be a finite, non-zero vector".into(),
-                ));
+                let l = l.into_inner();
+                let d = Vec3::from(l.direction);
+                if !d.is_finite() || d.length_squared() == 0.0 {
+                    return Err(at(
+                        span,
+                        "light direction must be a finite, non-zero vector".into(),
+                    ));
+                }
+                if !(0.0..=1.0).contains(&l.ambient) {
+                    return Err(at(
+                        span,
+                        format!("light ambient must be between 0 and 1, not {}", l.ambient),
+                    ));
+                }
+                scene.lights.push(Light {
+                    direction: d.normalize(),
+                    color: l.color,
+                    ambient: l.ambient,
+                });
             }
-            if !(0.0..=1.0).contains(&l.ambient) {
-                return Err(at(
-                    span,
-                    format!("light ambient must be between 0 and 1, not {}", l.ambient),
-                ));
-            }
-            lights.push(Light {
-                direction: d.normalize(),
-                color: l.color,
-                ambient: l.ambient,
-            });
         }
-        if triangles.is_empty() && meshes.is_empty() {
+        if scene.triangles.is_empty() && scene.meshes.is_empty() {
             return Err(Error::parse_at(
                 name,
                 src,
@@ -459,33 +544,144 @@ impl Scene {
                 "nothing to draw: no [[triangle]] or [[mesh]]",
             ));
         }
-        Ok(Scene {
-            background: def.background,
-            camera,
-            triangles,
-            meshes,
-            lights,
-        })
+        Ok(scene)
     }
 }
 
-/// Loads a mesh file by its extension, or a built-in shape by its name.
-pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
+/// What a path names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A model file or a built-in shape.
+    Model,
+    /// A scene file.
+    Scene,
+}
+
+/// About how much scene text is deserialized at once.
+const CHUNK: usize = 64 << 10;
+
+/// The scene text cut into runs of whole top-level tables of about `size`
+/// bytes: `(start, end)` offsets. A table starts at a `[` that begins a
+/// line outside any string or array; strings (basic, literal, multi-line),
+/// comments, arrays and inline tables are stepped over, so a `[` inside
+/// one never starts a table.
+fn chunks(src: &str, size: usize) -> Vec<(usize, usize)> {
+    let b = src.as_bytes();
+    let mut starts = vec![0usize];
+    let (mut i, mut depth, mut line_start) = (0usize, 0usize, true);
+    let find = |from: usize, pat: &[u8]| {
+        b[from..]
+            .windows(pat.len())
+            .position(|w| w == pat)
+            .map_or(b.len(), |k| from + k + pat.len())
+    };
+    while i < b.len() {
+        let c = b[i];
+        match c {
+            b'\n' => {
+                line_start = true;
+                i += 1;
+                continue;
+            }
+            b' ' | b'\t' | b'\r' => {
+                i += 1;
+                continue;
+            }
+            b'#' => {
+                i = b[i..]
+                    .iter()
+                    .position(|&c| c == b'\n')
+                    .map_or(b.len(), |k| i + k);
+                continue;
+            }
+            b'"' if b[i..].starts_with(b"\"\"\"") => {
+                // To the closing """, past escaped quotes.
+                let mut j = i + 3;
+                loop {
+                    j = find(j, b"\"\"\"");
+                    if j >= b.len() || b[j - 4] != b'\\' {
+                        break;
+                    }
+                }
+                i = j;
+            }
+            b'\'' if b[i..].starts_with(b"\'\'\'") => i = find(i + 3, b"\'\'\'"),
+            b'"' => {
+                let mut j = i + 1;
+                while j < b.len() && b[j] != b'"' && b[j] != b'\n' {
+                    j += if b[j] == b'\\' { 2 } else { 1 };
+                }
+                i = j + 1;
+            }
+            b'\'' => {
+                i = b[i + 1..]
+                    .iter()
+                    .position(|&c| c == b'\'' || c == b'\n')
+                    .map_or(b.len(), |k| i + 1 + k + 1);
+            }
+            b'[' if line_start && depth == 0 => {
+                let line = src[..i].rfind('\n').map_or(0, |k| k + 1);
+                starts.push(line);
+                // The header's own brackets.
+                i = b[i..]
+                    .iter()
+                    .position(|&c| c == b'\n')
+                    .map_or(b.len(), |k| i + k);
+            }
+            b'[' | b'{' => {
+                depth += 1;
+                i += 1;
+            }
+            b']' | b'}' => {
+                depth = depth.saturating_sub(1);
+                i += 1;
+            }
+            _ => i += 1,
+        }
+        line_start = false;
+    }
+    starts.dedup();
+    let mut out = Vec::new();
+    let mut from = 0;
+    for (k, &s) in starts.iter().enumerate().skip(1) {
+        if s - from >= size {
+            out.push((from, s));
+            from = s;
+        }
+        let _ = k;
+    }
+    out.push((from, src.len()));
+    out
+}
+
+/// Loads a model file by its extension, or a built-in shape by its name:
+/// its geometry, and what the loader has to tell.
+pub fn load_geometry(path: &Path, limits: &Limits) -> Result<(Arc<Geometry>, Vec<String>)> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("obj") => obj::load(path, color),
-        Some("stl") => stl::load(path, color),
+    let loaded = match ext.as_deref() {
+        Some("obj") => obj::load(path, limits)?,
+        Some("stl") => stl::load(path, limits)?,
         _ => match path.to_str().and_then(Shape::from_name) {
-            Some(shape) if !path.exists() => Ok(shape.mesh(color)),
-            _ => Err(Error::Invalid(format!(
-                "{}: not a model: expected a .obj or .stl file, or one of cube, sphere, torus",
-                path.display()
-            ))),
+            Some(shape) if !path.exists() => return Ok((shape.geometry(), Vec::new())),
+            _ => {
+                return Err(Error::Invalid(format!(
+                    "{}: not a model: expected a .obj or .stl file, or one of cube, sphere, torus",
+                    path.display()
+                )));
+            }
         },
-    }
+    };
+    Ok((Arc::new(loaded.geometry), loaded.notes))
+}
+
+/// Loads a mesh file by its extension, or a built-in shape by its name, in
+/// `color` where the file gives none.
+pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
+    let (geometry, _) = load_geometry(path, &Limits::default())?;
+    Ok(Mesh::of(geometry, color))
 }
 
 #[derive(Deserialize)]
@@ -513,8 +709,7 @@ struct MeshDef {
     rotate: [f32; 3],
     #[serde(default)]
     scale: ScaleDef,
-    #[serde(default)]
-    cull: CullDef,
+    cull: Option<CullDef>,
 }
 
 /// `scale = 2.0` or `scale = [1.0, 2.0, 1.0]`.
@@ -540,11 +735,10 @@ impl ScaleDef {
     }
 }
 
-#[derive(Deserialize, Clone, Copy, Default)]
+#[derive(Deserialize, Clone, Copy)]
 #[serde(rename_all = "lowercase")]
 enum CullDef {
     None,
-    #[default]
     Back,
     Front,
 }

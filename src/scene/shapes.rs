@@ -2,9 +2,11 @@
 
 use std::f32::consts::TAU;
 
+use std::sync::{Arc, OnceLock};
+
 use glam::Vec3;
 
-use super::mesh::Mesh;
+use super::mesh::{Geometry, Mesh};
 use crate::color::Rgb;
 
 /// A built-in shape.
@@ -35,23 +37,37 @@ impl Shape {
         Shape::ALL.into_iter().find(|s| s.name() == name)
     }
 
+    /// A mesh of the shape in `color`. The geometry is built once and
+    /// shared by every mesh of the shape.
     pub fn mesh(self, color: Rgb) -> Mesh {
+        Mesh::of(self.geometry(), color)
+    }
+
+    /// The shape's geometry, built on first use.
+    pub fn geometry(self) -> Arc<Geometry> {
+        static BUILT: [OnceLock<Arc<Geometry>>; 3] =
+            [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+        let i = Shape::ALL.iter().position(|&s| s == self).unwrap_or(0);
+        Arc::clone(BUILT[i].get_or_init(|| Arc::new(self.build())))
+    }
+
+    fn build(self) -> Geometry {
         let (positions, faces) = match self {
             Shape::Cube => cube(),
-            Shape::Sphere => grid(48, 24, |u, v| {
+            Shape::Sphere => grid(48, 24, false, |u, v| {
                 let (theta, phi) = (u * TAU, v * std::f32::consts::PI);
                 // Exactly on the poles (sin π is not 0 in f32), so that the
                 // pole triangles are exactly degenerate and dropped below.
                 let ring = if v == 0.0 || v == 1.0 { 0.0 } else { phi.sin() };
                 Vec3::new(ring * theta.cos(), -phi.cos(), -ring * theta.sin())
             }),
-            Shape::Torus => grid(64, 32, |u, v| {
+            Shape::Torus => grid(64, 32, true, |u, v| {
                 let (theta, phi) = (u * TAU, v * TAU);
                 let r = 0.7 + 0.3 * phi.cos();
                 Vec3::new(r * theta.cos(), 0.3 * phi.sin(), -r * theta.sin())
             }),
         };
-        Mesh::new(self.name(), positions, faces, color)
+        Geometry::new(self.name(), positions, faces)
     }
 }
 
@@ -85,19 +101,28 @@ fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
     (positions, faces)
 }
 
-/// A `nu × nv` grid of quads wrapped by `f(u, v)` over [0,1)², with the seam
+/// A `nu × nv` grid of quads wrapped by `f(u, v)` over [0,1)², with the seams
 /// (and, for the sphere, the poles) sharing vertices. Each quad is cut
 /// along the diagonal that folds outwards: the four corners, rounded to
 /// f32, are seldom exactly coplanar, and the other diagonal would leave a
 /// dent a millionth deep, enough for the sphere not to be convex.
-fn grid(nu: u32, nv: u32, f: impl Fn(f32, f32) -> Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+fn grid(
+    nu: u32,
+    nv: u32,
+    wrap_v: bool,
+    f: impl Fn(f32, f32) -> Vec3,
+) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let mut positions = Vec::new();
-    for j in 0..=nv {
+    let rings = if wrap_v { nv } else { nv + 1 };
+    for j in 0..rings {
         for i in 0..nu {
             positions.push(f(i as f32 / nu as f32, j as f32 / nv as f32));
         }
     }
-    let at = |i: u32, j: u32| j * nu + i % nu;
+    // The seams share vertices: u always, v for a torus (its last ring is
+    // its first: computing it again would round sin 2π to 1.7e-7, not 0,
+    // and leave a crack of a seam along the outer equator).
+    let at = |i: u32, j: u32| (j % rings) * nu + i % nu;
     let mut faces = Vec::new();
     for j in 0..nv {
         for i in 0..nu {

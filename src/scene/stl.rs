@@ -1,99 +1,360 @@
-//! STL, binary and ASCII, read with `stl_io` (which merges the corners that
-//! share a position, so the mesh is indexed and its normals smooth).
+//! STL, binary and ASCII, read in one pass.
 //!
-//! stl_io's errors carry no line number; for ASCII files the facet where
-//! reading stopped is found by reading the facets one by one, and its line
-//! is reported.
+//! **Which kind.** A binary file is an 80-byte header, a facet count and 50
+//! bytes a facet, so its size says what it is: a file of exactly `84 + 50·n`
+//! bytes, `n` its count, is binary even when its header starts with
+//! `solid` (many exporters write that); anything else that starts with
+//! `solid` is ASCII. The size is checked before the facets are read, so a
+//! truncated file is an error at once and a facet count is never trusted as
+//! an allocation.
+//!
+//! **Welding.** An STL facet lists its three corners by position; corners
+//! at the same position become one vertex (a hash of the position's bits),
+//! so the mesh is indexed, closed where the model is, and smooth where its
+//! faces meet at less than the crease angle.
+//!
+//! ASCII errors name the line and column; the name after `solid` is
+//! optional, and facet normals are read and checked but not used (they are
+//! recomputed from the corners, which is what the winding says anyway).
 
-use std::io::Cursor;
+use std::io::Read;
 use std::path::Path;
 
 use glam::Vec3;
+use rustc_hash::FxHashMap;
 
-use super::mesh::Mesh;
-use crate::color::Rgb;
+use super::file::{self, Limits, Lines};
+use super::mesh::Geometry;
+use super::obj::Loaded;
 use crate::error::{Error, Result};
 
-/// Loads an STL file; every face gets `color`.
-pub fn load(path: &Path, color: Rgb) -> Result<Mesh> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    parse(&bytes, &path.display().to_string(), color)
+/// Loads an STL file.
+pub fn load(path: &Path, limits: &Limits) -> Result<Loaded> {
+    let (mut file, size) = file::open(path, limits)?;
+    let name = path.display().to_string();
+    let mut head = [0u8; 84];
+    let n = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, e))?;
+    read(&head[..n], file, size, &name)
 }
 
 /// Parses STL bytes, binary or ASCII; `name` is used in messages.
-pub fn parse(bytes: &[u8], name: &str, color: Rgb) -> Result<Mesh> {
-    let name = name.to_string();
-    if bytes.is_empty() {
-        return Err(Error::Parse {
-            path: name,
-            line: 1,
-            column: 1,
-            message: "empty file".into(),
-        });
-    }
-    let mesh = stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| locate(&name, bytes, e))?;
-    let positions: Vec<Vec3> = mesh.vertices.iter().map(|v| Vec3::from(v.0)).collect();
-    let faces: Vec<[u32; 3]> = mesh
-        .faces
-        .iter()
-        .map(|f| f.vertices.map(|i| i as u32))
-        .collect();
-    if faces.is_empty() {
-        return Err(Error::Parse {
-            path: name,
-            line: 1,
-            column: 1,
-            message: "no facets in the file".into(),
-        });
-    }
-    Ok(Mesh::new(name, positions, faces, color))
+pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
+    let n = bytes.len().min(84);
+    read(&bytes[..n], &bytes[n..], bytes.len() as u64, name)
 }
 
-/// An stl_io error, with the line of the failing facet for ASCII files.
-fn locate(name: &str, bytes: &[u8], e: std::io::Error) -> Error {
-    let ascii = bytes.starts_with(b"solid") && std::str::from_utf8(bytes).is_ok();
-    let message = match e.kind() {
-        std::io::ErrorKind::UnexpectedEof => {
-            "the file ends in the middle of a facet (truncated?)".to_string()
+fn read_up_to(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut n = 0;
+    while n < buf.len() {
+        match r.read(&mut buf[n..])? {
+            0 => break,
+            k => n += k,
         }
-        _ => e.to_string(),
+    }
+    Ok(n)
+}
+
+fn error(name: &str, line: usize, column: usize, message: impl Into<String>) -> Error {
+    Error::Parse {
+        path: name.to_string(),
+        line,
+        column,
+        message: message.into(),
+    }
+}
+
+/// `head` is the file's first 84 bytes (or all of it), `rest` the others.
+fn read(head: &[u8], rest: impl Read, size: u64, name: &str) -> Result<Loaded> {
+    if size == 0 {
+        return Err(error(name, 1, 1, "empty file"));
+    }
+    let count =
+        (head.len() == 84).then(|| u32::from_le_bytes([head[80], head[81], head[82], head[83]]));
+    let binary_size = count.map(|c| 84 + 50 * c as u64);
+    if binary_size == Some(size) || !head.starts_with(b"solid") {
+        return binary(head, rest, size, name, count);
+    }
+    ascii(head.chain(rest), name)
+}
+
+/// Corners welded by position into an indexed mesh.
+struct Welder {
+    positions: Vec<Vec3>,
+    ids: FxHashMap<[u32; 3], u32>,
+    faces: Vec<[u32; 3]>,
+}
+
+impl Welder {
+    fn new() -> Welder {
+        Welder {
+            positions: Vec::new(),
+            ids: FxHashMap::default(),
+            faces: Vec::new(),
+        }
+    }
+
+    fn facet(&mut self, corners: [Vec3; 3]) {
+        let f = corners.map(|p| {
+            let next = self.positions.len() as u32;
+            let id = *self
+                .ids
+                .entry(p.to_array().map(|v| (v + 0.0).to_bits()))
+                .or_insert(next);
+            if id == next {
+                self.positions.push(p);
+            }
+            id
+        });
+        self.faces.push(f);
+    }
+
+    fn finish(self, name: &str, dropped: usize) -> Result<Loaded> {
+        if self.faces.is_empty() {
+            let why = if dropped > 0 {
+                "no facet left: every facet has a corner that is not a finite number"
+            } else {
+                "no facets in the file"
+            };
+            return Err(error(name, 1, 1, why));
+        }
+        let notes = if dropped > 0 {
+            vec![format!(
+                "{name}: {dropped} facets have a corner that is not a finite number and are not drawn"
+            )]
+        } else {
+            Vec::new()
+        };
+        Ok(Loaded {
+            geometry: Geometry::new(name, self.positions, self.faces),
+            notes,
+        })
+    }
+}
+
+fn binary(
+    head: &[u8],
+    mut rest: impl Read,
+    size: u64,
+    name: &str,
+    count: Option<u32>,
+) -> Result<Loaded> {
+    let Some(count) = count else {
+        return Err(error(
+            name,
+            1,
+            1,
+            "binary STL: the file ends in its 84-byte header (truncated?)",
+        ));
     };
-    if !ascii {
-        return Error::Parse {
-            path: name.into(),
-            line: 1,
-            column: 1,
-            message: format!("binary STL: {message}"),
+    let want = 84 + 50 * count as u64;
+    if size != want {
+        return Err(error(
+            name,
+            1,
+            1,
+            format!(
+                "binary STL: its header says {count} facets ({want} bytes), but the file has {size} bytes (truncated?)"
+            ),
+        ));
+    }
+    debug_assert_eq!(head.len(), 84);
+    let mut w = Welder::new();
+    let mut dropped = 0;
+    let mut buf = vec![0u8; 50 * 1024];
+    let mut left = count as usize;
+    while left > 0 {
+        let k = left.min(1024);
+        rest.read_exact(&mut buf[..50 * k])
+            .map_err(|e| error(name, 1, 1, format!("binary STL: {e}")))?;
+        for facet in buf[..50 * k].chunks_exact(50) {
+            let f =
+                |o: usize| f32::from_le_bytes([facet[o], facet[o + 1], facet[o + 2], facet[o + 3]]);
+            let corner = |k: usize| Vec3::new(f(12 + 12 * k), f(16 + 12 * k), f(20 + 12 * k));
+            let corners = [corner(0), corner(1), corner(2)];
+            if corners.iter().all(|p| p.is_finite()) {
+                w.facet(corners);
+            } else {
+                dropped += 1;
+            }
+        }
+        left -= k;
+    }
+    w.finish(name, dropped)
+}
+
+/// What the ASCII reader expects next.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Want {
+    Solid,
+    Facet,
+    OuterLoop,
+    Vertex(usize),
+    EndLoop,
+    EndFacet,
+    Done,
+}
+
+fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
+    let mut lines = Lines::new(src);
+    let mut w = Welder::new();
+    let mut dropped = 0;
+    let mut want = Want::Solid;
+    let mut corners = [Vec3::ZERO; 3];
+    loop {
+        let (n, line) = match lines.next_line() {
+            Ok(Some(next)) => next,
+            Ok(None) => break,
+            Err((n, e)) => return Err(error(name, n, 1, e)),
+        };
+        let mut words = file::words(line);
+        let Some((keyword, kcol)) = words.next() else {
+            continue;
+        };
+        let at = |offset: usize, msg: String| error(name, n, file::column(line, offset), msg);
+        let numbers =
+            |words: &mut dyn Iterator<Item = (&[u8], usize)>, what: &str| -> Result<Vec3> {
+                let mut v = [0.0f32; 3];
+                for (k, slot) in v.iter_mut().enumerate() {
+                    let Some((word, col)) = words.next() else {
+                        return Err(at(kcol, format!("`{what}` needs 3 numbers, found {k}")));
+                    };
+                    *slot = fast_float2::parse::<f32, _>(word).map_err(|_| {
+                        at(
+                            col,
+                            format!(
+                                "`{what}`: {:?} is not a number",
+                                String::from_utf8_lossy(word)
+                            ),
+                        )
+                    })?;
+                }
+                Ok(Vec3::from(v))
+            };
+        let mut words = words;
+        want = match (want, keyword) {
+            (Want::Solid, b"solid") => Want::Facet,
+            (Want::Facet, b"facet") => {
+                match words.next() {
+                    Some((b"normal", _)) => {
+                        numbers(&mut words, "facet normal")?;
+                    }
+                    other => {
+                        return Err(at(
+                            other.map_or(kcol, |o| o.1),
+                            "expected `facet normal nx ny nz`".into(),
+                        ));
+                    }
+                }
+                Want::OuterLoop
+            }
+            (Want::Facet, b"endsolid") => Want::Done,
+            (Want::OuterLoop, b"outer") => {
+                if !matches!(words.next(), Some((b"loop", _))) {
+                    return Err(at(kcol, "expected `outer loop`".into()));
+                }
+                Want::Vertex(0)
+            }
+            (Want::Vertex(k), b"vertex") => {
+                corners[k] = numbers(&mut words, "vertex")?;
+                if k == 2 {
+                    Want::EndLoop
+                } else {
+                    Want::Vertex(k + 1)
+                }
+            }
+            (Want::EndLoop, b"endloop") => Want::EndFacet,
+            (Want::EndFacet, b"endfacet") => {
+                if corners.iter().all(|p| p.is_finite()) {
+                    w.facet(corners);
+                } else {
+                    dropped += 1;
+                }
+                Want::Facet
+            }
+            (Want::Done, _) => {
+                // A second solid in the same file.
+                if keyword == b"solid" {
+                    Want::Facet
+                } else {
+                    Want::Done
+                }
+            }
+            (want, _) => {
+                let expected = match want {
+                    Want::Solid => "`solid`",
+                    Want::Facet => "`facet` or `endsolid`",
+                    Want::OuterLoop => "`outer loop`",
+                    Want::Vertex(_) => "`vertex`",
+                    Want::EndLoop => "`endloop`",
+                    Want::EndFacet => "`endfacet`",
+                    Want::Done => unreachable!(),
+                };
+                return Err(at(
+                    kcol,
+                    format!(
+                        "expected {expected}, found {:?}",
+                        String::from_utf8_lossy(keyword)
+                    ),
+                ));
+            }
         };
     }
-    // Count the facets read before the error, then find that facet's line.
-    let good = stl_io::create_stl_reader(&mut Cursor::new(bytes))
-        .map(|it| it.take_while(|t| t.is_ok()).count())
-        .unwrap_or(0);
-    let text = std::str::from_utf8(bytes).unwrap_or("");
-    let facet = text
-        .match_indices("facet")
-        .filter(|(i, _)| !text[..*i].ends_with("end"))
-        .nth(good)
-        .map_or(0, |(i, _)| i);
-    // Within the facet, the first line with a number that does not parse.
-    let mut offset = facet;
-    for line in text[facet..].split_inclusive('\n') {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        let numbers = match words.as_slice() {
-            ["vertex", rest @ ..] | ["facet", "normal", rest @ ..] => rest,
-            _ => &[],
-        };
-        if numbers
-            .iter()
-            .any(|w| w.parse::<f32>().map_or(true, |v| !v.is_finite()))
-        {
-            return Error::parse_at(name, text, offset, format!("{message}: {:?}", line.trim()));
-        }
-        if words.first() == Some(&"endfacet") {
-            break;
-        }
-        offset += line.len();
+    if !matches!(want, Want::Facet | Want::Done) {
+        return Err(error(
+            name,
+            lines.number.max(1),
+            1,
+            "the file ends in the middle of a facet (truncated?)",
+        ));
     }
-    Error::parse_at(name, text, facet, message)
+    w.finish(name, dropped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FACET: &str = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+
+    #[test]
+    fn ascii_with_or_without_a_name_and_binary_starting_with_solid() {
+        for head in ["solid\n", "solid cube\n", "solid  \n"] {
+            let src = format!("{head}{FACET}endsolid\n");
+            let m = parse(src.as_bytes(), "t.stl").unwrap();
+            assert_eq!(m.geometry.faces.len(), 1);
+        }
+        // A binary file whose header starts with "solid".
+        let mut bin = b"solid from an exporter that writes that".to_vec();
+        bin.resize(80, b' ');
+        bin.extend(1u32.to_le_bytes());
+        for v in [
+            0.0f32, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+        ] {
+            bin.extend(v.to_le_bytes());
+        }
+        bin.extend([0, 0]);
+        let m = parse(&bin, "t.stl").unwrap();
+        assert_eq!(m.geometry.faces.len(), 1);
+    }
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let e = |s: &str| parse(s.as_bytes(), "t.stl").unwrap_err().to_string();
+        assert_eq!(
+            e("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n"),
+            "t.stl:4:10: `vertex`: \"zero\" is not a number"
+        );
+        assert_eq!(
+            e("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
+            "t.stl:4:1: the file ends in the middle of a facet (truncated?)"
+        );
+        let mut bin = vec![0u8; 80];
+        bin.extend(1000u32.to_le_bytes());
+        assert!(
+            parse(&bin, "t.stl")
+                .unwrap_err()
+                .to_string()
+                .contains("its header says 1000 facets (50084 bytes), but the file has 84 bytes")
+        );
+    }
 }
