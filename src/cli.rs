@@ -55,9 +55,8 @@ pub struct BenchArgs {
 
 #[derive(Args, Debug, Default)]
 pub struct RenderArgs {
-    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
-    /// sphere, torus); without it, the built-in default scene.
-    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub input: InputArgs,
     #[command(flatten)]
     pub view: ViewArgs,
     /// After the frame, print the plan to stderr: each stage, run or
@@ -68,9 +67,8 @@ pub struct RenderArgs {
 
 #[derive(Args, Debug, Default)]
 pub struct SpinArgs {
-    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
-    /// sphere, torus); without it, the built-in default scene.
-    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub input: InputArgs,
     #[command(flatten)]
     pub view: ViewArgs,
     /// The world axis to turn about
@@ -94,6 +92,18 @@ pub struct SpinArgs {
     /// checks, within 150 ms, and falls back from modes it cannot draw)
     #[arg(long)]
     pub no_probe: bool,
+}
+
+/// What is drawn.
+#[derive(Args, Debug, Default)]
+pub struct InputArgs {
+    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
+    /// sphere, torus); without it, the built-in default scene.
+    pub scene: Option<PathBuf>,
+    /// The largest scene or model file read, in bytes or with a unit (K, M,
+    /// G, T: powers of 1024) [default: 1G]
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_file_size: Option<u64>,
 }
 
 /// How a frame is laid out and drawn.
@@ -199,6 +209,27 @@ fn parse_angle(s: &str) -> Result<f32, String> {
     } else {
         Err(format!("{s} is not a finite angle"))
     }
+}
+
+/// A size in bytes: digits with an optional unit K, M, G or T (powers of
+/// 1024; `KiB`, `kb` and the like are read the same).
+fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let digits = t.bytes().take_while(u8::is_ascii_digit).count();
+    let (number, unit) = t.split_at(digits);
+    let shift = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 0,
+        "k" | "kb" | "kib" => 10,
+        "m" | "mb" | "mib" => 20,
+        "g" | "gb" | "gib" => 30,
+        "t" | "tb" | "tib" => 40,
+        _ => return Err(format!("{s:?} is not a size (like 4096, 512M or 4G)")),
+    };
+    let n: u64 = number
+        .parse()
+        .map_err(|_| format!("{s:?} is not a size (like 4096, 512M or 4G)"))?;
+    n.checked_mul(1 << shift)
+        .ok_or_else(|| format!("{s} is too large"))
 }
 
 fn parse_aspect(s: &str) -> Result<f32, String> {

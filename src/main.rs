@@ -109,15 +109,25 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     Ok(())
 }
 
-fn scene(path: Option<&std::path::Path>) -> rastty::Result<Scene> {
-    match path {
-        Some(p) => Scene::open(p),
-        None => Ok(rastty::default_scene()),
+/// The scene to draw; what the loaders read but cannot draw is said on
+/// stderr.
+fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
+    let mut limits = rastty::scene::Limits::default();
+    if let Some(max) = input.max_file_size {
+        limits.max_bytes = max;
     }
+    let scene = match &input.scene {
+        Some(p) => Scene::open_within(p, &limits)?,
+        None => rastty::default_scene(),
+    };
+    for note in &scene.notes {
+        eprintln!("note: {note}");
+    }
+    Ok(scene)
 }
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
-    let scene = scene(args.scene.as_deref())?;
+    let scene = scene(&args.input)?;
     let opts = options(&args.view, 1);
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
@@ -138,7 +148,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
 }
 
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
-    let scene = scene(args.scene.as_deref())?;
+    let scene = scene(&args.input)?;
     let opts = options(&args.view, 0);
     let spin = Spin {
         axis: args.axis,

@@ -10,7 +10,7 @@
 //! allocation sized by the file.
 
 use std::fs::File;
-use std::io::{BufRead, BufReader, Read};
+use std::io::Read;
 
 use std::path::Path;
 
@@ -85,15 +85,17 @@ pub fn human(n: u64) -> String {
 
 /// A text file's lines, one at a time, each without its line ending; a
 /// UTF-8 byte order mark at the start is skipped. A line is handed out
-/// straight from the reader's 64 KiB buffer (found with SIMD `memchr`);
-/// only a line that straddles two reads is copied.
+/// straight from a 64 KiB buffer (its end found with SIMD `memchr`); the
+/// buffer grows only for a line longer than itself, up to [`MAX_LINE`].
 pub struct Lines<R> {
-    reader: BufReader<R>,
-    /// Bytes of the reader's buffer handed out as the last line, to
-    /// consume before the next.
-    used: usize,
-    /// A line that straddled two reads.
+    reader: R,
     buf: Vec<u8>,
+    /// The bytes read and not yet handed out: `buf[start..end]`.
+    start: usize,
+    end: usize,
+    /// Where the search for the next line ending resumes.
+    scanned: usize,
+    eof: bool,
     /// The number of the last line (from 1).
     pub number: usize,
 }
@@ -101,9 +103,12 @@ pub struct Lines<R> {
 impl<R: Read> Lines<R> {
     pub fn new(reader: R) -> Lines<R> {
         Lines {
-            reader: BufReader::with_capacity(64 << 10, reader),
-            used: 0,
-            buf: Vec::new(),
+            reader,
+            buf: vec![0; 64 << 10],
+            start: 0,
+            end: 0,
+            scanned: 0,
+            eof: false,
             number: 0,
         }
     }
@@ -113,86 +118,280 @@ impl<R: Read> Lines<R> {
     /// a message, for the caller to place.
     #[allow(clippy::type_complexity)]
     pub fn next_line(&mut self) -> std::result::Result<Option<(usize, &[u8])>, (usize, String)> {
-        self.reader.consume(std::mem::take(&mut self.used));
         let number = self.number + 1;
-        let io = |e: std::io::Error| (number, e.to_string());
-        let avail = self.reader.fill_buf().map_err(io)?;
-        if avail.is_empty() {
-            return Ok(None);
-        }
-        self.number = number;
-        let whole = match memchr::memchr(b'\n', avail) {
-            Some(k) => {
-                // The common case: the line is in the buffer.
-                self.used = k + 1;
-                None
+        let (from, to) = loop {
+            let unread = &self.buf[self.scanned..self.end];
+            if let Some(k) = memchr::memchr(b'\n', unread) {
+                let line = (self.start, self.scanned + k);
+                self.start = line.1 + 1;
+                self.scanned = self.start;
+                break line;
             }
-            None => {
-                // Straddling: gather it.
-                self.buf.clear();
-                loop {
-                    let avail = self.reader.fill_buf().map_err(io)?;
-                    if avail.is_empty() {
-                        break;
-                    }
-                    let (take, end) = match memchr::memchr(b'\n', avail) {
-                        Some(k) => (k + 1, true),
-                        None => (avail.len(), false),
-                    };
-                    self.buf.extend_from_slice(&avail[..take]);
-                    self.reader.consume(take);
-                    if self.buf.len() > MAX_LINE {
-                        return Err((
-                            number,
-                            format!("the line is longer than {}", human(MAX_LINE as u64)),
-                        ));
-                    }
-                    if end {
-                        break;
-                    }
+            if self.eof {
+                if self.start == self.end {
+                    return Ok(None);
                 }
-                Some(())
+                let line = (self.start, self.end);
+                self.start = self.end;
+                self.scanned = self.end;
+                break line;
             }
+            self.fill().map_err(|e| (number, e))?;
         };
-        let mut line = match whole {
-            None => &self.reader.buffer()[..self.used],
-            Some(()) => self.buf.as_slice(),
-        };
+        self.number = number;
+        let mut line = &self.buf[from..to];
         if number == 1 {
             line = line.strip_prefix(b"\xef\xbb\xbf").unwrap_or(line);
         }
-        while let [rest @ .., b'\n' | b'\r'] = line {
+        if let [rest @ .., b'\r'] = line {
             line = rest;
         }
         Ok(Some((number, line)))
     }
+
+    /// Reads more: the unread bytes moved to the front, the buffer doubled
+    /// if they fill it.
+    fn fill(&mut self) -> std::result::Result<(), String> {
+        let unread = self.end - self.start;
+        self.buf.copy_within(self.start..self.end, 0);
+        self.scanned -= self.start;
+        (self.start, self.end) = (0, unread);
+        if unread == self.buf.len() {
+            if unread > MAX_LINE {
+                return Err(format!(
+                    "the line is longer than {}",
+                    human(MAX_LINE as u64)
+                ));
+            }
+            self.buf.resize(unread * 2, 0);
+        }
+        loop {
+            match self.reader.read(&mut self.buf[self.end..]) {
+                Ok(0) => self.eof = true,
+                Ok(n) => self.end += n,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e.to_string()),
+            }
+            return Ok(());
+        }
+    }
 }
 
-/// The words of a line up to a `#` comment, with the byte offset where
-/// each starts (for [`column`], when an error needs it). One pass over the
-/// bytes; words are separated by spaces and control characters (tabs, a
-/// stray carriage return).
-pub fn words(line: &[u8]) -> impl Iterator<Item = (&[u8], usize)> {
-    let mut i = 0;
-    let mut done = false;
-    std::iter::from_fn(move || {
-        if done {
+/// Whether `b` separates words: every control character and the space
+/// (tabs, a stray carriage return), in one compare.
+#[inline]
+fn blank(b: u8) -> bool {
+    b <= b' '
+}
+
+/// A cursor over one line: its words, numbers and indices, taken in one
+/// pass over the bytes, up to a `#` comment. Each item comes with the byte
+/// offset where it starts (for [`column`], when an error needs it).
+#[derive(Clone, Copy)]
+pub struct Cursor<'l> {
+    line: &'l [u8],
+    pos: usize,
+}
+
+impl<'l> Cursor<'l> {
+    pub fn new(line: &'l [u8]) -> Cursor<'l> {
+        Cursor { line, pos: 0 }
+    }
+
+    /// The line.
+    pub fn line(&self) -> &'l [u8] {
+        self.line
+    }
+
+    /// Skips blanks; whether an item follows (not the end, not a comment).
+    #[inline]
+    pub fn more(&mut self) -> bool {
+        while self.pos < self.line.len() && blank(self.line[self.pos]) {
+            self.pos += 1;
+        }
+        self.pos < self.line.len() && self.line[self.pos] != b'#'
+    }
+
+    /// Whether the byte at `i` ends an item.
+    #[inline]
+    fn ends(&self, i: usize) -> bool {
+        i == self.line.len() || blank(self.line[i]) || self.line[i] == b'#'
+    }
+
+    /// The next word and where it starts.
+    pub fn word(&mut self) -> Option<(&'l [u8], usize)> {
+        if !self.more() {
             return None;
         }
-        // Blanks are every control character and the space: one compare.
-        while i < line.len() && line[i] <= b' ' {
-            i += 1;
+        let start = self.pos;
+        while !self.ends(self.pos) {
+            self.pos += 1;
         }
-        if i == line.len() || line[i] == b'#' {
-            done = true;
+        Some((&self.line[start..self.pos], start))
+    }
+
+    /// The rest of the line, trimmed, up to a comment: a name that may hold
+    /// spaces. Empty at the end.
+    pub fn rest(&mut self) -> &'l [u8] {
+        if !self.more() {
+            return b"";
+        }
+        let tail = &self.line[self.pos..];
+        let end = memchr::memchr(b'#', tail).unwrap_or(tail.len());
+        self.pos = self.line.len();
+        tail[..end].trim_ascii_end()
+    }
+
+    /// The next number: `None` at the end, `Some(Err((word, offset)))` for
+    /// a word that is not one. The common short decimals (`-0.008366`) are
+    /// read as they are scanned, eight digits at a time, exactly (Clinger's
+    /// fast path: digits below 2^24 and at most 10 decimals make an exact
+    /// integer and an exact power of ten, so one division rounds
+    /// correctly); anything else (exponents, long mantissas, `inf`) goes
+    /// to `fast-float2`, also correctly rounded.
+    #[inline]
+    pub fn number(&mut self) -> Option<std::result::Result<f32, (&'l [u8], usize)>> {
+        /// Powers of ten exact in f32 (5^10 < 2^24).
+        const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+        const POW10_INT: [u64; 11] = [
+            1,
+            10,
+            100,
+            1_000,
+            10_000,
+            100_000,
+            1_000_000,
+            10_000_000,
+            100_000_000,
+            1_000_000_000,
+            10_000_000_000,
+        ];
+        if !self.more() {
             return None;
         }
-        let start = i;
-        while i < line.len() && line[i] > b' ' && line[i] != b'#' {
+        let (s, start) = (self.line, self.pos);
+        let mut i = start;
+        let neg = s[i] == b'-';
+        i += (neg || s[i] == b'+') as usize;
+        let (mut m, whole) = digits(&s[i..]);
+        i += whole;
+        let mut decimals = 0;
+        if i < s.len() && s[i] == b'.' {
+            let (f, n) = digits(&s[i + 1..]);
+            decimals = n;
+            i += 1 + n;
+            // Exact while it matters: below 2^24 with at most 10 decimals.
+            m = if n <= 10 {
+                m.saturating_mul(POW10_INT[n]).saturating_add(f)
+            } else {
+                u64::MAX
+            };
+        }
+        if self.ends(i) && whole + decimals > 0 && decimals <= 10 && m < 1 << 24 {
+            self.pos = i;
+            let v = m as f32 / POW10[decimals];
+            return Some(Ok(if neg { -v } else { v }));
+        }
+        self.slow_number()
+    }
+
+    /// [`Cursor::number`] for what is not a short decimal.
+    #[cold]
+    #[inline(never)]
+    fn slow_number(&mut self) -> Option<std::result::Result<f32, (&'l [u8], usize)>> {
+        let (w, at) = self.word()?;
+        Some(fast_float2::parse::<f32, _>(w).map_err(|_| (w, at)))
+    }
+
+    /// The next face corner `v[/[vt][/vn]]` as up to three signed indices
+    /// (`None`: the part is absent): `None` at the end,
+    /// `Some(Err((word, offset)))` when the word is not one.
+    #[inline]
+    #[allow(clippy::type_complexity)]
+    pub fn corner(&mut self) -> Option<std::result::Result<[Option<i64>; 3], (&'l [u8], usize)>> {
+        if !self.more() {
+            return None;
+        }
+        let (s, start) = (self.line, self.pos);
+        let mut i = start;
+        let mut out = [None; 3];
+        let mut ok = true;
+        for (k, slot) in out.iter_mut().enumerate() {
+            let neg = i < s.len() && s[i] == b'-';
+            i += (neg || (i < s.len() && s[i] == b'+')) as usize;
+            let (v, n) = digits(&s[i..]);
+            i += n;
+            if n > 18 {
+                ok = false;
+                break;
+            } else if n > 0 {
+                *slot = Some(if neg { -(v as i64) } else { v as i64 });
+            } else if neg || k == 0 {
+                ok = false;
+                break;
+            }
+            if k == 2 || i == s.len() || s[i] != b'/' {
+                break;
+            }
             i += 1;
         }
-        Some((&line[start..i], start))
-    })
+        if ok && self.ends(i) {
+            self.pos = i;
+            return Some(Ok(out));
+        }
+        let (w, at) = self.word()?;
+        Some(Err((w, at)))
+    }
+}
+
+/// The decimal digits `s` starts with: their value (saturated at
+/// `u64::MAX` past 19 digits) and how many there are. Eight bytes at a time
+/// where eight are there (Lemire's SWAR method: which bytes are digits
+/// found by two additions, their value by three multiplications), byte by
+/// byte in a line's last few bytes.
+#[inline]
+fn digits(s: &[u8]) -> (u64, usize) {
+    const ZEROS: u64 = 0x3030_3030_3030_3030;
+    let Some(chunk) = s.first_chunk::<8>() else {
+        let mut value = 0;
+        for (k, &b) in s.iter().enumerate() {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                return (value, k);
+            }
+            value = value * 10 + d as u64;
+        }
+        return (value, s.len());
+    };
+    let x = u64::from_le_bytes(*chunk).wrapping_sub(ZEROS);
+    // A byte is not a digit when it was below '0' (its top bit set by the
+    // subtraction) or above '9' (then adding 0x76 sets it). A borrow or
+    // carry from a non-digit only spoils the bytes after it.
+    let not_digit = (x | x.wrapping_add(0x7676_7676_7676_7676)) & 0x8080_8080_8080_8080;
+    if not_digit == 0 {
+        return many_digits(s);
+    }
+    let k = (not_digit.trailing_zeros() / 8) as usize;
+    if k == 0 {
+        return (0, 0);
+    }
+    // The k digits, as the low-order end of an 8-digit number.
+    let x = x << (8 * (8 - k));
+    let x = (x.wrapping_mul(10) + (x >> 8)) & 0x00ff_00ff_00ff_00ff;
+    let x = (x.wrapping_mul(100) + (x >> 16)) & 0x0000_ffff_0000_ffff;
+    let x = (x.wrapping_mul(10000) + (x >> 32)) & 0xffff_ffff;
+    (x, k)
+}
+
+/// [`digits`] for eight or more.
+#[cold]
+#[inline(never)]
+fn many_digits(s: &[u8]) -> (u64, usize) {
+    let k = s.iter().take_while(|b| b.is_ascii_digit()).count();
+    let value = s[..k].iter().try_fold(0u64, |v, &b| {
+        v.checked_mul(10)?.checked_add((b - b'0') as u64)
+    });
+    (value.unwrap_or(u64::MAX), k)
 }
 
 /// The column (from 1, in characters) of byte `offset` of `line`.
@@ -237,8 +436,12 @@ mod tests {
     }
 
     #[test]
-    fn words_stop_at_a_comment_and_know_their_columns() {
-        let w: Vec<_> = words(b"f\t1 2  3# tri").collect();
+    fn a_cursor_stops_at_a_comment_and_knows_its_columns() {
+        let mut c = Cursor::new(b"f\t1 2  3# tri");
+        let mut w = Vec::new();
+        while let Some(word) = c.word() {
+            w.push(word);
+        }
         assert_eq!(
             w,
             vec![
@@ -249,6 +452,57 @@ mod tests {
             ]
         );
         assert_eq!(column("é x".as_bytes(), 3), 3);
+        let mut c = Cursor::new(b"v -0.5 1e3 +2. .25 x7 # c");
+        let n: Vec<_> = std::iter::from_fn(|| c.number()).collect();
+        assert_eq!(
+            n,
+            vec![
+                Err((&b"v"[..], 0)),
+                Ok(-0.5),
+                Ok(1000.0),
+                Ok(2.0),
+                Ok(0.25),
+                Err((&b"x7"[..], 19))
+            ]
+        );
+        let mut c = Cursor::new(b"5/1/2 -1//3 7/8 4 1/2/3/4 /2");
+        let k: Vec<_> = std::iter::from_fn(|| c.corner()).collect();
+        assert_eq!(
+            k,
+            vec![
+                Ok([Some(5), Some(1), Some(2)]),
+                Ok([Some(-1), None, Some(3)]),
+                Ok([Some(7), Some(8), None]),
+                Ok([Some(4), None, None]),
+                Err((&b"1/2/3/4"[..], 18)),
+                Err((&b"/2"[..], 26)),
+            ]
+        );
+    }
+
+    #[test]
+    fn digits_are_read_eight_at_a_time_exactly() {
+        for s in [
+            "",
+            "x",
+            "0",
+            "7/",
+            "12345678",
+            "123456789 ",
+            "00000000000000000001",
+            "9999999999999999999",
+            "18446744073709551615",
+            "99999999999999999999",
+            "1:",
+            "5/",
+            "42.5",
+        ] {
+            let n = s.bytes().take_while(u8::is_ascii_digit).count();
+            let want = s[..n]
+                .parse::<u64>()
+                .unwrap_or(if n > 0 { u64::MAX } else { 0 });
+            assert_eq!(digits(s.as_bytes()), (want, n), "{s:?}");
+        }
     }
 
     #[test]

@@ -75,6 +75,8 @@ pub struct Geometry {
     /// Every edge (corners matched by position) shared by exactly two faces
     /// walking it in opposite directions: closed and consistently wound.
     pub closed: bool,
+    /// Closed, in one piece with a sphere's topology.
+    sphere_like: bool,
     convex: OnceLock<bool>,
 }
 
@@ -89,6 +91,7 @@ impl Clone for Geometry {
             materials: self.materials.clone(),
             bounds: self.bounds,
             closed: self.closed,
+            sphere_like: self.sphere_like,
             convex: self.convex.clone(),
         }
     }
@@ -117,10 +120,10 @@ impl Geometry {
             materials: Vec::new(),
             bounds: None,
             closed: false,
+            sphere_like: false,
             convex: OnceLock::new(),
         };
         g.compute_normals(DEFAULT_CREASE);
-        g.analyze();
         g
     }
 
@@ -140,6 +143,7 @@ impl Geometry {
             materials: Vec::new(),
             bounds: None,
             closed: false,
+            sphere_like: false,
             convex: OnceLock::new(),
         }
     }
@@ -147,11 +151,15 @@ impl Geometry {
     /// Recomputes the bounds and closedness (and forgets convexity); call
     /// it after changing the positions or faces.
     pub fn analyze(&mut self) {
+        let topo = Topology::new(&self.positions, &self.faces);
+        self.facts(&topo);
+    }
+
+    /// Sets the facts the planner reads from the mesh's connectivity.
+    fn facts(&mut self, topo: &Topology) {
         self.bounds = bounds(&self.positions);
-        self.closed = self.bounds.is_some() && {
-            let (ids, _) = weld(&self.positions);
-            closed(&ids, &self.faces)
-        };
+        self.closed = self.bounds.is_some() && topo.closed(&self.faces);
+        self.sphere_like = self.closed && topo.sphere_like(&self.faces);
         self.convex = OnceLock::new();
     }
 
@@ -199,14 +207,19 @@ impl Geometry {
     pub fn is_convex(&self) -> bool {
         *self
             .convex
-            .get_or_init(|| self.closed && self.bounds.is_some() && convex(self))
+            .get_or_init(|| self.sphere_like && self.bounds.is_some() && convex(self))
     }
 
     /// Computes the normals per position, splitting at creases sharper
     /// than `crease` degrees (see the module doc); vertex indices shared
-    /// across a crease are split, which appends vertices.
+    /// across a crease are split, which appends vertices. Also finds the
+    /// facts [`Geometry::analyze`] finds, from the same connectivity.
     pub fn compute_normals(&mut self, crease: f32) {
-        let (normals, splits) = smooth_normals(&self.positions, &self.faces, crease);
+        let topo = Topology::new(&self.positions, &self.faces);
+        let (normals, splits) = smooth_normals(&topo, &self.positions, &self.faces, crease);
+        // Splitting vertices moves no position: the facts stand after it.
+        self.facts(&topo);
+        drop(topo);
         self.normals = normals;
         // One new vertex for each vertex and normal it must also have.
         let mut copies: FxHashMap<(u32, [u32; 3]), u32> = FxHashMap::default();
@@ -357,195 +370,385 @@ fn bounds(positions: &[Vec3]) -> Option<[Vec3; 2]> {
     })
 }
 
-/// One id per distinct position (−0.0 and 0.0 are one), for each
-/// position index, in linear time; and how many there are.
-pub fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
-    let mut ids: FxHashMap<[u32; 3], u32> = FxHashMap::default();
-    ids.reserve(positions.len());
-    let id = positions
-        .iter()
-        .map(|p| {
-            let n = ids.len() as u32;
-            *ids.entry(p.to_array().map(|v| (v + 0.0).to_bits()))
-                .or_insert(n)
-        })
-        .collect();
-    (id, ids.len())
+/// A set of positions for welding, by open addressing over a table of
+/// 8-byte slots, at most half full: each holds a handle and 32 bits of its
+/// position's hash, so a probe compares positions (kept where the caller
+/// keeps them, a random read) only when the hashes agree. A general hash
+/// map of 2M positions took 71 MB and a fifth of a 4M-triangle load; this
+/// table takes 32 MB. Positions are equal when their bits are, with −0.0
+/// and 0.0 one.
+pub struct PositionSet {
+    /// `hash << 32 | handle + 1`, or 0 for empty.
+    slots: Vec<u64>,
+    len: usize,
 }
 
-/// An undirected edge between two welded positions, and which way a face
-/// walked it.
-fn edge_key(a: u32, b: u32) -> (u64, bool) {
-    (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b)
-}
-
-/// Whether every edge is walked exactly once in each direction.
-fn closed(ids: &[u32], faces: &[[u32; 3]]) -> bool {
-    if faces.is_empty() {
-        return false;
+impl PositionSet {
+    /// A set with room for `n` positions before it grows.
+    pub fn with_capacity(n: usize) -> PositionSet {
+        PositionSet {
+            slots: vec![0; (n * 2).next_power_of_two().max(16)],
+            len: 0,
+        }
     }
-    // For each undirected edge, how often it is walked low→high and
-    // high→low: closed and consistently wound is exactly once each way.
-    let mut edges: FxHashMap<u64, [u8; 2]> = FxHashMap::default();
-    edges.reserve(faces.len() * 3 / 2);
-    for f in faces {
-        let v = f.map(|i| ids[i as usize]);
-        if v[0] == v[1] || v[1] == v[2] || v[2] == v[0] {
+
+    fn key(p: Vec3) -> [u32; 3] {
+        p.to_array().map(|v| (v + 0.0).to_bits())
+    }
+
+    /// The key's 32-bit hash: its top bits pick the slot to start from,
+    /// and all of it is kept in the slot.
+    #[inline]
+    fn hash(k: [u32; 3]) -> u32 {
+        let h = (k[0] as u64 ^ (k[1] as u64) << 32)
+            .wrapping_mul(0x9e37_79b9_7f4a_7c15)
+            .rotate_left(29)
+            ^ (k[2] as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+        (h.wrapping_mul(0x1656_67b1_9e37_79f9) >> 32) as u32
+    }
+
+    #[inline]
+    fn home(&self, h: u32) -> usize {
+        // At most 2^32 slots: handles are u32.
+        (h as u64 >> (32 - self.slots.len().trailing_zeros())) as usize
+    }
+
+    /// The handle of position `p`, where `at(handle)` is the position a
+    /// handle stands for: an existing one (`false`), or `new` inserted
+    /// (`true`).
+    #[inline]
+    pub fn get_or_insert(&mut self, p: Vec3, new: u32, at: impl Fn(u32) -> Vec3) -> (u32, bool) {
+        if (self.len + 1) * 2 > self.slots.len() {
+            self.grow();
+        }
+        let k = Self::key(p);
+        let h = Self::hash(k);
+        let mask = self.slots.len() - 1;
+        let mut i = self.home(h);
+        loop {
+            let s = self.slots[i];
+            if s == 0 {
+                self.slots[i] = (h as u64) << 32 | (new as u64 + 1);
+                self.len += 1;
+                return (new, true);
+            }
+            let handle = (s as u32).wrapping_sub(1);
+            if (s >> 32) as u32 == h && Self::key(at(handle)) == k {
+                return (handle, false);
+            }
+            i = (i + 1) & mask;
+        }
+    }
+
+    /// Reads the slots where `positions` would go, so that their cache
+    /// misses overlap rather than each waiting for the last.
+    #[inline]
+    pub fn touch(&self, positions: &[Vec3]) {
+        let mut sum = 0u64;
+        for &p in positions {
+            sum = sum.wrapping_add(self.slots[self.home(Self::hash(Self::key(p)))]);
+        }
+        std::hint::black_box(sum);
+    }
+
+    /// Doubles the table, placing each slot by the hash it keeps: no
+    /// position is read again.
+    fn grow(&mut self) {
+        let size = (self.slots.len() * 2).max(16);
+        let old = std::mem::replace(&mut self.slots, vec![0; size]);
+        let mask = size - 1;
+        for s in old.into_iter().filter(|&s| s != 0) {
+            let mut i = self.home((s >> 32) as u32);
+            while self.slots[i] != 0 {
+                i = (i + 1) & mask;
+            }
+            self.slots[i] = s;
+        }
+    }
+}
+
+/// One id per distinct position (see [`PositionSet`]), numbered in order
+/// of first appearance, for each position index; and how many there are.
+pub fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
+    let mut set = PositionSet::with_capacity(positions.len());
+    // Each id's first position index, to compare against.
+    let mut first: Vec<u32> = Vec::new();
+    let mut ids = Vec::with_capacity(positions.len());
+    for (block, chunk) in positions.chunks(16).enumerate() {
+        // Touch the slots of the next sixteen first: their cache misses
+        // overlap, rather than each waiting for the last.
+        set.touch(chunk);
+        for (k, &p) in chunk.iter().enumerate() {
+            let next = first.len() as u32;
+            let (id, new) = set.get_or_insert(p, next, |id| positions[first[id as usize] as usize]);
+            if new {
+                first.push((block * 16 + k) as u32);
+            }
+            ids.push(id);
+        }
+    }
+    (ids, first.len())
+}
+
+/// The connectivity of a mesh, built once in linear time and dropped after
+/// use: which welded position each vertex is at, and the corners around
+/// each welded position. Closedness, convexity and normals all read it, so
+/// no edge table is ever hashed: an edge's other side is found among the
+/// few corners around its end.
+struct Topology {
+    /// The welded position of each vertex.
+    ids: Vec<u32>,
+    /// The corners around welded position `p` are
+    /// `corners[start[p]..start[p + 1]]`, each as `face * 3 + k`.
+    start: Vec<u32>,
+    corners: Vec<u32>,
+}
+
+impl Topology {
+    /// At most this many faces: corners are numbered in a u32.
+    const MAX_FACES: usize = (u32::MAX / 3) as usize;
+
+    fn new(positions: &[Vec3], faces: &[[u32; 3]]) -> Topology {
+        assert!(faces.len() <= Self::MAX_FACES, "too many faces");
+        let (ids, welded) = weld(positions);
+        // Counting sort of the corners by welded position.
+        let mut start = vec![0u32; welded + 1];
+        for &i in faces.iter().flatten() {
+            start[ids[i as usize] as usize + 1] += 1;
+        }
+        for p in 0..welded {
+            start[p + 1] += start[p];
+        }
+        let mut corners = vec![0u32; faces.len() * 3];
+        for (c, &i) in faces.iter().flatten().enumerate() {
+            let slot = &mut start[ids[i as usize] as usize];
+            corners[*slot as usize] = c as u32;
+            *slot += 1;
+        }
+        // Each slot now holds its successor's start: shift back.
+        start.rotate_right(1);
+        start[0] = 0;
+        Topology {
+            ids,
+            start,
+            corners,
+        }
+    }
+
+    /// How many welded positions there are.
+    fn welded(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// The corners around welded position `p`.
+    fn around(&self, p: usize) -> &[u32] {
+        &self.corners[self.start[p] as usize..self.start[p + 1] as usize]
+    }
+
+    /// The welded position at corner `c` (`face * 3 + k`).
+    fn at(&self, faces: &[[u32; 3]], c: u32) -> u32 {
+        self.ids[faces[(c / 3) as usize][(c % 3) as usize] as usize]
+    }
+
+    /// Whether every edge is walked exactly once in each direction (closed
+    /// and consistently wound): at every position, the positions its
+    /// corners lead to and come from are the same set, without repeats.
+    fn closed(&self, faces: &[[u32; 3]]) -> bool {
+        if faces.is_empty() {
             return false;
         }
-        for k in 0..3 {
-            let (key, back) = edge_key(v[k], v[(k + 1) % 3]);
-            let e = edges.entry(key).or_insert([0, 0]);
-            e[back as usize] = e[back as usize].saturating_add(1);
-        }
+        let (mut out, mut into) = (Vec::new(), Vec::new());
+        (0..self.welded()).all(|p| {
+            out.clear();
+            into.clear();
+            for &c in self.around(p) {
+                let base = c - c % 3;
+                out.push(self.at(faces, base + (c + 1) % 3));
+                into.push(self.at(faces, base + (c + 2) % 3));
+            }
+            out.sort_unstable();
+            into.sort_unstable();
+            out == into && out.windows(2).all(|w| w[0] != w[1]) && !out.contains(&(p as u32))
+        })
     }
-    edges.values().all(|&e| e == [1, 1])
+
+    /// For a closed mesh: whether its surface is one piece with a sphere's
+    /// topology, V − E + F = 2, where E = 3F/2 (every edge has two sides).
+    fn sphere_like(&self, faces: &[[u32; 3]]) -> bool {
+        let used = (0..self.welded())
+            .filter(|&p| !self.around(p).is_empty())
+            .count() as i64;
+        used * 2 - faces.len() as i64 == 4
+    }
+
+    /// The corner of the face across the edge from corner `c` to the next
+    /// corner of its face: the far corner of the face that walks the edge
+    /// the other way. `None` if there is none.
+    fn across(&self, faces: &[[u32; 3]], c: u32) -> Option<u32> {
+        let base = c - c % 3;
+        let (a, b) = (self.at(faces, c), self.at(faces, base + (c + 1) % 3));
+        self.around(b as usize).iter().find_map(|&d| {
+            let base = d - d % 3;
+            (self.at(faces, base + (d + 1) % 3) == a).then_some(base + (d + 2) % 3)
+        })
+    }
 }
 
-/// The exact convexity test of [`Geometry::is_convex`], for a closed mesh.
+/// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
+/// with a sphere's topology.
 fn convex(g: &Geometry) -> bool {
-    let (ids, _) = weld(&g.positions);
-    // Every directed edge, with its face and the corner opposite it.
-    let mut edges: FxHashMap<u64, [(u32, u8); 2]> = FxHashMap::default();
-    edges.reserve(g.faces.len() * 3 / 2);
-    for (f, face) in g.faces.iter().enumerate() {
-        let v = face.map(|i| ids[i as usize]);
-        for k in 0..3 {
-            let (key, back) = edge_key(v[k], v[(k + 1) % 3]);
-            edges.entry(key).or_insert([(0, 0); 2])[back as usize] =
-                (f as u32, ((k + 2) % 3) as u8);
-        }
-    }
-    // One piece, a sphere's topology: V − E + F = 2 over the positions used.
-    let mut used = vec![false; g.positions.len()];
-    g.faces
-        .iter()
-        .flatten()
-        .for_each(|&i| used[ids[i as usize] as usize] = true);
-    let v = used.iter().filter(|&&u| u).count() as i64;
-    if v - edges.len() as i64 + g.faces.len() as i64 != 2 {
-        return false;
-    }
-    let point = |i: u32| {
-        let p = g.positions[i as usize];
+    let topo = Topology::new(&g.positions, &g.faces);
+    let point = |c: u32| {
+        let p = g.positions[g.faces[(c / 3) as usize][(c % 3) as usize] as usize];
         robust::Coord3D {
             x: p.x as f64,
             y: p.y as f64,
             z: p.z as f64,
         }
     };
-    // Locally convex at every edge: the far corner of the second face on
-    // or below (inside) the first face's plane.
-    for pair in edges.values() {
-        let (f, g2) = (g.faces[pair[0].0 as usize], g.faces[pair[1].0 as usize]);
-        let far = g2[pair[1].1 as usize];
-        if robust::orient3d(point(f[0]), point(f[1]), point(f[2]), point(far)) < 0.0 {
-            return false;
+    // Locally convex at every edge (seen from its lower-numbered end): the
+    // far corner of the face across it on or below (inside) this face's
+    // plane.
+    for (f, face) in g.faces.iter().enumerate() {
+        let base = f as u32 * 3;
+        for k in 0..3 {
+            let c = base + k;
+            if topo.ids[face[k as usize] as usize] > topo.at(&g.faces, base + (k + 1) % 3) {
+                continue;
+            }
+            let Some(far) = topo.across(&g.faces, c) else {
+                return false;
+            };
+            if robust::orient3d(point(base), point(base + 1), point(base + 2), point(far)) < 0.0 {
+                return false;
+            }
         }
     }
     // At every vertex the faces turn once around it: their angles there
     // sum to at most 2π (a flat vertex inside a face sums to 2π, up to
     // rounding; a cone wound twice, to nearly 4π).
-    let mut angle = vec![0.0f64; g.positions.len()];
-    for face in &g.faces {
-        let p = face.map(|i| g.positions[i as usize].as_dvec3());
-        for k in 0..3 {
-            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+    let full = std::f64::consts::TAU * (1.0 + 1e-9);
+    (0..topo.welded()).all(|p| {
+        let mut sum = 0.0f64;
+        for &c in topo.around(p) {
+            let face = g.faces[(c / 3) as usize].map(|i| g.positions[i as usize].as_dvec3());
+            let k = (c % 3) as usize;
+            let (a, b) = (face[(k + 1) % 3] - face[k], face[(k + 2) % 3] - face[k]);
             let turn = a.cross(b).length().atan2(a.dot(b));
             if turn.is_nan() || turn <= 0.0 {
                 return false;
             }
-            angle[ids[face[k] as usize] as usize] += turn;
+            sum += turn;
         }
-    }
-    let full = std::f64::consts::TAU * (1.0 + 1e-9);
-    angle.iter().all(|&a| a <= full)
+        sum <= full
+    })
 }
 
 /// Positions with more faces around them than this are smoothed without
 /// creases (the crease test is quadratic in the faces around a position).
 const MAX_CREASE_FAN: usize = 256;
 
+/// The angle whose sine and cosine are `sin` ≥ 0 and `cos` (of unit
+/// vectors), in radians, within 1e-6: the arctangent of the smaller over
+/// the larger, by an odd minimax polynomial of degree 15 on [0, 1] (error
+/// below 4e-8 before f32 rounding), then reflected into place. A weight,
+/// where libm's `atan2` cost a seventh of loading a large model.
+fn angle(sin: f32, cos: f32) -> f32 {
+    use std::f32::consts::{FRAC_PI_2, PI};
+    const C: [f32; 8] = [
+        0.999_999_3,
+        -0.333_298_56,
+        0.199_465_36,
+        -0.139_085_33,
+        0.096_420_04,
+        -0.055_909_886,
+        0.021_861_23,
+        -0.004_054_058,
+    ];
+    let (a, b) = (sin.abs(), cos.abs());
+    let t = a.min(b) / a.max(b);
+    let t2 = t * t;
+    let r = t * C.iter().rev().fold(0.0, |p, &c| p * t2 + c);
+    let r = if a > b { FRAC_PI_2 - r } else { r };
+    if cos < 0.0 { PI - r } else { r }
+}
+
 /// Angle-weighted normals per position with creases (see the module doc):
 /// one per vertex, and the corners `(face, corner, normal)` that need a
 /// vertex of their own because their vertex index is shared across a
 /// crease. A vertex on no face (or only degenerate ones) gets +z.
 fn smooth_normals(
+    topo: &Topology,
     positions: &[Vec3],
     faces: &[[u32; 3]],
     crease: f32,
 ) -> (Vec<Vec3>, Vec<(u32, u8, Vec3)>) {
-    use crate::transform::{direction, face_normal};
-    let (ids, n_ids) = weld(positions);
-    // Each face's unit normal, and each corner's angle.
-    let face_n: Vec<Vec3> = faces
-        .iter()
-        .map(|f| {
-            let p = f.map(|i| positions[i as usize]);
-            let n = face_normal(p[0], p[1], p[2]);
-            if n.is_finite() { n } else { Vec3::ZERO }
-        })
-        .collect();
-    let corner_angle = |f: usize, k: usize| {
-        let p = faces[f].map(|i| positions[i as usize]);
-        let a = direction(p[(k + 1) % 3] - p[k]);
-        let b = direction(p[(k + 2) % 3] - p[k]);
-        a.dot(b).clamp(-1.0, 1.0).acos()
-    };
-    // The corners around each welded position (CSR).
-    let mut start = vec![0u32; n_ids + 1];
-    for f in faces {
-        for &i in f {
-            start[ids[i as usize] as usize + 1] += 1;
-        }
-    }
-    for k in 0..n_ids {
-        start[k + 1] += start[k];
-    }
-    let mut fill = start.clone();
-    let mut around = vec![(0u32, 0u8); faces.len() * 3];
-    for (fi, f) in faces.iter().enumerate() {
-        for (k, &i) in f.iter().enumerate() {
-            let slot = &mut fill[ids[i as usize] as usize];
-            around[*slot as usize] = (fi as u32, k as u8);
-            *slot += 1;
-        }
-    }
+    use crate::transform::direction;
     let cos_crease = crease.to_radians().cos();
-    let mut normals: Vec<Option<Vec3>> = vec![None; positions.len()];
+    let cos_half = (crease / 2.0).to_radians().cos();
+    // Not yet set: NaN.
+    let mut normals = vec![Vec3::NAN; positions.len()];
     let mut splits = Vec::new();
-    for id in 0..n_ids {
-        let corners = &around[start[id] as usize..start[id + 1] as usize];
-        let weights: Vec<f32> = corners
-            .iter()
-            .map(|&(f, k)| corner_angle(f as usize, k as usize))
-            .collect();
-        let all_smooth = corners.len() > MAX_CREASE_FAN;
-        for &(f, k) in corners {
-            let nf = face_n[f as usize];
-            let sum = corners
+    // The faces around one position: unit normal and the angle there.
+    let mut fan: Vec<(Vec3, f32)> = Vec::new();
+    for p in 0..topo.welded() {
+        let corners = topo.around(p);
+        fan.clear();
+        fan.extend(corners.iter().map(|&c| {
+            // The face's normal and its angle here, from the two edges
+            // leaving the corner in unit length (so any scale works).
+            let f = faces[(c / 3) as usize];
+            let k = (c % 3) as usize;
+            let at = positions[f[k] as usize];
+            let a = direction(positions[f[(k + 1) % 3] as usize] - at);
+            let b = direction(positions[f[(k + 2) % 3] as usize] - at);
+            let cross = a.cross(b);
+            let sin = cross.length();
+            let n = cross / sin;
+            if sin > 0.0 && n.is_finite() {
+                (n, angle(sin, a.dot(b)))
+            } else {
+                (Vec3::ZERO, 0.0)
+            }
+        }));
+        let smooth = direction(fan.iter().fold(Vec3::ZERO, |s, &(n, w)| s + n * w));
+        // One smooth fan when every face is within half the crease angle
+        // of the mean (so any two are within the crease of each other):
+        // the common case, decided in one pass rather than one per corner.
+        let one_fan = corners.len() > MAX_CREASE_FAN
+            || fan
                 .iter()
-                .zip(&weights)
-                .filter(|&(&(g, _), _)| all_smooth || face_n[g as usize].dot(nf) >= cos_crease)
-                .fold(Vec3::ZERO, |s, (&(g, _), &w)| s + face_n[g as usize] * w);
-            let n = direction(sum);
+                .all(|&(g, _)| g == Vec3::ZERO || g.dot(smooth) >= cos_half);
+        for (&c, &(nf, _)) in corners.iter().zip(&fan) {
+            let n = if one_fan && nf != Vec3::ZERO {
+                smooth
+            } else {
+                direction(
+                    fan.iter()
+                        .filter(|(g, _)| g.dot(nf) >= cos_crease)
+                        .fold(Vec3::ZERO, |s, &(g, w)| s + g * w),
+                )
+            };
             let n = if n == Vec3::ZERO || !n.is_finite() {
                 Vec3::Z
             } else {
                 n
             };
+            let (f, k) = (c / 3, (c % 3) as u8);
             let v = faces[f as usize][k as usize] as usize;
-            match normals[v] {
-                None => normals[v] = Some(n),
-                Some(m) if m == n => {}
-                Some(_) => splits.push((f, k, n)),
+            if normals[v].is_nan() {
+                normals[v] = n;
+            } else if normals[v] != n {
+                splits.push((f, k, n));
             }
         }
     }
-    (
-        normals.into_iter().map(|n| n.unwrap_or(Vec3::Z)).collect(),
-        splits,
-    )
+    for n in &mut normals {
+        if n.is_nan() {
+            *n = Vec3::Z;
+        }
+    }
+    (normals, splits)
 }
 
 #[cfg(test)]
@@ -659,6 +862,49 @@ mod tests {
             );
         }
         assert!(g.closed && g.is_convex());
+    }
+
+    #[test]
+    fn the_corner_angle_is_within_1e6_of_atan2() {
+        for k in 0..=100_000 {
+            let t = std::f32::consts::PI * k as f32 / 100_000.0;
+            // A sine as the loader has it: a length, never negative.
+            let (sin, cos) = t.sin_cos();
+            let sin = sin.abs();
+            let want = sin.atan2(cos);
+            assert!(
+                (angle(sin, cos) - want).abs() <= 1e-6,
+                "{t}: {} vs {want}",
+                angle(sin, cos)
+            );
+        }
+    }
+
+    #[test]
+    fn weld_numbers_positions_by_first_appearance() {
+        let p = |x: f32| Vec3::new(x, 1.0, 2.0);
+        let positions = vec![
+            p(0.0),
+            p(1.0),
+            p(-0.0),
+            p(1.0),
+            p(2.0),
+            p(f32::NAN),
+            p(f32::NAN),
+        ];
+        let (ids, n) = weld(&positions);
+        // −0.0 and 0.0 are one; a NaN equals a NaN of the same bits.
+        assert_eq!(ids, vec![0, 1, 0, 1, 2, 3, 3]);
+        assert_eq!(n, 4);
+        // Past the starting capacity, the set grows and keeps every id.
+        let many: Vec<Vec3> = (0..10_000).map(|i| p((i % 3000) as f32)).collect();
+        let (ids, n) = weld(&many);
+        assert_eq!(n, 3000);
+        assert!(
+            ids.iter()
+                .enumerate()
+                .all(|(i, &id)| id as usize == i % 3000)
+        );
     }
 
     #[test]

@@ -25,9 +25,9 @@ use std::path::Path;
 use glam::Vec3;
 use rustc_hash::FxHashMap;
 
-use super::file::{self, Limits, Lines};
+use super::file::{self, Cursor, Limits, Lines};
 use super::mesh::{Geometry, MaterialRun};
-use super::polygon::{Point, Triangulator};
+use super::polygon::{self, Point, Triangulator};
 use crate::color::Rgb;
 use crate::error::{Error, Result};
 
@@ -61,6 +61,11 @@ const NONE: u32 = u32::MAX;
 /// The bit that marks a vertex made while cutting a polygon, numbered apart
 /// until the end of the file.
 const MADE: u32 = 1 << 31;
+/// The bit that marks a vertex whose `v` was already paired with another
+/// normal, numbered apart until the end of the file.
+const EXTRA: u32 = 1 << 30;
+/// The most `v` a file may have: their indices stay clear of the bits.
+const MAX_VERTICES: usize = EXTRA as usize;
 
 /// Everything gathered while reading.
 struct Reader<'a> {
@@ -71,12 +76,20 @@ struct Reader<'a> {
     pos: Vec<Vec3>,
     /// Where each non-finite `v` is (line), counted.
     bad_pos: Vec<u32>,
+    /// Whether a `v` or `vn` so far is not finite (only then are corners
+    /// checked).
+    any_bad: bool,
     colors: Vec<Rgb>,
     vn: Vec<Vec3>,
     vt: usize,
-    /// Output vertices as `v | vn << 32`, once a corner names a normal
-    /// (until then a vertex is its `v`).
-    keys: Option<(Vec<u64>, FxHashMap<u64, u32>)>,
+    /// For each `v`, the normal the first corner to use it named (`NONE`:
+    /// none yet): that corner's vertex is the `v` itself. Empty until a
+    /// corner names a normal.
+    normal_of: Vec<u32>,
+    /// Vertices of a `v` with a second (third, …) normal: `(v, vn)`, and
+    /// where each pair is in the list.
+    extra: Vec<(u32, u32)>,
+    extra_ids: FxHashMap<u64, u32>,
     /// Vertices made between corners: position, colour, normal.
     made: Vec<(Vec3, Rgb, Vec3)>,
     triangles: Vec<[u32; 3]>,
@@ -100,10 +113,13 @@ fn read(src: impl std::io::Read, name: &str, dir: &Path, limits: &Limits) -> Res
         limits,
         pos: Vec::new(),
         bad_pos: Vec::new(),
+        any_bad: false,
         colors: Vec::new(),
         vn: Vec::new(),
         vt: 0,
-        keys: None,
+        normal_of: Vec::new(),
+        extra: Vec::new(),
+        extra_ids: FxHashMap::default(),
         made: Vec::new(),
         triangles: Vec::new(),
         materials: Vec::new(),
@@ -129,7 +145,7 @@ fn read(src: impl std::io::Read, name: &str, dir: &Path, limits: &Limits) -> Res
         if line.first() == Some(&0) {
             return Err(r.at(n, 1, "a NUL byte: not a text file"));
         }
-        r.statement(line, n)?;
+        r.statement(Cursor::new(line), n)?;
     }
     r.finish(lines.number)
 }
@@ -149,23 +165,34 @@ impl Reader<'_> {
         }
     }
 
-    fn statement(&mut self, line: &[u8], n: usize) -> Result<()> {
-        let mut words = file::words(line);
-        let Some((keyword, _)) = words.next() else {
+    /// Up to `N` numbers of a `keyword` statement, and how many there were.
+    #[inline]
+    fn numbers<const N: usize>(
+        &self,
+        c: &mut Cursor,
+        n: usize,
+        keyword: &str,
+    ) -> Result<([f32; N], usize)> {
+        let mut v = [0.0f32; N];
+        let mut k = 0;
+        while let Some(x) = c.number() {
+            let x = x.map_err(|(w, at)| self.at_byte(c.line(), n, at, not_number(keyword, w)))?;
+            if k == N {
+                return Err(self.at(n, 1, format!("`{keyword}` takes at most {N} numbers")));
+            }
+            v[k] = x;
+            k += 1;
+        }
+        Ok((v, k))
+    }
+
+    fn statement(&mut self, mut c: Cursor, n: usize) -> Result<()> {
+        let Some((keyword, _)) = c.word() else {
             return Ok(());
         };
         match keyword {
             b"v" => {
-                let mut v = [0.0f32; 7];
-                let mut k = 0;
-                for (w, col) in words {
-                    if k == 7 {
-                        return Err(self.at_byte(line, n, col, "`v` takes at most 7 numbers"));
-                    }
-                    v[k] =
-                        number(w).ok_or_else(|| self.at_byte(line, n, col, not_number("v", w)))?;
-                    k += 1;
-                }
+                let (v, k) = self.numbers::<7>(&mut c, n, "v")?;
                 let color = match k {
                     3 | 4 => None,
                     6 => Some([v[3], v[4], v[5]]),
@@ -180,9 +207,13 @@ impl Reader<'_> {
                         ));
                     }
                 };
+                if self.pos.len() == MAX_VERTICES {
+                    return Err(self.at(n, 1, format!("more than {MAX_VERTICES} vertices")));
+                }
                 let p = Vec3::new(v[0], v[1], v[2]);
                 if !p.is_finite() {
                     self.bad_pos.push(n as u32);
+                    self.any_bad = true;
                 }
                 if let Some(c) = color {
                     if c.iter().any(|x| !x.is_finite()) {
@@ -198,40 +229,25 @@ impl Reader<'_> {
                 self.pos.push(p);
             }
             b"vn" => {
-                let mut v = [0.0f32; 3];
-                let mut k = 0;
-                for (w, col) in words {
-                    if k == 3 {
-                        return Err(self.at_byte(line, n, col, "`vn` takes 3 numbers"));
-                    }
-                    v[k] =
-                        number(w).ok_or_else(|| self.at_byte(line, n, col, not_number("vn", w)))?;
-                    k += 1;
-                }
+                let (v, k) = self.numbers::<3>(&mut c, n, "vn")?;
                 if k != 3 {
                     return Err(self.at(n, 1, format!("`vn` needs 3 numbers, found {k}")));
                 }
-                self.vn.push(Vec3::from(v));
+                let normal = Vec3::from(v);
+                self.any_bad |= !normal.is_finite();
+                self.vn.push(normal);
             }
             b"vt" => {
-                let mut k = 0;
-                for (w, col) in words {
-                    if k == 3 {
-                        return Err(self.at_byte(line, n, col, "`vt` takes at most 3 numbers"));
-                    }
-                    number(w).ok_or_else(|| self.at_byte(line, n, col, not_number("vt", w)))?;
-                    k += 1;
-                }
+                let (_, k) = self.numbers::<3>(&mut c, n, "vt")?;
                 if k == 0 {
                     return Err(self.at(n, 1, "`vt` needs at least 1 number"));
                 }
                 self.vt += 1;
             }
-            b"f" => self.face(line, words, n)?,
+            b"f" => self.face(c, n)?,
             b"l" | b"p" => self.lines_and_points += 1,
             b"usemtl" => {
-                let name = rest_of(line, words);
-                let color = self.library.get(name).copied().flatten();
+                let color = self.library.get(c.rest()).copied().flatten();
                 let first = self.triangles.len() as u32;
                 if let Some(last) = self.materials.last_mut().filter(|r| r.first == first) {
                     last.color = color;
@@ -239,61 +255,46 @@ impl Reader<'_> {
                     self.materials.push(MaterialRun { first, color });
                 }
             }
-            b"mtllib" => self.mtllib(line, words, n)?,
+            b"mtllib" => self.mtllib(c, n)?,
             _ => {}
         }
         Ok(())
     }
 
     /// One face: its corners resolved and checked, cut into triangles.
-    fn face<'w>(
-        &mut self,
-        line: &[u8],
-        words: impl Iterator<Item = (&'w [u8], usize)>,
-        n: usize,
-    ) -> Result<()> {
+    fn face(&mut self, mut c: Cursor, n: usize) -> Result<()> {
+        let line = c.line();
         self.corners.clear();
         let mut dropped = false;
-        for (w, col) in words {
-            let mut parts = w.split(|&b| b == b'/');
+        let counts = [self.pos.len(), self.vt, self.vn.len()];
+        while let Some(corner) = c.corner() {
+            let (parts, col) = match corner {
+                Ok(parts) => (parts, 0),
+                Err((w, col)) => return Err(self.bad_corner(line, n, w, col)),
+            };
             let mut idx = [NONE; 3];
-            let counts = [self.pos.len(), self.vt, self.vn.len()];
-            for (k, part) in parts.by_ref().take(3).enumerate() {
-                if part.is_empty() && k > 0 {
-                    continue;
-                }
-                let i = index(part).ok_or_else(|| {
-                    self.at_byte(
-                        line,
-                        n,
-                        col,
-                        format!("face vertex {:?} is not an index", lossy(w)),
-                    )
-                })?;
+            for (k, part) in parts.into_iter().enumerate() {
+                let Some(i) = part else { continue };
                 let count = counts[k] as i64;
                 let resolved = if i < 0 { count + i } else { i - 1 };
                 if i == 0 || resolved < 0 || resolved >= count {
+                    // Found again to place the message: errors are rare.
+                    let col = col + corner_offset(line, self.corners.len());
                     let what = ["vertex", "texture coordinate", "normal"][k];
-                    return Err(self.at_byte(
-                        line,
-                        n,
-                        col,
-                        format!("face {what} index {i} is out of range (1 to {count} so far)"),
-                    ));
+                    let message = if count == 0 {
+                        format!("face {what} index {i}: no {what} is given before it")
+                    } else {
+                        format!("face {what} index {i} is out of range (1 to {count} so far)")
+                    };
+                    return Err(self.at_byte(line, n, col, message));
                 }
                 idx[k] = resolved as u32;
             }
-            if parts.next().is_some() {
-                return Err(self.at_byte(
-                    line,
-                    n,
-                    col,
-                    format!("face vertex {:?} has more than 3 parts", lossy(w)),
-                ));
-            }
             let (v, vn) = (idx[0], idx[2]);
-            dropped |= !self.pos[v as usize].is_finite()
-                || (vn != NONE && !self.vn[vn as usize].is_finite());
+            if self.any_bad {
+                dropped |= !self.pos[v as usize].is_finite()
+                    || (vn != NONE && !self.vn[vn as usize].is_finite());
+            }
             self.corners.push((v, vn));
         }
         if self.corners.len() < 3 {
@@ -310,33 +311,27 @@ impl Reader<'_> {
             self.dropped_faces += 1;
             return Ok(());
         }
-        // Output vertices: the `v` itself until a corner names a normal,
-        // then (v, vn) pairs.
-        let named = self.corners.iter().any(|&(_, vn)| vn != NONE);
-        self.all_normals &= self.corners.iter().all(|&(_, vn)| vn != NONE);
-        if named && self.keys.is_none() {
-            let keys: Vec<u64> = (0..self.pos.len() as u64)
-                .map(|v| v | (NONE as u64) << 32)
-                .collect();
-            let map = keys
-                .iter()
-                .enumerate()
-                .map(|(i, &k)| (k, i as u32))
-                .collect();
-            self.keys = Some((keys, map));
-        }
         let corners = std::mem::take(&mut self.corners);
         let mut ids = std::mem::take(&mut self.ids);
         ids.clear();
         for &(v, vn) in &corners {
+            self.all_normals &= vn != NONE;
             ids.push(self.vertex(v, vn));
         }
-        self.corner_pos.clear();
-        self.corner_pos
-            .extend(corners.iter().map(|&(v, _)| self.pos[v as usize]));
+        let quad = match corners[..] {
+            [a, b, c, d] => polygon::quad([a, b, c, d].map(|(v, _)| self.pos[v as usize])),
+            _ => None,
+        };
         if corners.len() == 3 {
             self.triangles.push([ids[0], ids[1], ids[2]]);
+        } else if let Some(d) = quad {
+            let [a, b, c, e] = [d, d + 1, d + 2, (d + 3) % 4].map(|k| ids[k]);
+            self.triangles.push([a, b, c]);
+            self.triangles.push([a, c, e]);
         } else {
+            self.corner_pos.clear();
+            self.corner_pos
+                .extend(corners.iter().map(|&(v, _)| self.pos[v as usize]));
             self.cut.clear();
             self.cutter.triangulate(&self.corner_pos, &mut self.cut);
             for tri in std::mem::take(&mut self.cut) {
@@ -352,20 +347,43 @@ impl Reader<'_> {
         Ok(())
     }
 
-    /// The output vertex of a corner.
+    /// The error for a face corner that is not `v[/[vt][/vn]]`.
+    fn bad_corner(&self, line: &[u8], n: usize, w: &[u8], col: usize) -> Error {
+        let parts = w.split(|&b| b == b'/').count();
+        let message = if parts > 3 {
+            format!("face vertex {:?} has more than 3 parts", lossy(w))
+        } else {
+            format!("face vertex {:?} is not an index", lossy(w))
+        };
+        self.at_byte(line, n, col, message)
+    }
+
+    /// The output vertex of a corner: the `v` itself, unless the `v` was
+    /// first used with another normal.
+    #[inline]
     fn vertex(&mut self, v: u32, vn: u32) -> u32 {
-        match &mut self.keys {
-            None => v,
-            Some((keys, map)) => {
-                let key = v as u64 | (vn as u64) << 32;
-                let next = keys.len() as u32;
-                let id = *map.entry(key).or_insert(next);
-                if id == next {
-                    keys.push(key);
-                }
-                id
-            }
+        if vn == NONE {
+            return v;
         }
+        if self.normal_of.len() <= v as usize {
+            self.normal_of.resize(self.pos.len(), NONE);
+        }
+        let first = &mut self.normal_of[v as usize];
+        if *first == NONE {
+            *first = vn;
+        }
+        if *first == vn {
+            return v;
+        }
+        let next = self.extra.len() as u32;
+        let id = *self
+            .extra_ids
+            .entry(v as u64 | (vn as u64) << 32)
+            .or_insert(next);
+        if id == next {
+            self.extra.push((v, vn));
+        }
+        EXTRA | id
     }
 
     /// A vertex made on the edge between corners `a` and `b`.
@@ -392,14 +410,11 @@ impl Reader<'_> {
 
     /// `mtllib a.mtl b.mtl`: each file read in turn (or, if the names do
     /// not each exist, the whole rest of the line as one name with spaces).
-    fn mtllib<'w>(
-        &mut self,
-        line: &[u8],
-        words: impl Iterator<Item = (&'w [u8], usize)>,
-        n: usize,
-    ) -> Result<()> {
-        let words: Vec<(&[u8], usize)> = words.collect();
-        let whole = rest_of(line, std::iter::empty());
+    fn mtllib(&mut self, c: Cursor, n: usize) -> Result<()> {
+        let line = c.line();
+        let whole = c.clone().rest();
+        let mut each = c;
+        let words: Vec<(&[u8], usize)> = std::iter::from_fn(|| each.word()).collect();
         let each_exists = words.iter().all(|(w, _)| self.dir.join(lossy(w)).is_file());
         let files: Vec<(&[u8], usize)> = if each_exists || words.is_empty() {
             words
@@ -459,61 +474,74 @@ impl Reader<'_> {
             };
             return Err(self.at(last_line.max(1), 1, why));
         }
-        // Output vertices: positions (and colours, normals) gathered.
+        // Output vertices: the file's `v`, then the extra (v, vn) pairs,
+        // then the vertices made while cutting polygons.
         let colored = !self.colors.is_empty();
-        self.colors.resize(self.pos.len(), Rgb::WHITE);
-        let (mut positions, mut colors, mut normals) = match self.keys.take() {
-            None => (
-                std::mem::take(&mut self.pos),
-                std::mem::take(&mut self.colors),
-                Vec::new(),
-            ),
-            Some((keys, _)) => {
-                let v = |k: u64| (k & 0xffff_ffff) as usize;
-                let vn = |k: u64| (k >> 32) as u32;
-                (
-                    keys.iter().map(|&k| self.pos[v(k)]).collect(),
-                    keys.iter().map(|&k| self.colors[v(k)]).collect(),
-                    if self.all_normals {
-                        keys.iter()
-                            .map(|&k| self.vn.get(vn(k) as usize).copied().unwrap_or(Vec3::Z))
-                            .collect()
-                    } else {
-                        Vec::new()
-                    },
-                )
-            }
-        };
-        let base = positions.len() as u32;
-        for &(p, c, n) in &self.made {
-            positions.push(p);
-            colors.push(c);
-            if !normals.is_empty() {
-                normals.push(n);
-            }
+        let keep_normals = self.all_normals;
+        let vn = std::mem::take(&mut self.vn);
+        let normal = |i: u32| vn.get(i as usize).copied().unwrap_or(Vec3::Z);
+        let mut normals = Vec::new();
+        if keep_normals {
+            self.normal_of.resize(self.pos.len(), NONE);
+            normals.reserve_exact(self.pos.len() + self.extra.len() + self.made.len());
+            normals.extend(self.normal_of.iter().map(|&i| normal(i)));
+            normals.extend(self.extra.iter().map(|&(_, i)| normal(i)));
+            normals.extend(self.made.iter().map(|m| m.2));
         }
-        for t in &mut self.triangles {
-            for i in t {
+        drop(vn);
+        self.normal_of = Vec::new();
+        let mut positions = std::mem::take(&mut self.pos);
+        let extra_base = positions.len() as u32;
+        let made_base = extra_base + self.extra.len() as u32;
+        positions.reserve_exact(self.extra.len() + self.made.len());
+        for &(v, _) in &self.extra {
+            positions.push(positions[v as usize]);
+        }
+        positions.extend(self.made.iter().map(|m| m.0));
+        let colors = colored.then(|| {
+            let mut c = std::mem::take(&mut self.colors);
+            c.resize(extra_base as usize, Rgb::WHITE);
+            for &(v, _) in &self.extra {
+                c.push(c[v as usize]);
+            }
+            c.extend(self.made.iter().map(|m| m.1));
+            c
+        });
+        if !self.extra.is_empty() || !self.made.is_empty() {
+            for i in self.triangles.iter_mut().flatten() {
                 if *i & MADE != 0 {
-                    *i = base + (*i & !MADE);
+                    *i = made_base + (*i & !MADE);
+                } else if *i & EXTRA != 0 {
+                    *i = extra_base + (*i & !EXTRA);
                 }
             }
         }
-        let keep_normals = self.all_normals && !normals.is_empty();
+        (self.extra, self.extra_ids, self.made) = Default::default();
         let mut g = Geometry::new_raw(self.name, positions, std::mem::take(&mut self.triangles));
-        g.colors = colored.then_some(colors);
+        g.colors = colors;
         g.materials = self.materials;
         if keep_normals {
             g.normals = normals
                 .into_iter()
                 .map(crate::transform::direction)
                 .collect();
+            g.analyze();
         } else {
             g.compute_normals(super::mesh::DEFAULT_CREASE);
         }
-        g.analyze();
         Ok(Loaded { geometry: g, notes })
     }
+}
+
+/// The byte offset of the `k`th word after the keyword of `line` (a face
+/// corner), for an error message.
+fn corner_offset(line: &[u8], k: usize) -> usize {
+    let mut c = Cursor::new(line);
+    c.word();
+    (0..k).for_each(|_| {
+        c.word();
+    });
+    c.word().map_or(0, |(_, at)| at)
 }
 
 /// A material library: each material's diffuse colour (`None`: it has no
@@ -539,29 +567,32 @@ fn mtl(path: &Path, limits: &Limits) -> Result<FxHashMap<Vec<u8>, Option<Rgb>>> 
             Ok(None) => break,
             Err((n, e)) => return Err(at(n, 1, e)),
         };
-        let mut words = file::words(line);
-        match words.next() {
+        let mut c = Cursor::new(line);
+        match c.word() {
             Some((b"newmtl", _)) => {
-                let m = rest_of(line, words).to_vec();
+                let m = c.rest().to_vec();
                 out.insert(m.clone(), None);
                 current = Some(m);
             }
             Some((b"Kd", kcol)) => {
-                let mut c = [0.0f32; 3];
+                let mut v = [0.0f32; 3];
                 let mut k = 0;
-                for (w, col) in words.take(3) {
-                    c[k] = number(w).filter(|v| v.is_finite()).ok_or_else(|| {
-                        at_byte(
+                while let Some(x) = c.number() {
+                    let x = x.ok().filter(|x| x.is_finite() && k < 3);
+                    let Some(x) = x else {
+                        let (w, col) = c_word_at(line, k + 1);
+                        return Err(at_byte(
                             line,
                             n,
                             col,
                             format!("`Kd`: {:?} is not a colour component", lossy(w)),
-                        )
-                    })?;
+                        ));
+                    };
+                    v[k] = x;
                     k += 1;
                 }
                 if k == 1 {
-                    c = [c[0]; 3];
+                    v = [v[0]; 3];
                 } else if k != 3 {
                     return Err(at_byte(
                         line,
@@ -575,7 +606,7 @@ fn mtl(path: &Path, limits: &Limits) -> Result<FxHashMap<Vec<u8>, Option<Rgb>>> 
                 };
                 out.insert(
                     m.clone(),
-                    Some(Rgb::from_f32(c.map(|v| v.clamp(0.0, 1.0) * 255.0))),
+                    Some(Rgb::from_f32(v.map(|x| x.clamp(0.0, 1.0) * 255.0))),
                 );
             }
             _ => {}
@@ -584,88 +615,21 @@ fn mtl(path: &Path, limits: &Limits) -> Result<FxHashMap<Vec<u8>, Option<Rgb>>> 
     Ok(out)
 }
 
-/// The rest of a line after the words taken so far, trimmed, up to a
-/// comment: a name that may hold spaces.
-fn rest_of<'l, 'w>(line: &'l [u8], mut words: impl Iterator<Item = (&'w [u8], usize)>) -> &'l [u8] {
-    let end = line.iter().position(|&b| b == b'#').unwrap_or(line.len());
-    match words.next() {
-        Some((_, at)) => line[at..end].trim_ascii(),
-        None => {
-            // After the keyword: skip it and the blanks.
-            let line = line[..end].trim_ascii_start();
-            let k = line
-                .iter()
-                .position(|b| b.is_ascii_whitespace())
-                .unwrap_or(line.len());
-            line[k..].trim_ascii()
-        }
-    }
+/// The `k`th word of `line` (from 0) and its offset.
+fn c_word_at(line: &[u8], k: usize) -> (&[u8], usize) {
+    let mut c = Cursor::new(line);
+    (0..k).for_each(|_| {
+        c.word();
+    });
+    c.word().unwrap_or((b"", line.len()))
 }
 
-/// A number; the common short decimals (`-0.008366`) by the exact fast
-/// path, everything else by `fast-float2`.
+/// A number, the whole of `w`, as the reader reads it.
+#[cfg(test)]
 fn number(w: &[u8]) -> Option<f32> {
-    short_decimal(w).or_else(|| fast_float2::parse::<f32, _>(w).ok())
-}
-
-/// Powers of ten exact in f32 (5^10 < 2^24).
-const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
-
-/// `[-]digits[.digits]` whose digits, read as an integer, are below 2^24,
-/// with at most 10 decimals: the integer and the power of ten are both
-/// exact in f32, so one division rounds correctly (Clinger's fast path).
-/// `None` for anything else.
-#[inline]
-fn short_decimal(w: &[u8]) -> Option<f32> {
-    let (neg, s) = match w {
-        [b'-', rest @ ..] => (true, rest),
-        [b'+', rest @ ..] => (false, rest),
-        _ => (false, w),
-    };
-    if s.is_empty() || s.len() > 19 {
-        return None;
-    }
-    let mut m = 0u64;
-    let mut i = 0;
-    while i < s.len() && s[i].is_ascii_digit() {
-        m = m * 10 + (s[i] - b'0') as u64;
-        i += 1;
-    }
-    let whole = i;
-    let mut decimals = 0;
-    if i < s.len() && s[i] == b'.' {
-        i += 1;
-        let from = i;
-        while i < s.len() && s[i].is_ascii_digit() {
-            m = m * 10 + (s[i] - b'0') as u64;
-            i += 1;
-        }
-        decimals = i - from;
-    }
-    if i != s.len() || whole + decimals == 0 || decimals > 10 || m >= 1 << 24 {
-        return None;
-    }
-    let v = m as f32 / POW10[decimals];
-    Some(if neg { -v } else { v })
-}
-
-fn index(w: &[u8]) -> Option<i64> {
-    let (neg, digits) = match w {
-        [b'-', rest @ ..] => (true, rest),
-        [b'+', rest @ ..] => (false, rest),
-        _ => (false, w),
-    };
-    if digits.is_empty() || digits.len() > 18 {
-        return None;
-    }
-    let mut v = 0i64;
-    for &d in digits {
-        if !d.is_ascii_digit() {
-            return None;
-        }
-        v = v * 10 + (d - b'0') as i64;
-    }
-    Some(if neg { -v } else { v })
+    let mut c = Cursor::new(w);
+    let x = c.number()?.ok();
+    x.filter(|_| !c.more())
 }
 
 fn lossy(w: &[u8]) -> String {

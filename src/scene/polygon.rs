@@ -40,6 +40,21 @@ pub enum Point {
     Between { a: u32, b: u32, t: f32 },
 }
 
+/// Where to cut a quad `p`: `Some(d)` when the diagonal from corner `d`
+/// (0 or 1) to corner `d + 2` leaves two triangles facing the same way;
+/// `None` for a quad that crosses itself (or has no area).
+#[inline]
+pub fn quad(p: [Vec3; 4]) -> Option<usize> {
+    let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
+    if facing(0, 1, 2).dot(facing(0, 2, 3)) > 0.0 {
+        Some(0)
+    } else if facing(1, 2, 3).dot(facing(1, 3, 0)) > 0.0 {
+        Some(1)
+    } else {
+        None
+    }
+}
+
 /// Reusable buffers for cutting polygons.
 #[derive(Debug, Default)]
 pub struct Triangulator {
@@ -58,19 +73,14 @@ impl Triangulator {
         match corners.len() {
             0..=2 => {}
             3 => out.push([c(0), c(1), c(2)]),
-            4 => {
-                let p = corners;
-                let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
-                if facing(0, 1, 2).dot(facing(0, 2, 3)) > 0.0 {
-                    out.push([c(0), c(1), c(2)]);
-                    out.push([c(0), c(2), c(3)]);
-                } else if facing(1, 2, 3).dot(facing(1, 3, 0)) > 0.0 {
-                    out.push([c(1), c(2), c(3)]);
-                    out.push([c(1), c(3), c(0)]);
-                } else {
-                    self.general(corners, out);
+            4 => match quad([corners[0], corners[1], corners[2], corners[3]]) {
+                Some(d) => {
+                    let [a, b, e, f] = [d, d + 1, d + 2, (d + 3) % 4].map(|i| c(i as u32));
+                    out.push([a, b, e]);
+                    out.push([a, e, f]);
                 }
-            }
+                None => self.general(corners, out),
+            },
             _ => self.general(corners, out),
         }
     }

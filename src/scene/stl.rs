@@ -23,7 +23,7 @@ use std::path::Path;
 use glam::Vec3;
 use rustc_hash::FxHashMap;
 
-use super::file::{self, Limits, Lines};
+use super::file::{self, Cursor, Limits, Lines};
 use super::mesh::Geometry;
 use super::obj::Loaded;
 use crate::error::{Error, Result};
@@ -206,35 +206,34 @@ fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
             Ok(None) => break,
             Err((n, e)) => return Err(error(name, n, 1, e)),
         };
-        let mut words = file::words(line);
-        let Some((keyword, kcol)) = words.next() else {
+        let mut words = Cursor::new(line);
+        let Some((keyword, kcol)) = words.word() else {
             continue;
         };
         let at = |offset: usize, msg: String| error(name, n, file::column(line, offset), msg);
-        let numbers =
-            |words: &mut dyn Iterator<Item = (&[u8], usize)>, what: &str| -> Result<Vec3> {
-                let mut v = [0.0f32; 3];
-                for (k, slot) in v.iter_mut().enumerate() {
-                    let Some((word, col)) = words.next() else {
-                        return Err(at(kcol, format!("`{what}` needs 3 numbers, found {k}")));
-                    };
-                    *slot = fast_float2::parse::<f32, _>(word).map_err(|_| {
-                        at(
+        let numbers = |words: &mut Cursor, what: &str| -> Result<Vec3> {
+            let mut v = [0.0f32; 3];
+            for (k, slot) in v.iter_mut().enumerate() {
+                *slot = match words.number() {
+                    None => return Err(at(kcol, format!("`{what}` needs 3 numbers, found {k}"))),
+                    Some(Ok(x)) => x,
+                    Some(Err((word, col))) => {
+                        return Err(at(
                             col,
                             format!(
                                 "`{what}`: {:?} is not a number",
                                 String::from_utf8_lossy(word)
                             ),
-                        )
-                    })?;
-                }
-                Ok(Vec3::from(v))
-            };
-        let mut words = words;
+                        ));
+                    }
+                };
+            }
+            Ok(Vec3::from(v))
+        };
         want = match (want, keyword) {
             (Want::Solid, b"solid") => Want::Facet,
             (Want::Facet, b"facet") => {
-                match words.next() {
+                match words.word() {
                     Some((b"normal", _)) => {
                         numbers(&mut words, "facet normal")?;
                     }
@@ -249,7 +248,7 @@ fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
             }
             (Want::Facet, b"endsolid") => Want::Done,
             (Want::OuterLoop, b"outer") => {
-                if !matches!(words.next(), Some((b"loop", _))) {
+                if !matches!(words.word(), Some((b"loop", _))) {
                     return Err(at(kcol, "expected `outer loop`".into()));
                 }
                 Want::Vertex(0)
