@@ -443,26 +443,35 @@ fn render_samples(t: [[f64; 2]; 3], cols: u16, rows: u16) -> (BTreeSet<(u32, u32
         vertices: ndc,
         color: TriangleColor::Flat(Rgb::WHITE),
     }]);
+    let (set, r) = rendered(&scene, cols, rows, GlyphMode::Block);
+    (set, r.stats().raster)
+}
+
+/// The samples `scene` covers, rendered `cols × rows` in `glyphs`, and the
+/// renderer (for its counts).
+fn rendered(
+    scene: &Scene,
+    cols: u16,
+    rows: u16,
+    glyphs: GlyphMode,
+) -> (BTreeSet<(u32, u32)>, Renderer) {
     let mut r = Renderer::new();
     r.render(
-        &scene,
+        scene,
         &RenderOptions {
             cols,
             rows,
-            glyphs: GlyphMode::Block,
+            glyphs,
             ..RenderOptions::default()
         },
     );
     let fb = r.framebuffer();
-    let mut set = BTreeSet::new();
-    for y in 0..rows as u32 {
-        for x in 0..cols as u32 {
-            if fb.get(x, y).is_some() {
-                set.insert((x, y));
-            }
-        }
-    }
-    (set, r.stats().raster)
+    let g = fb.grid();
+    let set = (0..g.height)
+        .flat_map(|y| (0..g.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.get(x, y).is_some())
+        .collect();
+    (set, r)
 }
 
 #[test]
@@ -518,22 +527,7 @@ fn sweep() -> Vec<f32> {
 /// (square samples, so the projections keep 45° at 45°).
 fn covered_by(src: &str, cols: u16, rows: u16) -> BTreeSet<(u32, u32)> {
     let scene = Scene::parse(src, "sweep.toml").unwrap();
-    let mut r = Renderer::new();
-    r.render(
-        &scene,
-        &RenderOptions {
-            cols,
-            rows,
-            glyphs: GlyphMode::Half,
-            ..RenderOptions::default()
-        },
-    );
-    let fb = r.framebuffer();
-    let g = fb.grid();
-    (0..g.height)
-        .flat_map(|y| (0..g.width).map(move |x| (x, y)))
-        .filter(|&(x, y)| fb.get(x, y).is_some())
-        .collect()
+    rendered(&scene, cols, rows, GlyphMode::Half).0
 }
 
 const PROJECTIONS: [&str; 3] = [

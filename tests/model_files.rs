@@ -475,6 +475,15 @@ fn a_sparse_4_gib_file_is_refused_by_its_size_and_the_flag_lifts_the_limit() {
     assert!(out.status.success());
 }
 
+/// Whether every mesh of `scene` holds the very same geometry.
+fn one_geometry(scene: &Scene) -> bool {
+    let first = &scene.meshes[0].geometry;
+    scene
+        .meshes
+        .iter()
+        .all(|m| std::sync::Arc::ptr_eq(&m.geometry, first))
+}
+
 #[test]
 fn twenty_thousand_meshes_naming_one_shape_share_one_geometry() {
     let src: String = (0..20_000)
@@ -487,13 +496,7 @@ fn twenty_thousand_meshes_naming_one_shape_share_one_geometry() {
         .collect();
     let scene = Scene::parse(&src, "many.toml").unwrap();
     assert_eq!(scene.meshes.len(), 20_000);
-    let first = &scene.meshes[0].geometry;
-    assert!(
-        scene
-            .meshes
-            .iter()
-            .all(|m| std::sync::Arc::ptr_eq(&m.geometry, first))
-    );
+    assert!(one_geometry(&scene));
 }
 
 #[test]
@@ -502,13 +505,7 @@ fn many_meshes_naming_one_file_read_it_once() {
     std::fs::write(dir.join("t.obj"), format!("{TRIANGLE}f 1 2 3\n")).unwrap();
     let src: String = (0..500).map(|_| "[[mesh]]\npath = \"t.obj\"\n").collect();
     let scene = Scene::parse_in(&src, "s.toml", Some(&dir)).unwrap();
-    let first = &scene.meshes[0].geometry;
-    assert!(
-        scene
-            .meshes
-            .iter()
-            .all(|m| std::sync::Arc::ptr_eq(&m.geometry, first))
-    );
+    assert!(one_geometry(&scene));
 }
 
 // --- 8. Nothing lost without a word -----------------------------------------

@@ -186,7 +186,7 @@ fn blank(b: u8) -> bool {
 
 /// A cursor over one line: its words, numbers and indices, taken in one
 /// pass over the bytes, up to a `#` comment. Each item comes with the byte
-/// offset where it starts (for [`column`], when an error needs it).
+/// offset where it starts (for [`column()`], when an error needs it).
 #[derive(Clone, Copy)]
 pub struct Cursor<'l> {
     line: &'l [u8],

@@ -27,12 +27,25 @@
 //! of a cube stay sharp, a sphere's seam disappears. A vertex index shared
 //! across a crease is split so that each side gets its own normal.
 //!
-//! **Closed** (every edge walked once each way) is found at load, in linear
-//! time by hashing the edges of the welded positions: a model that is not
-//! closed shows its inside through the gaps, so it is drawn from both sides
-//! by default. **Convex** is decided only when the planner asks (a scene of
-//! one closed mesh culled at the back, where it would let the depth test
-//! go), and then exactly (see [`Geometry::is_convex`]).
+//! **Connectivity** is found once at load, in linear time and without an
+//! edge table: positions are welded by a compact hash set
+//! ([`PositionSet`]), then the corners around each welded position are
+//! listed by a counting sort (4 bytes a corner, dropped after use). The
+//! normals read the faces around each position from it; **closed** (every
+//! edge walked once each way) is that each position's corners lead to and
+//! come from the same positions, each once; a closed mesh's Euler
+//! characteristic (V − F/2) says at once whether it has a sphere's
+//! topology. A model that is not closed shows its inside through the gaps,
+//! so it is drawn from both sides by default. **Convex** is decided only
+//! when the planner asks (a scene of one closed mesh of a sphere's
+//! topology, culled at the back, where it would let the depth test go),
+//! and then exactly (see [`Geometry::is_convex`]), from the same corner
+//! lists built again.
+//!
+//! While a frame is drawn the renderer keeps one transformed vertex (72
+//! bytes: clip outcode, screen position exact and snapped, depth, 1/w,
+//! world position, normal and light) per vertex of the mesh being drawn;
+//! the framebuffer holds a colour and a depth per sample (8 bytes).
 
 use std::sync::{Arc, OnceLock};
 
@@ -111,18 +124,7 @@ impl Geometry {
     /// Geometry from positions and faces, with normals computed (see the
     /// module doc) and the facts the planner reads.
     pub fn new(name: impl Into<String>, positions: Vec<Vec3>, faces: Vec<[u32; 3]>) -> Geometry {
-        let mut g = Geometry {
-            name: name.into(),
-            positions,
-            normals: Vec::new(),
-            colors: None,
-            faces,
-            materials: Vec::new(),
-            bounds: None,
-            closed: false,
-            sphere_like: false,
-            convex: OnceLock::new(),
-        };
+        let mut g = Geometry::new_raw(name, positions, faces);
         g.compute_normals(DEFAULT_CREASE);
         g
     }

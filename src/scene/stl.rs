@@ -21,10 +21,9 @@ use std::io::Read;
 use std::path::Path;
 
 use glam::Vec3;
-use rustc_hash::FxHashMap;
 
 use super::file::{self, Cursor, Limits, Lines};
-use super::mesh::Geometry;
+use super::mesh::{Geometry, PositionSet};
 use super::obj::Loaded;
 use crate::error::{Error, Result};
 
@@ -80,7 +79,7 @@ fn read(head: &[u8], rest: impl Read, size: u64, name: &str) -> Result<Loaded> {
 /// Corners welded by position into an indexed mesh.
 struct Welder {
     positions: Vec<Vec3>,
-    ids: FxHashMap<[u32; 3], u32>,
+    set: PositionSet,
     faces: Vec<[u32; 3]>,
 }
 
@@ -88,7 +87,7 @@ impl Welder {
     fn new() -> Welder {
         Welder {
             positions: Vec::new(),
-            ids: FxHashMap::default(),
+            set: PositionSet::with_capacity(0),
             faces: Vec::new(),
         }
     }
@@ -96,11 +95,9 @@ impl Welder {
     fn facet(&mut self, corners: [Vec3; 3]) {
         let f = corners.map(|p| {
             let next = self.positions.len() as u32;
-            let id = *self
-                .ids
-                .entry(p.to_array().map(|v| (v + 0.0).to_bits()))
-                .or_insert(next);
-            if id == next {
+            let positions = &self.positions;
+            let (id, new) = self.set.get_or_insert(p, next, |i| positions[i as usize]);
+            if new {
                 self.positions.push(p);
             }
             id
