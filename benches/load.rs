@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use rastty::scene::{Limits, obj};
+use rastty::scene::{LoadOptions, obj};
 
 #[path = "../examples/torus_obj.rs"]
 mod torus_obj;
@@ -21,7 +21,7 @@ fn load(c: &mut Criterion) {
         let path = format!("{root}/tests/models/{name}.obj");
         group.throughput(Throughput::Bytes(std::fs::metadata(&path).unwrap().len()));
         group.bench_function(name, |b| {
-            b.iter(|| obj::load(Path::new(&path), &Limits::default()).unwrap())
+            b.iter(|| obj::load(Path::new(&path), &LoadOptions::default()).unwrap())
         });
     }
     for n in [10_000, 100_000, 1_000_000] {

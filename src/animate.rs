@@ -21,34 +21,7 @@ use crate::render::{RenderOptions, Renderer};
 use crate::scene::{Camera, Scene};
 use crate::shade::Shading;
 
-/// A world axis to turn about.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Axis {
-    X,
-    #[default]
-    Y,
-    Z,
-}
-
-impl Axis {
-    /// The name of a turn about this axis, as the command line has it
-    /// (`--pitch`, `--yaw`, `--roll`).
-    pub fn angle_name(self) -> &'static str {
-        match self {
-            Axis::X => "pitch",
-            Axis::Y => "yaw",
-            Axis::Z => "roll",
-        }
-    }
-
-    pub fn unit(self) -> Vec3 {
-        match self {
-            Axis::X => Vec3::X,
-            Axis::Y => Vec3::Y,
-            Axis::Z => Vec3::Z,
-        }
-    }
-}
+pub use crate::transform::Axis;
 
 /// A turn of `step` degrees per frame about `axis`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,13 +130,13 @@ impl Player {
         self
     }
 
-    /// Limits the modes `m` cycles through to those for which `usable` is
+    /// LoadOptions the modes `m` cycles through to those for which `usable` is
     /// true (the current mode stays as it is).
     pub fn set_usable_glyphs(&mut self, usable: impl Fn(GlyphMode) -> bool) {
         self.usable = GlyphMode::ALL.map(usable);
     }
 
-    /// Limits the depths `c` cycles through to `max` and below.
+    /// LoadOptions the depths `c` cycles through to `max` and below.
     pub fn set_max_depth(&mut self, max: ColorDepth) {
         self.max_depth = max;
     }

@@ -13,7 +13,8 @@
 //! | traversal | scan, bounding box, incremental | samples that differ from incremental (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
-//! | quantisation | 256 and 16 colours, nearest in RGB or in OKLab | mean and largest OKLab distance to the colour sent |
+//! | palette matching | 256 and 16 colours, nearest in RGB, OKLab or OKLCh | mean OKLab distance to the colour sent; greys sent to a colour; hues moved over 45° |
+//! | dithering | 256 and 16 colours, none or ordered | OKLab error of 2×2-cell areas against truecolor; bytes of a first and a next frame |
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -24,7 +25,7 @@ use glam::Vec3;
 
 use crate::accuracy::{Poly, area_in_rect};
 use crate::blit::{GlyphMode, Split};
-use crate::color::{self, ColorDepth, Metric, Rgb};
+use crate::color::{self, ColorDepth, Dither, Ink, Lin, Metric, Palette, Rgb};
 use crate::encode::Encoder;
 use crate::raster::{Grid, Precision, Traversal};
 use crate::render::{Aa, Interpolation, RenderOptions, Renderer};
@@ -232,34 +233,46 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         });
     }
 
-    // 6. Quantisation.
+    // 6. Palette matching.
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
-        for metric in [Metric::Rgb, Metric::Oklab] {
-            let (mean, max) = quantisation_error(depth, metric);
-            let times = workloads
-                .iter()
-                .map(|w| {
-                    let frame = crate::render(&w.scene, &base());
-                    median((0..reps).map(|_| {
-                        let mut e = Encoder::new(depth).with_metric(metric);
-                        let t = Instant::now();
-                        e.prepare(&frame);
-                        t.elapsed()
-                    }))
-                })
-                .collect();
+        for metric in Metric::ALL {
+            let q = matching_error(depth, metric);
+            let palette = Palette {
+                depth,
+                metric,
+                dither: Dither::None,
+            };
             rows.push(Row {
-                knob: "quantisation",
-                setting: format!(
-                    "{} colours, nearest in {}",
-                    depth.name(),
-                    match metric {
-                        Metric::Rgb => "RGB",
-                        Metric::Oklab => "OKLab",
-                    }
-                ),
-                times,
-                errors: vec![("mean OKLab distance", mean), ("max OKLab distance", max)],
+                knob: "palette matching",
+                setting: format!("{} colours, nearest in {}", depth.name(), metric.name()),
+                times: encode_times(workloads, palette, reps),
+                errors: vec![
+                    ("mean OKLab distance", q.mean),
+                    ("greys sent to a colour (%)", q.greys_coloured),
+                    ("hues moved over 45° (%)", q.hues_moved),
+                ],
+            });
+        }
+    }
+
+    // 7. Dithering.
+    for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
+        for dither in [Dither::None, Dither::Ordered] {
+            let palette = Palette {
+                depth,
+                metric: Metric::Oklch,
+                dither,
+            };
+            let d = dither_cost(workloads, palette);
+            rows.push(Row {
+                knob: "dithering",
+                setting: format!("{} colours, {}", depth.name(), dither.name()),
+                times: encode_times(workloads, palette, reps),
+                errors: vec![
+                    ("mean OKLab error of 2×2-cell areas", d.error),
+                    ("bytes, first frame", d.full_bytes),
+                    ("bytes, next frame (3° on)", d.next_bytes),
+                ],
             });
         }
     }
@@ -545,7 +558,8 @@ fn traversal_mismatch(workloads: &[Workload], traversal: Traversal) -> u64 {
 
 /// A floor from 1 to 8 units in front of the eye, red near, blue far:
 /// every drawn sample's colour against the colour of the floor point behind
-/// it, found by casting the ray in f64. Largest and mean error, 0–255.
+/// it, found by casting the ray in f64. Largest and mean error, 0–255 in
+/// linear light (where colours are interpolated).
 pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
     let near = Vec3::new(0.0, -1.0, -1.0);
     let far = Vec3::new(0.0, -1.0, -8.0);
@@ -558,6 +572,7 @@ pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
         eye: Vec3::ZERO,
         target: Vec3::new(0.0, 0.0, -1.0),
         up: Vec3::Y,
+        fit: None,
     };
     let (l, r) = (Vec3::X * 3.0, Vec3::X * -3.0);
     let (red, blue) = (Rgb::new(255, 0, 0), Rgb::new(0, 0, 255));
@@ -605,8 +620,10 @@ pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
             ));
             let t = (-1.0 - p0.y) / (p1.y - p0.y);
             let s = ((p0.z + t * (p1.z - p0.z)) + 1.0) / -7.0;
+            // Colours interpolate in linear light: compared there, in
+            // 0–255 units.
             let want = [255.0 * (1.0 - s), 0.0, 255.0 * s];
-            let got = c.to_f32();
+            let got = c.to_f32().map(|v| v / 257.0);
             let e = (0..3)
                 .map(|k| (got[k] as f64 - want[k]).abs())
                 .fold(0.0, f64::max);
@@ -639,6 +656,7 @@ fn split_error(workloads: &[Workload], split: Split) -> f64 {
         let (fb, frame) = (r.framebuffer(), r.frame());
         let bg = w.scene.background.unwrap_or(Rgb::BLACK);
         let height = fb.grid().height;
+        // Measured on the encoded colours, as the cell's are.
         for cy in 0..opts.rows {
             for cx in 0..opts.cols {
                 let colors: [Rgb; 8] = std::array::from_fn(|i| {
@@ -646,7 +664,7 @@ fn split_error(workloads: &[Workload], split: Split) -> f64 {
                         cx as u32 * 2 + i as u32 % 2,
                         height - 1 - (cy as u32 * 4 + i as u32 / 2),
                     );
-                    fb.get(x, y).unwrap_or(bg)
+                    fb.get(x, y).map_or(bg, |c| c.to_srgb())
                 });
                 if colors.iter().map(|c| c.0).collect::<BTreeSet<_>>().len() <= 2 {
                     continue;
@@ -671,20 +689,156 @@ fn split_error(workloads: &[Workload], split: Split) -> f64 {
     sum / n.max(1) as f64
 }
 
-/// 4,096 seeded random colours mapped to `depth` by `metric`: the mean and
-/// largest OKLab distance to the colour sent.
-fn quantisation_error(depth: ColorDepth, metric: Metric) -> (f64, f64) {
+/// The median time to encode each workload's frame in `palette` (the
+/// quantizer's work, where the palette costs).
+fn encode_times(workloads: &[Workload], palette: Palette, reps: usize) -> Vec<Duration> {
+    workloads
+        .iter()
+        .map(|w| {
+            let frame = crate::render(&w.scene, &base());
+            median((0..reps).map(|_| {
+                let mut e = Encoder::new(palette.depth)
+                    .with_metric(palette.metric)
+                    .with_dither(palette.dither);
+                let t = Instant::now();
+                e.prepare(&frame);
+                t.elapsed()
+            }))
+        })
+        .collect()
+}
+
+/// How well a metric matches colours to a palette.
+pub struct MatchingError {
+    /// Mean OKLab distance to the colour sent, over random colours.
+    pub mean: f64,
+    /// Of near-greys (OKLab chroma below [`color::palette::GREY_CHROMA`]),
+    /// the share sent to a chromatic entry, in %.
+    pub greys_coloured: f64,
+    /// Of clearly chromatic colours (chroma 0.08 or more), the share sent
+    /// to an entry whose hue is more than 45° away (or to a grey), in %.
+    pub hues_moved: f64,
+}
+
+/// Seeded random colours (4,096 of any kind, 4,096 near-greys) mapped to
+/// `depth` by `metric`.
+pub fn matching_error(depth: ColorDepth, metric: Metric) -> MatchingError {
+    use color::palette::{GREY_CHROMA, chroma};
+    let lab = |c: Rgb| {
+        let [r, g, b] = c.0;
+        let l = oklab::srgb_to_oklab(oklab::Rgb { r, g, b });
+        [l.l, l.a, l.b]
+    };
     let mut rng = Rng(0xD1B5_4A32_D192_ED03);
-    let (mut sum, mut max) = (0.0f64, 0.0f64);
-    let n = 4096;
-    for _ in 0..n {
+    let (mut sum, mut n, mut chromatic, mut moved) = (0.0f64, 0usize, 0usize, 0usize);
+    for _ in 0..4096 {
         let c = Rgb([0, 0, 0].map(|_: u8| (rng.next() * 256.0) as u8));
         let sent = color::xterm256(color::nearest(depth, metric, c));
-        let d = color::oklab_distance(c, sent) as f64;
-        sum += d;
-        max = max.max(d);
+        sum += color::oklab_distance(c, sent) as f64;
+        n += 1;
+        if chroma(c) >= 0.08 {
+            chromatic += 1;
+            let (p, q) = (lab(c), lab(sent));
+            let turn = (p[2].atan2(p[1]) - q[2].atan2(q[1])).abs();
+            let turn = turn.min(std::f32::consts::TAU - turn);
+            if chroma(sent) < GREY_CHROMA || turn > std::f32::consts::FRAC_PI_4 {
+                moved += 1;
+            }
+        }
     }
-    (sum / n as f64, max)
+    let (mut greys, mut coloured) = (0usize, 0usize);
+    while greys < 4096 {
+        let v = rng.next() * 256.0;
+        let jitter = |_: u8| (v + (rng.next() - 0.5) * 12.0).clamp(0.0, 255.0) as u8;
+        let c = Rgb([0, 0, 0].map(jitter));
+        if chroma(c) >= GREY_CHROMA {
+            continue;
+        }
+        greys += 1;
+        let sent = color::xterm256(color::nearest(depth, metric, c));
+        coloured += (chroma(sent) >= GREY_CHROMA) as usize;
+    }
+    MatchingError {
+        mean: sum / n as f64,
+        greys_coloured: 100.0 * coloured as f64 / greys as f64,
+        hues_moved: 100.0 * moved as f64 / chromatic.max(1) as f64,
+    }
+}
+
+/// What dithering costs and gains, over the workloads.
+pub struct DitherCost {
+    /// Mean OKLab distance between the truecolor frame and the frame as
+    /// sent, each averaged (in linear light) over areas of 2×2 cells, as
+    /// the eye averages a pattern seen from a little way off.
+    pub error: f64,
+    /// Mean bytes of a first frame and of the next one (turned 3°).
+    pub full_bytes: f64,
+    pub next_bytes: f64,
+}
+
+/// [`DitherCost`] of `palette` over the workloads, in half blocks at
+/// 200×60 cells.
+pub fn dither_cost(workloads: &[Workload], palette: Palette) -> DitherCost {
+    let opts = base();
+    let (mut err, mut blocks, mut full, mut next) = (0.0f64, 0usize, 0usize, 0usize);
+    for w in workloads {
+        let frame = crate::render(&w.scene, &opts);
+        let mut e = Encoder::new(palette.depth)
+            .with_metric(palette.metric)
+            .with_dither(palette.dither);
+        e.prepare(&frame);
+        full += e.last_bytes().len();
+        let turned = RenderOptions {
+            turn: opts.turn + Vec3::new(0.0, 3.0, 0.0),
+            ..opts
+        };
+        e.prepare(&crate::render(&w.scene, &turned));
+        next += e.last_bytes().len();
+        // Each cell's light: its two colours weighted by the glyph's share.
+        let mut q = color::Quantizer::of(palette);
+        let bg = w.scene.background.unwrap_or(Rgb::BLACK);
+        let light = |c: Option<Rgb>| Vec3::from(Lin::from_srgb(c.unwrap_or(bg)).to_f32());
+        let cell_light = |x: u16, y: u16, q: &mut Option<&mut color::Quantizer>| {
+            let cell = frame.get(x, y);
+            let share = match cell.ch {
+                ' ' => 0.0,
+                '█' => 1.0,
+                _ => 0.5,
+            };
+            let send = |c: Option<Rgb>, q: &mut Option<&mut color::Quantizer>| match q {
+                Some(q) => match q.ink_at(c, x, y) {
+                    Ink::Indexed(i) => Some(color::xterm256(i)),
+                    Ink::Rgb(c) => Some(c),
+                    Ink::Default => None,
+                },
+                None => c,
+            };
+            let (fg, bg_) = (send(cell.fg, q), send(cell.bg, q));
+            light(fg) * share + light(bg_) * (1.0 - share)
+        };
+        for by in 0..frame.rows() / 2 {
+            for bx in 0..frame.cols() / 2 {
+                let (mut want, mut got) = (Vec3::ZERO, Vec3::ZERO);
+                for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let (x, y) = (bx * 2 + dx, by * 2 + dy);
+                    want += cell_light(x, y, &mut None);
+                    got += cell_light(x, y, &mut Some(&mut q));
+                }
+                let enc = |v: Vec3| Lin::from_f32((v / 4.0).to_array()).to_srgb();
+                let (a, b) = (enc(want), enc(got));
+                if a != bg || b != bg {
+                    err += color::oklab_distance(a, b) as f64;
+                    blocks += 1;
+                }
+            }
+        }
+    }
+    let k = workloads.len().max(1) as f64;
+    DitherCost {
+        error: err / blocks.max(1) as f64,
+        full_bytes: full as f64 / k,
+        next_bytes: next as f64 / k,
+    }
 }
 
 impl Report {
@@ -881,11 +1035,21 @@ mod tests {
     }
 
     #[test]
-    fn oklab_quantisation_is_perceptually_closer() {
+    fn oklch_keeps_greys_grey_and_hues_in_their_family() {
         for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
-            let (rgb, _) = quantisation_error(depth, Metric::Rgb);
-            let (ok, _) = quantisation_error(depth, Metric::Oklab);
-            assert!(ok < rgb, "{depth:?}: {ok} vs {rgb}");
+            let rgb = matching_error(depth, Metric::Rgb);
+            let lab = matching_error(depth, Metric::Oklab);
+            let lch = matching_error(depth, Metric::Oklch);
+            assert!(lab.mean < rgb.mean, "{depth:?}");
+            assert_eq!(lch.greys_coloured, 0.0, "{depth:?}");
+            assert!(
+                lch.hues_moved < lab.hues_moved,
+                "{depth:?}: {} vs {}",
+                lch.hues_moved,
+                lab.hues_moved
+            );
         }
+        // In 16 colours plain OKLab sends greys to colours.
+        assert!(matching_error(ColorDepth::Ansi16, Metric::Oklab).greys_coloured > 0.0);
     }
 }

@@ -34,7 +34,7 @@
 
 pub mod glyphs;
 
-use crate::color::{ColorDepth, Rgb};
+use crate::color::{ColorDepth, Lin, Rgb};
 use crate::frame::{Cell, Frame};
 use crate::framebuffer::Framebuffer;
 use crate::raster::Grid;
@@ -138,16 +138,16 @@ impl GlyphMode {
 
     /// One cell from its samples (see the module doc for their order), with
     /// the exact two-colour split.
-    pub fn cell(self, samples: &[Option<Rgb>], depth: ColorDepth, background: Option<Rgb>) -> Cell {
+    pub fn cell(self, samples: &[Option<Lin>], depth: ColorDepth, background: Option<Lin>) -> Cell {
         self.cell_split(samples, depth, background, Split::Exhaustive)
     }
 
     /// One cell, its two colours split by `split`.
     pub fn cell_split(
         self,
-        samples: &[Option<Rgb>],
+        samples: &[Option<Lin>],
         depth: ColorDepth,
-        background: Option<Rgb>,
+        background: Option<Lin>,
         split: Split,
     ) -> Cell {
         let n = samples.len();
@@ -158,8 +158,12 @@ impl GlyphMode {
             .fold(0u8, |m, (i, s)| m | ((s.is_some() as u8) << i));
         if !depth.has_color() {
             let ch = match self {
-                GlyphMode::Ascii => samples[0].map_or(' ', |c| ramp(&glyphs::ASCII_RAMP, c)),
-                GlyphMode::Block => samples[0].map_or(' ', |c| ramp(&glyphs::SHADE_RAMP, c)),
+                GlyphMode::Ascii => {
+                    samples[0].map_or(' ', |c| ramp(&glyphs::ASCII_RAMP, c.to_srgb()))
+                }
+                GlyphMode::Block => {
+                    samples[0].map_or(' ', |c| ramp(&glyphs::SHADE_RAMP, c.to_srgb()))
+                }
                 _ => self.glyph(drawn),
             };
             return Cell {
@@ -171,11 +175,14 @@ impl GlyphMode {
         match self {
             GlyphMode::Ascii => match samples[0] {
                 None => blank(background),
-                Some(c) => Cell {
-                    ch: ramp(&glyphs::ASCII_RAMP, c),
-                    fg: Some(c),
-                    bg: background,
-                },
+                Some(c) => {
+                    let c = c.to_srgb();
+                    Cell {
+                        ch: ramp(&glyphs::ASCII_RAMP, c),
+                        fg: Some(c),
+                        bg: encode(background),
+                    }
+                }
             },
             GlyphMode::Block => blank(samples[0].or(background)),
             GlyphMode::Braille => {
@@ -192,8 +199,8 @@ impl GlyphMode {
                 } else {
                     Cell {
                         ch: self.glyph(dots),
-                        fg: Some(sum.mean()),
-                        bg: background,
+                        fg: Some(sum.mean().to_srgb()),
+                        bg: encode(background),
                     }
                 }
             }
@@ -205,9 +212,9 @@ impl GlyphMode {
 
     fn two_colour(
         self,
-        samples: &[Option<Rgb>],
+        samples: &[Option<Lin>],
         drawn: u8,
-        background: Option<Rgb>,
+        background: Option<Lin>,
         how: Split,
     ) -> Cell {
         let n = samples.len();
@@ -222,11 +229,11 @@ impl GlyphMode {
             samples.iter().flatten().for_each(|&c| sum.add(c));
             return Cell {
                 ch: self.glyph(drawn),
-                fg: Some(sum.mean()),
+                fg: Some(sum.mean().to_srgb()),
                 bg: None,
             };
         };
-        let mut colors = [Rgb::BLACK; 8];
+        let mut colors = [Lin::BLACK; 8];
         for (c, s) in colors.iter_mut().zip(samples) {
             *c = s.unwrap_or(bg_color);
         }
@@ -235,19 +242,20 @@ impl GlyphMode {
             // Half blocks, written out: what the general path below
             // decides for two samples, without its sums.
             let (top, bottom) = (colors[0], colors[1]);
-            return if top == bottom {
+            let (t, b) = (top.to_srgb(), bottom.to_srgb());
+            return if t == b {
                 blank(Some(top))
             } else if background == Some(bottom) {
                 Cell {
                     ch: '▀',
-                    fg: Some(top),
-                    bg: Some(bottom),
+                    fg: Some(t),
+                    bg: Some(b),
                 }
             } else {
                 Cell {
                     ch: '▄',
-                    fg: Some(bottom),
-                    bg: Some(top),
+                    fg: Some(b),
+                    bg: Some(t),
                 }
             };
         }
@@ -266,9 +274,13 @@ impl GlyphMode {
                 bg_sum.add(c)
             }
         }
-        let (fg, bg) = (fg_sum.mean(), bg_sum.mean());
+        let (fg, bg) = (fg_sum.mean().to_srgb(), bg_sum.mean().to_srgb());
         if fg == bg {
-            return blank(Some(bg));
+            return Cell {
+                ch: ' ',
+                fg: None,
+                bg: Some(bg),
+            };
         }
         // Orientation: the scene's background stays the cell's background;
         // otherwise the larger side is.
@@ -305,15 +317,22 @@ impl GlyphMode {
     }
 }
 
-fn blank(bg: Option<Rgb>) -> Cell {
+/// A blank cell in `bg`, encoded.
+fn blank(bg: Option<Lin>) -> Cell {
     Cell {
         ch: ' ',
         fg: None,
-        bg,
+        bg: encode(bg),
     }
 }
 
-/// A running sum of colours.
+/// A colour encoded to sRGB, for the frame.
+#[inline]
+fn encode(c: Option<Lin>) -> Option<Rgb> {
+    c.map(Lin::to_srgb)
+}
+
+/// A running sum of linear colours.
 #[derive(Clone, Copy, Debug, Default)]
 struct Sum {
     rgb: [u32; 3],
@@ -321,7 +340,7 @@ struct Sum {
 }
 
 impl Sum {
-    fn add(&mut self, c: Rgb) {
+    fn add(&mut self, c: Lin) {
         for (s, v) in self.rgb.iter_mut().zip(c.0) {
             *s += v as u32;
         }
@@ -329,17 +348,18 @@ impl Sum {
     }
 
     /// The rounded mean.
-    fn mean(&self) -> Rgb {
+    fn mean(&self) -> Lin {
         let n = self.n.max(1);
-        Rgb(self.rgb.map(|s| ((s + n / 2) / n) as u8))
+        Lin(self.rgb.map(|s| ((s + n / 2) / n) as u16))
     }
 }
 
 /// The split of `colors` into a foreground set (the returned mask) and a
-/// background set that minimises the total squared distance of each colour
-/// to its set's mean. 0 when all colours are equal. Exhaustive: the exact
-/// answer.
-pub fn split(colors: &[Rgb]) -> u8 {
+/// background set that minimises the total squared distance (in linear
+/// light) of each colour to its set's mean. 0 when all colours are equal.
+/// Exhaustive: the exact answer, in integers (8 × 65535 summed and squared
+/// fits an i64 with room).
+pub fn split(colors: &[Lin]) -> u8 {
     let n = colors.len();
     let first = colors[0];
     let Some(other) = colors.iter().copied().find(|&c| c != first) else {
@@ -416,13 +436,15 @@ impl Split {
 
 /// The cheaper split: samples above the mean of the widest channel are the
 /// foreground. 0 when all colours are equal.
-pub fn split_widest_channel(colors: &[Rgb]) -> u8 {
-    let (lo, hi) = colors.iter().fold(([255u8; 3], [0u8; 3]), |(lo, hi), c| {
-        (
-            std::array::from_fn(|k| lo[k].min(c.0[k])),
-            std::array::from_fn(|k| hi[k].max(c.0[k])),
-        )
-    });
+pub fn split_widest_channel(colors: &[Lin]) -> u8 {
+    let (lo, hi) = colors
+        .iter()
+        .fold(([u16::MAX; 3], [0u16; 3]), |(lo, hi), c| {
+            (
+                std::array::from_fn(|k| lo[k].min(c.0[k])),
+                std::array::from_fn(|k| hi[k].max(c.0[k])),
+            )
+        });
     let k = (0..3).max_by_key(|&k| hi[k] - lo[k]).unwrap_or(0);
     if hi[k] == lo[k] {
         return 0;
@@ -457,7 +479,14 @@ pub fn blit(
     frame.resize(cols, rows);
     let blank_when_uniform =
         depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
-    let args = (fb, mode, depth, background, split, blank_when_uniform);
+    let args = (
+        fb,
+        mode,
+        depth,
+        background.map(Lin::from_srgb),
+        split,
+        blank_when_uniform,
+    );
     // One copy of the loop per cell size, so that gathering a cell's
     // samples is constant indexing.
     match (w, h) {
@@ -473,7 +502,7 @@ type BlitArgs<'a> = (
     &'a Framebuffer,
     GlyphMode,
     ColorDepth,
-    Option<Rgb>,
+    Option<Lin>,
     Split,
     bool,
 );
@@ -487,7 +516,7 @@ fn blit_cells<const W: usize, const H: usize>(
     for row in 0..frame.rows() {
         // The cell's sample rows, top first.
         let top = grid.height as usize - 1 - row as usize * H;
-        let lines: [&[Option<Rgb>]; H] = std::array::from_fn(|dy| fb.row((top - dy) as u32));
+        let lines: [&[Option<Lin>]; H] = std::array::from_fn(|dy| fb.row((top - dy) as u32));
         for (col, cell) in frame.row_mut(row).iter_mut().enumerate() {
             let x = col * W;
             for (i, s) in samples[..W * H].iter_mut().enumerate() {
@@ -511,6 +540,10 @@ mod tests {
 
     const RED: Rgb = Rgb::new(255, 0, 0);
     const BLUE: Rgb = Rgb::new(0, 0, 255);
+    /// The same in linear light, as samples hold them.
+    const L_RED: Lin = Lin([65535, 0, 0]);
+    const L_BLUE: Lin = Lin([0, 0, 65535]);
+    const L_BLACK: Option<Lin> = Some(Lin::BLACK);
 
     #[test]
     fn pattern_inverts_glyph() {
@@ -539,8 +572,8 @@ mod tests {
     #[test]
     fn terminal_row_zero_shows_the_top_sample_row() {
         let mut fb = Framebuffer::new(Grid::new(2, 3));
-        fb.set(0, 2, Rgb::WHITE); // top-left
-        fb.set(1, 0, Rgb::WHITE); // bottom-right
+        fb.set(0, 2, Lin::WHITE); // top-left
+        fb.set(1, 0, Lin::WHITE); // bottom-right
         let mut frame = Frame::default();
         blit(
             &fb,
@@ -553,8 +586,8 @@ mod tests {
         assert_eq!(frame.to_string(), "@ \n  \n @\n");
         // Half blocks: the top sample of the cell is bit 0.
         let mut fb = Framebuffer::new(Grid::new(1, 4));
-        fb.set(0, 3, Rgb::WHITE);
-        fb.set(0, 0, Rgb::WHITE);
+        fb.set(0, 3, Lin::WHITE);
+        fb.set(0, 0, Lin::WHITE);
         blit(
             &fb,
             GlyphMode::Half,
@@ -568,7 +601,7 @@ mod tests {
 
     #[test]
     fn blit_agrees_with_cell_in_every_mode() {
-        let red = Some(RED);
+        let red = Some(L_RED);
         for mode in GlyphMode::ALL {
             for depth in [ColorDepth::None, ColorDepth::TrueColor] {
                 for background in [None, Some(Rgb::BLACK)] {
@@ -578,9 +611,9 @@ mod tests {
                     for y in 0..grid.height {
                         let (w, _) = mode.cell_size();
                         for x in 0..w {
-                            fb.set(x, y, RED);
+                            fb.set(x, y, L_RED);
                             if y % 2 == 0 {
-                                fb.set(w + x, y, BLUE);
+                                fb.set(w + x, y, L_BLUE);
                             }
                         }
                     }
@@ -588,6 +621,7 @@ mod tests {
                     blit(&fb, mode, depth, background, Split::Exhaustive, &mut frame);
                     let n = mode.samples();
                     let full = vec![red; n];
+                    let background = background.map(Lin::from_srgb);
                     assert_eq!(
                         frame.get(0, 0),
                         mode.cell(&full, depth, background),
@@ -605,8 +639,8 @@ mod tests {
 
     #[test]
     fn one_sample_modes_put_colour_on_the_right_plane() {
-        let bg = Some(Rgb::BLACK);
-        let block = GlyphMode::Block.cell(&[Some(RED)], ColorDepth::TrueColor, bg);
+        let (bg, black) = (L_BLACK, Some(Rgb::BLACK));
+        let block = GlyphMode::Block.cell(&[Some(L_RED)], ColorDepth::TrueColor, bg);
         assert_eq!(
             block,
             Cell {
@@ -615,18 +649,18 @@ mod tests {
                 bg: Some(RED)
             }
         );
-        let ascii = GlyphMode::Ascii.cell(&[Some(RED)], ColorDepth::TrueColor, bg);
-        assert_eq!((ascii.fg, ascii.bg), (Some(RED), bg));
+        let ascii = GlyphMode::Ascii.cell(&[Some(L_RED)], ColorDepth::TrueColor, bg);
+        assert_eq!((ascii.fg, ascii.bg), (Some(RED), black));
         let empty = GlyphMode::Block.cell(&[None], ColorDepth::TrueColor, bg);
         assert_eq!(
             empty,
             Cell {
                 ch: ' ',
                 fg: None,
-                bg
+                bg: black
             }
         );
-        let plain = GlyphMode::Ascii.cell(&[Some(RED)], ColorDepth::None, bg);
+        let plain = GlyphMode::Ascii.cell(&[Some(L_RED)], ColorDepth::None, bg);
         assert_eq!((plain.fg, plain.bg), (None, None));
     }
 
@@ -635,10 +669,10 @@ mod tests {
         // The general path, reached through the widest-channel split's
         // sibling: an exhaustive split of two colours, taken the long way
         // round by a quadrant cell whose columns repeat them.
-        let colors = [Rgb::BLACK, Rgb::WHITE, RED, BLUE, Rgb::new(10, 200, 30)];
+        let colors = [Lin::BLACK, Lin::WHITE, L_RED, L_BLUE, Lin([10, 20000, 300])];
         for &a in &colors {
             for &b in &colors {
-                for bg in [None, Some(Rgb::BLACK), Some(RED)] {
+                for bg in [None, L_BLACK, Some(L_RED)] {
                     let half = GlyphMode::Half.cell(&[Some(a), Some(b)], ColorDepth::TrueColor, bg);
                     let quad = GlyphMode::Quadrant.cell(
                         &[Some(a), Some(a), Some(b), Some(b)],
@@ -651,7 +685,7 @@ mod tests {
                         '▄' => Cell { ch: '▄', ..c },
                         _ => c,
                     };
-                    assert_eq!(as_quad(half), quad, "{a} over {b}, background {bg:?}");
+                    assert_eq!(as_quad(half), quad, "{a:?} over {b:?}, background {bg:?}");
                 }
             }
         }
@@ -659,28 +693,28 @@ mod tests {
 
     #[test]
     fn half_blocks_two_colours_and_one() {
-        let bg = Some(Rgb::BLACK);
-        let c = GlyphMode::Half.cell(&[Some(RED), None], ColorDepth::TrueColor, bg);
+        let (bg, black) = (L_BLACK, Some(Rgb::BLACK));
+        let c = GlyphMode::Half.cell(&[Some(L_RED), None], ColorDepth::TrueColor, bg);
         assert_eq!(
             c,
             Cell {
                 ch: '▀',
                 fg: Some(RED),
-                bg
+                bg: black
             }
         );
-        let c = GlyphMode::Half.cell(&[None, Some(RED)], ColorDepth::TrueColor, bg);
+        let c = GlyphMode::Half.cell(&[None, Some(L_RED)], ColorDepth::TrueColor, bg);
         assert_eq!(
             c,
             Cell {
                 ch: '▄',
                 fg: Some(RED),
-                bg
+                bg: black
             }
         );
-        let c = GlyphMode::Half.cell(&[Some(RED), Some(RED)], ColorDepth::TrueColor, bg);
-        assert_eq!(c, blank(Some(RED)));
-        let c = GlyphMode::Half.cell(&[Some(RED), Some(BLUE)], ColorDepth::TrueColor, bg);
+        let c = GlyphMode::Half.cell(&[Some(L_RED), Some(L_RED)], ColorDepth::TrueColor, bg);
+        assert_eq!(c, blank(Some(L_RED)));
+        let c = GlyphMode::Half.cell(&[Some(L_RED), Some(L_BLUE)], ColorDepth::TrueColor, bg);
         assert!(
             c == Cell {
                 ch: '▀',
@@ -694,7 +728,7 @@ mod tests {
                 }
         );
         // Without a scene background, undrawn samples keep the terminal's.
-        let c = GlyphMode::Half.cell(&[None, Some(RED)], ColorDepth::TrueColor, None);
+        let c = GlyphMode::Half.cell(&[None, Some(L_RED)], ColorDepth::TrueColor, None);
         assert_eq!(
             c,
             Cell {
@@ -711,15 +745,15 @@ mod tests {
 
     #[test]
     fn split_is_exact_for_two_colours_and_best_for_more() {
-        assert_eq!(split(&[RED, RED, RED, RED]), 0);
-        assert_eq!(split(&[RED, BLUE, BLUE, RED]), 0b0110);
+        assert_eq!(split(&[L_RED, L_RED, L_RED, L_RED]), 0);
+        assert_eq!(split(&[L_RED, L_BLUE, L_BLUE, L_RED]), 0b0110);
         // Three colours: the two near reds go together.
-        let near = Rgb::new(250, 10, 0);
-        let m = split(&[RED, near, BLUE, BLUE]);
+        let near = Lin([64000, 700, 0]);
+        let m = split(&[L_RED, near, L_BLUE, L_BLUE]);
         assert!(m == 0b1100 || m == 0b0011, "{m:#b}");
         // Brute force agrees on a gradient.
-        let grad: Vec<Rgb> = (0..8)
-            .map(|i| Rgb::new(i * 30, 255 - i * 20, i * i))
+        let grad: Vec<Lin> = (0..8u16)
+            .map(|i| Lin([i * 8000, 65535 - i * 5000, i * i * 900]))
             .collect();
         let sse = |m: u8| {
             let mut s = [Sum::default(), Sum::default()];
@@ -745,13 +779,13 @@ mod tests {
 
     #[test]
     fn braille_is_one_colour_dots_on_the_background() {
-        let bg = Some(Rgb::BLACK);
         let mut s = [None; 8];
-        s[0] = Some(RED);
-        s[7] = Some(BLUE);
-        let c = GlyphMode::Braille.cell(&s, ColorDepth::TrueColor, bg);
+        s[0] = Some(L_RED);
+        s[7] = Some(L_BLUE);
+        let c = GlyphMode::Braille.cell(&s, ColorDepth::TrueColor, L_BLACK);
         assert_eq!(c.ch, '⢁');
-        assert_eq!(c.fg, Some(Rgb::new(128, 0, 128)));
-        assert_eq!(c.bg, bg);
+        // Red and blue mixed in light: half of each, #bc00bc.
+        assert_eq!(c.fg, Some(Rgb::new(188, 0, 188)));
+        assert_eq!(c.bg, Some(Rgb::BLACK));
     }
 }

@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use rastty::animate::Axis;
 use rastty::blit::Split;
+use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
 use rastty::raster::{Cull, Precision};
 use rastty::render::{Aa, Interpolation};
@@ -104,6 +105,17 @@ pub struct InputArgs {
     /// G, T: powers of 1024) [default: 1G]
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_file_size: Option<u64>,
+    /// A model's up axis [default: z for STL, y otherwise]
+    #[arg(long, value_enum)]
+    pub up: Option<Axis>,
+    /// Faces meeting at a sharper angle keep their own normals along the
+    /// edge (computed normals only)
+    #[arg(long, value_name = "DEG", default_value_t = rastty::scene::mesh::DEFAULT_CREASE, value_parser = parse_crease)]
+    pub crease: f32,
+    /// How MTL Kd colours are read: linear light (as Blender and most
+    /// exporters write them) or sRGB
+    #[arg(long, value_enum, default_value_t = ColorSpace::Linear)]
+    pub mtl_colors: ColorSpace,
 }
 
 /// How a frame is laid out and drawn.
@@ -130,6 +142,10 @@ pub struct ViewArgs {
     /// A cell's width over its height [default: the terminal's, or 0.5]
     #[arg(long, value_name = "R", value_parser = parse_aspect)]
     pub cell_aspect: Option<f32>,
+    /// Draw colours between palette entries as patterns of two (auto:
+    /// ordered in 16 colours, none in 256)
+    #[arg(long, value_enum, default_value_t = Dither::Auto)]
+    pub dither: Dither,
     /// How surfaces are lit (by the scene's lights)
     #[arg(long, value_enum, default_value_t = Shading::Smooth)]
     pub shading: Shading,
@@ -230,6 +246,15 @@ fn parse_size(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("{s:?} is not a size (like 4096, 512M or 4G)"))?;
     n.checked_mul(1 << shift)
         .ok_or_else(|| format!("{s} is too large"))
+}
+
+fn parse_crease(s: &str) -> Result<f32, String> {
+    let d: f32 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    if (0.0..=180.0).contains(&d) {
+        Ok(d)
+    } else {
+        Err(format!("{s} is not between 0 and 180"))
+    }
 }
 
 fn parse_aspect(s: &str) -> Result<f32, String> {

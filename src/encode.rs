@@ -38,7 +38,7 @@
 
 use std::io::{self, Write};
 
-use crate::color::{ColorDepth, Ink, Metric, Quantizer, Rgb};
+use crate::color::{ColorDepth, Dither, Ink, Metric, Palette, Quantizer, Rgb};
 use crate::frame::Frame;
 
 /// Synchronized output: begin and end.
@@ -175,14 +175,19 @@ pub fn push_char(buf: &mut Vec<u8>, ch: char) {
 /// Maps a frame's cells to terminal cells for one depth, into `out`.
 fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
     out.clear();
-    out.extend(frame.cells().iter().map(|c| TermCell {
-        ch: c.ch,
-        fg: if c.ch == ' ' {
-            Ink::Default
-        } else {
-            q.ink(c.fg)
-        },
-        bg: q.ink(c.bg),
+    let cols = frame.cols().max(1) as usize;
+    out.extend(frame.cells().iter().enumerate().map(|(i, c)| {
+        // The cell's place anchors the dithering pattern.
+        let (x, y) = ((i % cols) as u16, (i / cols) as u16);
+        TermCell {
+            ch: c.ch,
+            fg: if c.ch == ' ' {
+                Ink::Default
+            } else {
+                q.ink_at(c.fg, x, y)
+            },
+            bg: q.ink_at(c.bg, x, y),
+        }
     }));
 }
 
@@ -218,12 +223,14 @@ fn push_run(
 /// space, cleared first and kept for the next call.
 pub fn write_lines(
     frame: &Frame,
-    depth: ColorDepth,
+    palette: impl Into<Palette>,
     rep: Rep,
     buf: &mut Vec<u8>,
     out: &mut impl Write,
 ) -> io::Result<()> {
-    let mut q = Quantizer::new(depth, Metric::Oklab);
+    let palette = palette.into();
+    let depth = palette.depth;
+    let mut q = Quantizer::of(palette);
     let mut cells = Vec::with_capacity(frame.cells().len());
     quantize(frame, &mut q, &mut cells);
     buf.clear();
@@ -400,6 +407,8 @@ pub fn diff<'a>(
 #[derive(Debug)]
 pub struct Encoder {
     quantizer: Quantizer,
+    /// The dithering asked for (`auto` resolves per depth).
+    dither: Dither,
     rep: Rep,
     cols: u16,
     rows: u16,
@@ -418,7 +427,8 @@ pub struct Encoder {
 impl Encoder {
     pub fn new(depth: ColorDepth) -> Encoder {
         Encoder {
-            quantizer: Quantizer::new(depth, Metric::Oklab),
+            quantizer: Quantizer::of(depth.into()),
+            dither: Dither::Auto,
             rep: Rep::Off,
             cols: 0,
             rows: 0,
@@ -459,10 +469,29 @@ impl Encoder {
         self.sync
     }
 
-    /// Measures "nearest" palette colours with `metric` (OKLab by default).
+    /// Measures "nearest" palette colours with `metric` (OKLCh by default).
     pub fn with_metric(mut self, metric: Metric) -> Encoder {
-        self.quantizer = Quantizer::new(self.quantizer.depth(), metric);
+        self.quantizer = Quantizer::of(Palette {
+            metric,
+            ..self.palette()
+        });
         self
+    }
+
+    /// Dithers as `dither` says (`auto` by default: ordered in 16 colours).
+    pub fn with_dither(mut self, dither: Dither) -> Encoder {
+        self.dither = dither;
+        self.quantizer = Quantizer::of(self.palette());
+        self
+    }
+
+    /// How colours are sent (`auto` dithering resolved).
+    pub fn palette(&self) -> Palette {
+        Palette {
+            depth: self.quantizer.depth(),
+            metric: self.quantizer.metric(),
+            dither: self.dither,
+        }
     }
 
     pub fn with_rep(mut self, rep: Rep) -> Encoder {
@@ -477,7 +506,10 @@ impl Encoder {
     /// Changes the colour depth; the next frame is a full redraw.
     pub fn set_depth(&mut self, depth: ColorDepth) {
         if depth != self.depth() {
-            self.quantizer = Quantizer::new(depth, Metric::Oklab);
+            self.quantizer = Quantizer::of(Palette {
+                depth,
+                ..self.palette()
+            });
             self.invalidate();
         }
     }

@@ -8,14 +8,14 @@
 //! cleared to −∞. Rows are stored bottom to top (y up, as the notes have
 //! it); the blitters turn them over.
 
-use crate::color::Rgb;
+use crate::color::Lin;
 use crate::raster::Grid;
 
 /// A `width × height` grid of samples.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Framebuffer {
     grid: Grid,
-    samples: Vec<Option<Rgb>>,
+    samples: Vec<Option<Lin>>,
     depth: Vec<f32>,
 }
 
@@ -52,7 +52,7 @@ impl Framebuffer {
     }
 
     #[inline(always)]
-    pub fn set(&mut self, x: u32, y: u32, c: Rgb) {
+    pub fn set(&mut self, x: u32, y: u32, c: Lin) {
         let i = self.index(x, y);
         self.samples[i] = Some(c);
     }
@@ -61,7 +61,7 @@ impl Framebuffer {
     /// (strictly: of two equal depths the first drawn stays). Returns
     /// whether it was written.
     #[inline(always)]
-    pub fn set_if_nearer(&mut self, x: u32, y: u32, z: f32, c: Rgb) -> bool {
+    pub fn set_if_nearer(&mut self, x: u32, y: u32, z: f32, c: Lin) -> bool {
         let i = self.index(x, y);
         if z > self.depth[i] {
             self.depth[i] = z;
@@ -75,7 +75,7 @@ impl Framebuffer {
     /// Writes `c` if nothing was drawn on the sample yet: what the depth
     /// test does for primitives of equal depth. Returns whether it wrote.
     #[inline(always)]
-    pub fn set_if_empty(&mut self, x: u32, y: u32, c: Rgb) -> bool {
+    pub fn set_if_empty(&mut self, x: u32, y: u32, c: Lin) -> bool {
         let i = self.index(x, y);
         let empty = self.samples[i].is_none();
         if empty {
@@ -85,7 +85,7 @@ impl Framebuffer {
     }
 
     #[inline(always)]
-    pub fn get(&self, x: u32, y: u32) -> Option<Rgb> {
+    pub fn get(&self, x: u32, y: u32) -> Option<Lin> {
         self.samples[self.index(x, y)]
     }
 
@@ -96,13 +96,13 @@ impl Framebuffer {
     }
 
     /// Sample row `y` (y up: row 0 is the bottom of the screen).
-    pub fn row(&self, y: u32) -> &[Option<Rgb>] {
+    pub fn row(&self, y: u32) -> &[Option<Lin>] {
         let w = self.grid.width as usize;
         &self.samples[y as usize * w..(y as usize + 1) * w]
     }
 
     /// All samples, row by row from the bottom.
-    pub fn samples(&self) -> &[Option<Rgb>] {
+    pub fn samples(&self) -> &[Option<Lin>] {
         &self.samples
     }
 }

@@ -112,12 +112,17 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
 /// The scene to draw; what the loaders read but cannot draw is said on
 /// stderr.
 fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
-    let mut limits = rastty::scene::Limits::default();
+    let mut options = rastty::scene::LoadOptions {
+        up: input.up,
+        crease: input.crease,
+        mtl_colors: input.mtl_colors,
+        ..Default::default()
+    };
     if let Some(max) = input.max_file_size {
-        limits.max_bytes = max;
+        options.max_bytes = max;
     }
     let scene = match &input.scene {
-        Some(p) => Scene::open_within(p, &limits)?,
+        Some(p) => Scene::open_within(p, &options)?,
         None => rastty::default_scene(),
     };
     for note in &scene.notes {
@@ -134,7 +139,12 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     let mut stdout = io::stdout().lock();
     let mut buf = Vec::new();
     let start = std::time::Instant::now();
-    encode::write_lines(frame, opts.color, args.view.rep(), &mut buf, &mut stdout)
+    let palette = rastty::color::Palette {
+        depth: opts.color,
+        dither: args.view.dither,
+        ..Default::default()
+    };
+    encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
         .and_then(|()| stdout.flush())
         .map_err(stdout_error)?;
     if args.explain {
@@ -156,9 +166,11 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     };
     let dumb = is_dumb();
     let encoder = if dumb {
-        Encoder::lines(opts.color)
+        Encoder::lines(opts.color).with_dither(args.view.dither)
     } else {
-        Encoder::new(opts.color).with_rep(args.view.rep())
+        Encoder::new(opts.color)
+            .with_rep(args.view.rep())
+            .with_dither(args.view.dither)
     };
     if !terminal::stdout_is_terminal() {
         // Not a terminal: the frames as one deterministic ANSI stream.

@@ -31,7 +31,7 @@ use glam::{DMat4, Mat3, Mat4, Vec3};
 
 use crate::blit::{self, GlyphMode, Split};
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
-use crate::color::{ColorDepth, Rgb};
+use crate::color::{ColorDepth, Lin, Rgb};
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
 use crate::plan::{self, Pipeline, Plan};
@@ -380,11 +380,12 @@ impl Renderer {
         };
 
         let turn = transform::rotation(opts.turn);
-        let vp = scene.camera.view_projection(opts.aspect());
-        let clipper = Clipper::new(grid.width, grid.height).with_w_min(scene.camera.w_min());
+        // A camera that frames a model is placed for this view's aspect.
+        let cam = &scene.camera.resolved(opts.aspect());
+        let vp = cam.view_projection(opts.aspect());
+        let clipper = Clipper::new(grid.width, grid.height).with_w_min(cam.w_min());
         let p = plan::plan(scene, opts, vp, turn, &clipper);
         self.plan = Some(p);
-        let cam = &scene.camera;
         let eye = match cam.projection {
             Projection::Perspective { .. } => Eye::At(cam.eye),
             Projection::Orthographic { .. } => Eye::Towards(cam.eye - cam.target),
@@ -482,7 +483,7 @@ impl Renderer {
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
-            for (run, color) in mesh.runs(mesh.color) {
+            for (run, color) in mesh.runs(Lin::from_srgb(mesh.color)) {
                 for face in &mesh.faces[run] {
                     let v = face.map(|i| &verts[i as usize]);
                     let base = match &mesh.colors {
@@ -506,7 +507,7 @@ impl Renderer {
             self.triangle(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
-                tri.color.at_vertices(),
+                tri.color.at_vertices().map(Lin::from_srgb),
                 cull,
                 (tri.vertices, &loose.mvp64),
             );
@@ -520,7 +521,7 @@ impl Renderer {
     /// shows its colour, the rest the terminal's).
     fn resolve(&mut self, total: f32, background: Option<Rgb>) {
         let grid = self.fb.grid();
-        let bg = background.map(|c| Vec3::from(c.to_f32()));
+        let bg = background.map(|c| Vec3::from(Lin::from_srgb(c).to_f32()));
         for (i, a) in self.acc.iter().enumerate() {
             let (x, y) = (i as u32 % grid.width, i as u32 / grid.width);
             let weight = a[3];
@@ -534,7 +535,7 @@ impl Renderer {
                 None if coverage >= 0.5 => mean,
                 None => continue,
             };
-            self.fb.set(x, y, Rgb::from_f32(c.to_array()));
+            self.fb.set(x, y, Lin::from_f32(c.to_array()));
         }
     }
 
@@ -606,7 +607,7 @@ impl Renderer {
         &mut self,
         stage: &Stage,
         v: [&Vert; 3],
-        base: [Rgb; 3],
+        base: [Lin; 3],
         cull: Cull,
         model: ([Vec3; 3], &DMat4),
     ) {
@@ -716,16 +717,16 @@ impl Renderer {
 
     /// The triangle's colour at each vertex. `back`: seen from behind, so
     /// lit on its other side (two-sided lighting).
-    /// Colours come out rounded to whole 8-bit values, so that interpolating
-    /// three equal colours gives back exactly that colour (the full
-    /// pipeline's interpolation of a one-colour triangle then matches the
-    /// planned pipeline's plain write, bit for bit).
-    fn shade(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], back: bool) -> [Vec3; 3] {
+    /// Colours are linear light in [0, 65535], rounded to whole steps, so
+    /// that interpolating three equal colours gives back exactly that
+    /// colour (the full pipeline's interpolation of a one-colour triangle
+    /// then matches the planned pipeline's plain write, bit for bit).
+    fn shade(&mut self, stage: &Stage, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
         self.light(stage, v, base, back)
-            .map(|c| Vec3::from(Rgb::from_f32(c.to_array()).to_f32()))
+            .map(|c| Vec3::from(Lin::from_f32(c.to_array()).to_f32()))
     }
 
-    fn light(&mut self, stage: &Stage, v: [&Vert; 3], base: [Rgb; 3], back: bool) -> [Vec3; 3] {
+    fn light(&mut self, stage: &Stage, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
         let base = base.map(|c| Vec3::from(c.to_f32()));
         let side = if back { -1.0 } else { 1.0 };
         match stage.shading {
@@ -803,9 +804,9 @@ impl Renderer {
         let interpolate = move |e: C::Weights| {
             let e = C::f32(e);
             let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
-            Rgb::from_f32(((ca * wa + cb * wb + cc * wc) / (wa + wb + wc)).to_array())
+            Lin::from_f32(((ca * wa + cb * wb + cc * wc) / (wa + wb + wc)).to_array())
         };
-        let one = Rgb::from_f32(ca.to_array());
+        let one = Lin::from_f32(ca.to_array());
         let tr = stage.traversal;
         // One tight loop per combination, so that each inlines.
         let tested = match (flat, use_depth) {

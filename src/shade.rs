@@ -55,7 +55,8 @@ impl Lights {
         let mut l = Lights::default();
         for (i, light) in lights.iter().take(MAX_LIGHTS).enumerate() {
             l.towards[i] = -light.direction;
-            l.color[i] = Vec3::from(light.color.to_f32()) / 255.0;
+            // Light adds in linear values: the colour decoded from sRGB.
+            l.color[i] = Vec3::from(crate::color::Lin::from_srgb(light.color).to_f32()) / 65535.0;
             l.ambient[i] = light.ambient;
         }
         l.len = lights.len().min(MAX_LIGHTS);

@@ -21,6 +21,35 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
+/// An axis of a coordinate system: one to turn about, or a model's up.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Axis {
+    X,
+    #[default]
+    Y,
+    Z,
+}
+
+impl Axis {
+    /// The name of a turn about this axis, as the command line has it
+    /// (`--pitch`, `--yaw`, `--roll`).
+    pub fn angle_name(self) -> &'static str {
+        match self {
+            Axis::X => "pitch",
+            Axis::Y => "yaw",
+            Axis::Z => "roll",
+        }
+    }
+
+    pub fn unit(self) -> Vec3 {
+        match self {
+            Axis::X => Vec3::X,
+            Axis::Y => Vec3::Y,
+            Axis::Z => Vec3::Z,
+        }
+    }
+}
+
 /// The view frustum's planes as the notes name them: `l, r, b, t` on the
 /// near plane, `n` and `f` as (negative) z values.
 #[derive(Clone, Copy, Debug, PartialEq)]

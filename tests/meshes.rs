@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use glam::Vec3;
+use rastty::color::Lin;
 use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
 
@@ -65,13 +66,12 @@ fn fox() {
 fn fox_wears_its_material_colours() {
     let scene = model("fox.obj");
     let mesh = &scene.meshes[0];
-    let kd: Vec<Rgb> = (0..mesh.faces.len()).map(|f| mesh.face_color(f)).collect();
-    // fox.mtl's Kd values: brown-black, brown, white-ish and more.
-    assert!(kd.contains(&Rgb::from_f32([
-        0.564712 * 255.0,
-        0.194618 * 255.0,
-        0.017642 * 255.0
-    ])));
+    let kd: Vec<Lin> = (0..mesh.faces.len()).map(|f| mesh.face_color(f)).collect();
+    // fox.mtl's Kd values, in linear light: the orange of its fur, which
+    // shows as #c67a24 (read as sRGB it would be a rust brown, #904a04).
+    let fur = Lin::from_unit([0.564712, 0.194618, 0.017642]);
+    assert!(kd.contains(&fur));
+    assert_eq!(fur.to_srgb(), Rgb::new(0xc6, 0x7a, 0x24));
     let o = RenderOptions {
         color: ColorDepth::TrueColor,
         shading: Shading::None,
@@ -79,7 +79,7 @@ fn fox_wears_its_material_colours() {
     };
     let frame = render(&scene, &o);
     let shown: std::collections::HashSet<Rgb> = frame.cells().iter().filter_map(|c| c.bg).collect();
-    let materials: std::collections::HashSet<Rgb> = kd.into_iter().collect();
+    let materials: std::collections::HashSet<Rgb> = kd.into_iter().map(Lin::to_srgb).collect();
     assert_eq!(materials.len(), 4);
     // Unlit, the colours on screen are exactly the materials' (the fourth,
     // the eyes, is too small to own a sample from this side).
@@ -142,7 +142,7 @@ fn games101_assignment_2_the_nearer_triangle_wins() {
     // on the far one's line of sight: projected, it shows the near colour.
     let near = Rgb::new(0xd9, 0xee, 0xb9);
     let far = Rgb::new(0x3a, 0x55, 0xee);
-    let samples: Vec<Rgb> = fb.samples().iter().flatten().copied().collect();
+    let samples: Vec<Rgb> = fb.samples().iter().flatten().map(|c| c.to_srgb()).collect();
     assert!(samples.contains(&near) && samples.contains(&far));
     let grid = fb.grid();
     let vp = scene.camera.view_projection(o.aspect());
@@ -151,6 +151,6 @@ fn games101_assignment_2_the_nearer_triangle_wins() {
         ((p.x / p.w + 1.0) * grid.width as f32 / 2.0) as u32,
         ((p.y / p.w + 1.0) * grid.height as f32 / 2.0) as u32,
     );
-    assert_eq!(fb.get(x, y), Some(near));
+    assert_eq!(fb.get(x, y).map(Lin::to_srgb), Some(near));
     insta::assert_snapshot!(render(&scene, &opts(GlyphMode::Ascii, 0.0, 0.0)).to_string());
 }

@@ -155,6 +155,7 @@ fn camera() -> impl Strategy<Value = Camera> {
             eye: Vec3::new(x, y, z),
             target: Vec3::ZERO,
             up: Vec3::Y,
+            fit: None,
         })
 }
 

@@ -8,7 +8,7 @@ mod common;
 use common::{as_displayed, nz, terminal};
 use glam::Vec3;
 use proptest::prelude::*;
-use rastty::color::{Ink, Metric, Quantizer};
+use rastty::color::{Ink, Quantizer};
 use rastty::encode::{Encoder, Rep, write_lines};
 use rastty::scene::{Triangle, TriangleColor};
 use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
@@ -21,9 +21,10 @@ fn vt_color(ink: Ink) -> vt100::Color {
     }
 }
 
-/// Asserts that the emulator's screen shows `frame` as `depth` sends it.
+/// Asserts that the emulator's screen shows `frame` as `depth` sends it
+/// (matched and dithered as the encoder does by default).
 fn assert_screen(screen: &vt100::Screen, frame: &Frame, depth: ColorDepth) -> Result<(), String> {
-    let mut q = Quantizer::new(depth, Metric::Oklab);
+    let mut q = Quantizer::of(depth.into());
     let (rows, cols) = screen.size();
     let (rows, cols) = (rows.get(), cols.get());
     if (cols, rows) != (frame.cols(), frame.rows()) {
@@ -38,8 +39,8 @@ fn assert_screen(screen: &vt100::Screen, frame: &Frame, depth: ColorDepth) -> Re
             let want = frame.get(c, r);
             let got = screen.cell(r, c).ok_or("no cell")?;
             let ch = got.contents().chars().next().unwrap_or(' ');
-            let bg = vt_color(q.ink(want.bg));
-            let ok_fg = want.ch == ' ' || got.fgcolor() == vt_color(q.ink(want.fg));
+            let bg = vt_color(q.ink_at(want.bg, c, r));
+            let ok_fg = want.ch == ' ' || got.fgcolor() == vt_color(q.ink_at(want.fg, c, r));
             if ch != want.ch || got.bgcolor() != bg || !ok_fg {
                 return Err(format!(
                     "cell ({c}, {r}): want {:?} fg {:?} bg {:?}, got {:?} fg {:?} bg {:?}",

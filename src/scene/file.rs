@@ -22,24 +22,9 @@ pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 /// million corners).
 pub const MAX_LINE: usize = 64 << 20;
 
-/// What a file may be.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Limits {
-    /// The largest file read, in bytes.
-    pub max_bytes: u64,
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Limits {
-            max_bytes: DEFAULT_MAX_BYTES,
-        }
-    }
-}
-
-/// Opens `path` for reading if it is a regular file within `limits`;
-/// returns it and its size.
-pub fn open(path: &Path, limits: &Limits) -> Result<(File, u64)> {
+/// Opens `path` for reading if it is a regular file of at most
+/// `max_bytes`; returns it and its size.
+pub fn open(path: &Path, max_bytes: u64) -> Result<(File, u64)> {
     use std::os::unix::fs::FileTypeExt;
     let io = |e| Error::io(path, e);
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -61,12 +46,12 @@ pub fn open(path: &Path, limits: &Limits) -> Result<(File, u64)> {
             path.display()
         )));
     }
-    if meta.len() > limits.max_bytes {
+    if meta.len() > max_bytes {
         return Err(Error::Invalid(format!(
             "{}: {} is more than the limit of {} (--max-file-size raises it)",
             path.display(),
             human(meta.len()),
-            human(limits.max_bytes)
+            human(max_bytes)
         )));
     }
     Ok((File::open(path).map_err(io)?, meta.len()))
@@ -507,14 +492,13 @@ mod tests {
 
     #[test]
     fn what_is_not_a_regular_file_is_refused_at_once() {
-        let limits = Limits::default();
         for (path, what) in [("/dev/zero", "a device"), ("/tmp", "a directory")] {
-            let e = open(Path::new(path), &limits).unwrap_err().to_string();
+            let e = open(Path::new(path), DEFAULT_MAX_BYTES)
+                .unwrap_err()
+                .to_string();
             assert_eq!(e, format!("{path}: is {what}, not a file"));
         }
-        let e = open(Path::new("Cargo.toml"), &Limits { max_bytes: 10 })
-            .unwrap_err()
-            .to_string();
+        let e = open(Path::new("Cargo.toml"), 10).unwrap_err().to_string();
         assert!(
             e.contains("is more than the limit of 10 bytes (--max-file-size raises it)"),
             "{e}"

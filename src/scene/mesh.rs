@@ -52,7 +52,7 @@ use std::sync::{Arc, OnceLock};
 use glam::{DVec3, Mat4, Vec3};
 use rustc_hash::FxHashMap;
 
-use crate::color::Rgb;
+use crate::color::{Lin, Rgb};
 use crate::raster::Cull;
 
 /// The crease angle: faces meeting at a sharper angle than this keep their
@@ -63,8 +63,9 @@ pub const DEFAULT_CREASE: f32 = 60.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MaterialRun {
     pub first: u32,
-    /// The material's colour; `None`: the mesh's own colour.
-    pub color: Option<Rgb>,
+    /// The material's colour, in linear light; `None`: the mesh's own
+    /// colour.
+    pub color: Option<Lin>,
 }
 
 /// A mesh's shape, in model coordinates: what is shared between meshes.
@@ -77,7 +78,7 @@ pub struct Geometry {
     pub normals: Vec<Vec3>,
     /// One colour per position, when the source has them; they override
     /// the face colours.
-    pub colors: Option<Vec<Rgb>>,
+    pub colors: Option<Vec<Lin>>,
     pub faces: Vec<[u32; 3]>,
     /// The faces' colours, as runs in face order; empty: every face in the
     /// mesh's colour.
@@ -167,7 +168,7 @@ impl Geometry {
 
     /// The faces in runs of one colour, in order, for a mesh coloured
     /// `color`: `(faces, colour)`.
-    pub fn runs(&self, color: Rgb) -> impl Iterator<Item = (std::ops::Range<usize>, Rgb)> + '_ {
+    pub fn runs(&self, color: Lin) -> impl Iterator<Item = (std::ops::Range<usize>, Lin)> + '_ {
         let n = self.faces.len();
         let first = self
             .materials
@@ -187,7 +188,7 @@ impl Geometry {
     }
 
     /// The colour of face `f` in a mesh coloured `color`.
-    pub fn face_color(&self, f: usize, color: Rgb) -> Rgb {
+    pub fn face_color(&self, f: usize, color: Lin) -> Lin {
         let run = self.materials.partition_point(|r| r.first as usize <= f);
         run.checked_sub(1)
             .and_then(|r| self.materials[r].color)
@@ -332,9 +333,9 @@ impl Mesh {
         Arc::make_mut(&mut self.geometry)
     }
 
-    /// The colour of face `f`.
-    pub fn face_color(&self, f: usize) -> Rgb {
-        self.geometry.face_color(f, self.color)
+    /// The colour of face `f`, in linear light.
+    pub fn face_color(&self, f: usize) -> Lin {
+        self.geometry.face_color(f, Lin::from_srgb(self.color))
     }
 }
 
@@ -350,14 +351,38 @@ pub struct Light {
 }
 
 impl Default for Light {
-    /// The light `rastty` uses for a model given on the command line: white,
-    /// from the upper right, in front.
+    /// A white light from the upper right, in front, with a little
+    /// ambient.
     fn default() -> Self {
         Light {
             direction: Vec3::new(-0.5, -1.0, -0.7).normalize(),
             color: Rgb::WHITE,
             ambient: 0.15,
         }
+    }
+}
+
+impl Light {
+    /// The lights of a model shown alone: a key light from the upper left
+    /// in front (0.8 of white, in linear light, 0.12 of it ambient) and a
+    /// fill from the right, a little below (0.3 of white): a white face
+    /// turned to the key shows 0.8 of its light (sRGB 231), one turned
+    /// from the key to the fill about 0.4 (sRGB 170), one turned from both
+    /// 0.1 (sRGB 87): shape reads without the lit side washing out or the
+    /// dark side going black.
+    pub fn rig() -> [Light; 2] {
+        [
+            Light {
+                direction: Vec3::new(0.6, -0.9, -0.6).normalize(),
+                color: Rgb::new(0xe7, 0xe7, 0xe7),
+                ambient: 0.12,
+            },
+            Light {
+                direction: Vec3::new(-0.9, 0.3, -0.3).normalize(),
+                color: Rgb::new(0x95, 0x95, 0x95),
+                ambient: 0.0,
+            },
+        ]
     }
 }
 
@@ -914,6 +939,6 @@ mod tests {
         let a = Shape::Torus.mesh(Rgb::WHITE);
         let b = Shape::Torus.mesh(Rgb::BLACK);
         assert!(Arc::ptr_eq(&a.geometry, &b.geometry));
-        assert_eq!(b.face_color(3), Rgb::BLACK);
+        assert_eq!(b.face_color(3), Lin::BLACK);
     }
 }

@@ -60,16 +60,16 @@ use std::path::Path;
 
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 use rustc_hash::FxHashMap;
 use serde::Deserialize;
 use toml::Spanned;
 
-pub use file::Limits;
 pub use mesh::{Geometry, Light, MaterialRun, Mesh};
 pub use shapes::Shape;
+pub use transform::Axis;
 
-use crate::color::Rgb;
+use crate::color::{ColorSpace, Rgb};
 use crate::error::{Error, Result};
 use crate::raster::Cull;
 use crate::transform;
@@ -121,6 +121,50 @@ pub struct Camera {
     pub eye: Vec3,
     pub target: Vec3,
     pub up: Vec3,
+    /// Frame a model: with this, `eye − target` is a direction and a zoom
+    /// (length 1: the model just fits), and the eye's distance is chosen
+    /// for each view's aspect ([`Camera::resolved`]).
+    pub fit: Option<Fit>,
+}
+
+/// What a camera frames: a model's outline, as the points of the model
+/// farthest out in [`Fit::DIRECTIONS`] directions spread evenly over the
+/// sphere (a 32-sided hull that hugs the model's convex hull), so that the
+/// model's projected bounding box can be found for any view in a few
+/// hundred operations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    pub points: [Vec3; Fit::DIRECTIONS],
+}
+
+impl Fit {
+    /// How many extreme points are kept.
+    pub const DIRECTIONS: usize = 32;
+    /// The share of the view's limiting dimension a framed model fills.
+    pub const FILL: f32 = 0.9;
+
+    /// The outline of `points` (at least one).
+    pub fn of(points: impl Iterator<Item = Vec3>) -> Fit {
+        // A Fibonacci sphere: evenly spread directions.
+        let dirs: [Vec3; Fit::DIRECTIONS] = std::array::from_fn(|k| {
+            let y = 1.0 - 2.0 * (k as f32 + 0.5) / Fit::DIRECTIONS as f32;
+            let r = (1.0 - y * y).sqrt();
+            let a = k as f32 * 2.399_963_2;
+            Vec3::new(r * a.cos(), y, r * a.sin())
+        });
+        let mut best = [(f32::NEG_INFINITY, Vec3::ZERO); Fit::DIRECTIONS];
+        for p in points {
+            for (b, d) in best.iter_mut().zip(&dirs) {
+                let s = p.dot(*d);
+                if s > b.0 {
+                    *b = (s, p);
+                }
+            }
+        }
+        Fit {
+            points: best.map(|b| b.1),
+        }
+    }
 }
 
 /// The projection into the canonical cube.
@@ -147,11 +191,85 @@ impl Default for Camera {
             eye: Vec3::new(0.0, 0.0, 5.0),
             target: Vec3::ZERO,
             up: Vec3::Y,
+            fit: None,
         }
     }
 }
 
 impl Camera {
+    /// This camera for a view of `aspect` (width over height): where it
+    /// frames a model ([`Camera::fit`]), the eye moved along `eye − target`
+    /// to the distance at which the model's outline, turned any way about
+    /// the y axis (as `spin` and `--yaw` turn it), fills [`Fit::FILL`] of
+    /// the view's height or width, whichever limits, times the length of
+    /// `eye − target` (the zoom); and moved up or down to centre it (not
+    /// sideways, so that the turn's axis stays in the middle). Every frame
+    /// of a turn is then framed the same and none is cut off; a model
+    /// round about its axis fills 90 %, a long one less in any one view.
+    /// Otherwise the camera as it is.
+    pub fn resolved(&self, aspect: f32) -> Camera {
+        let (Some(fit), Projection::Perspective { fov_y, .. }) = (self.fit, self.projection) else {
+            return Camera { fit: None, ..*self };
+        };
+        let offset = self.eye - self.target;
+        let zoom = offset.length();
+        let back = offset / zoom;
+        let right = back.cross(self.up).normalize_or_zero();
+        let right = if right == Vec3::ZERO { Vec3::X } else { right };
+        let up = right.cross(back);
+        let t = (fov_y.to_radians() / 2.0).tan() * Fit::FILL;
+        let (kx, ky) = (t * aspect.max(1e-6), t);
+        // The outline turned every way about y (as `spin` turns it), 16
+        // steps a turn: the framing holds for every frame.
+        let target = self.target;
+        let outline = &fit.points;
+        let swept = || {
+            (0..16).flat_map(move |k| {
+                let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
+                outline.iter().map(move |&p| turn * p - target)
+            })
+        };
+        // A point p at distance d projects to x / (d − z), which must stay
+        // within kx (and y within ky): d ≥ z + |x| / kx. Seen from above
+        // (or below) the projection is lopsided, so the view is also moved
+        // up or down by `lift`, to centre it (not sideways: the turn's axis
+        // stays in the middle).
+        let fits = |lift: f32| {
+            swept().fold(0.0f32, |d, p| {
+                let z = p.dot(back);
+                d.max(z + p.dot(right).abs() / kx)
+                    .max(z + (p.dot(up) - lift).abs() / ky)
+            })
+        };
+        let mut lift = 0.0f32;
+        let mut d = fits(lift);
+        for _ in 0..4 {
+            // Where the projection's top and bottom are at this distance,
+            // as heights at the target's depth.
+            let (lo, hi) = swept().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                let y = (p.dot(up) - lift) * d / (d - p.dot(back));
+                (lo.min(y), hi.max(y))
+            });
+            if !(lo.is_finite() && hi.is_finite()) {
+                break;
+            }
+            lift += (lo + hi) / 2.0;
+            d = fits(lift);
+        }
+        let (d, lift) = if d.is_finite() && d > 0.0 && lift.is_finite() {
+            (d, lift)
+        } else {
+            (1.0, 0.0)
+        };
+        let target = self.target + up * lift;
+        Camera {
+            eye: target + back * d * zoom,
+            target,
+            fit: None,
+            ..*self
+        }
+    }
+
     /// `M_projection · M_view` for a view whose physical width/height ratio
     /// is `aspect`, composed in f64 and rounded once to f32 (so that an eye
     /// 1e30 away, or a scene 1e-30 across, loses nothing in the product).
@@ -263,27 +381,94 @@ impl Camera {
     }
 }
 
+/// How model and scene files are read.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadOptions {
+    /// The largest file read, in bytes (a larger one is refused before it
+    /// is opened).
+    pub max_bytes: u64,
+    /// How MTL `Kd` numbers are read: linear light by default, as
+    /// exporters write them.
+    pub mtl_colors: ColorSpace,
+    /// The crease angle of computed normals, in degrees: faces meeting at
+    /// a sharper angle keep their own normals along the edge.
+    pub crease: f32,
+    /// For a model shown alone: which of its axes points up (`None`: the
+    /// format's convention, y for OBJ, z for STL).
+    pub up: Option<transform::Axis>,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        LoadOptions {
+            max_bytes: file::DEFAULT_MAX_BYTES,
+            mtl_colors: ColorSpace::Linear,
+            crease: mesh::DEFAULT_CREASE,
+            up: None,
+        }
+    }
+}
+
 /// The smallest orthographic height accepted: with the narrowest view
 /// (aspect 1/80,000), `2/width` still fits f32.
 pub const MIN_HEIGHT: f32 = 1e-30;
+
+/// Where a model shown alone is seen from: 30° to the right of its front
+/// and 20° above, a unit away (the camera's fit sets the distance).
+pub const THREE_QUARTER: Vec3 = Vec3::new(0.469_846_3, 0.342_020_1, 0.813_797_7);
+
+/// The vertical field of view a model shown alone is seen with, degrees.
+pub const MODEL_FOV: f32 = 30.0;
 
 /// The colour of a mesh whose file gives none.
 pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);
 
 impl Scene {
-    /// A scene of one model, centred and scaled to fit the view, lit from
-    /// the upper right: what `rastty spin MODEL` shows.
-    pub fn of_mesh(mut mesh: Mesh) -> Scene {
+    /// A scene of one model, as `rastty spin MODEL` shows it: centred,
+    /// its y axis up, seen from a three-quarter view ([`THREE_QUARTER`]:
+    /// 30° to the right, 20° above) through a 30° lens, framed to fill 90 %
+    /// of the view's limiting dimension however it turns about y
+    /// ([`Camera::resolved`]), under [`Light::rig`].
+    pub fn of_mesh(mesh: Mesh) -> Scene {
+        Scene::of_mesh_up(mesh, transform::Axis::Y)
+    }
+
+    /// [`Scene::of_mesh`] for a model whose `up` axis points up (STL files
+    /// are z-up by convention).
+    pub fn of_mesh_up(mut mesh: Mesh, up: transform::Axis) -> Scene {
         mesh.geometry_mut().fit_unit_sphere();
+        // The model's up axis onto y, exactly (a permutation, no rounding):
+        // z-up is turned −90° about x, (x, y, z) → (x, z, −y), so that its
+        // front, −y, faces the viewer; x-up 90° about z, (x, y, z) →
+        // (−y, x, z).
+        mesh.model = match up {
+            transform::Axis::X => Mat4::from_cols(Vec4::Y, -Vec4::X, Vec4::Z, Vec4::W),
+            transform::Axis::Y => Mat4::IDENTITY,
+            transform::Axis::Z => Mat4::from_cols(Vec4::X, -Vec4::Z, Vec4::Y, Vec4::W),
+        };
+        let fit = Fit::of(
+            mesh.positions
+                .iter()
+                .filter(|p| p.is_finite())
+                .map(|&p| mesh.model.transform_point3(p)),
+        );
         Scene {
             background: None,
             camera: Camera {
-                eye: Vec3::new(0.0, 0.0, 3.2),
+                // A longer lens than the default: less of the near end's
+                // swelling that makes a three-quarter view lopsided.
+                projection: Projection::Perspective {
+                    fov_y: MODEL_FOV,
+                    near: 0.05,
+                    far: 100.0,
+                },
+                eye: THREE_QUARTER,
+                fit: Some(fit),
                 ..Camera::default()
             },
             triangles: Vec::new(),
             meshes: vec![mesh],
-            lights: vec![Light::default()],
+            lights: Light::rig().to_vec(),
             notes: Vec::new(),
         }
     }
@@ -305,13 +490,22 @@ impl Scene {
     /// A model file (`.obj` or `.stl`) or, when `name` is one, a built-in
     /// shape, as [`Scene::of_mesh`].
     pub fn of_model(name: &Path) -> Result<Scene> {
-        Scene::of_model_within(name, &Limits::default())
+        Scene::of_model_within(name, &LoadOptions::default())
     }
 
-    /// [`Scene::of_model`], the file within `limits`.
-    pub fn of_model_within(name: &Path, limits: &Limits) -> Result<Scene> {
-        let (geometry, notes) = load_geometry(name, limits)?;
-        let mut scene = Scene::of_mesh(Mesh::of(geometry, DEFAULT_MESH_COLOR));
+    /// [`Scene::of_model`], the file read with `options`.
+    pub fn of_model_within(name: &Path, options: &LoadOptions) -> Result<Scene> {
+        let (geometry, notes) = load_geometry(name, options)?;
+        // STL is z-up by convention; OBJ and the shapes are y-up.
+        let stl = name
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+        let up = options.up.unwrap_or(if stl {
+            transform::Axis::Z
+        } else {
+            transform::Axis::Y
+        });
+        let mut scene = Scene::of_mesh_up(Mesh::of(geometry, DEFAULT_MESH_COLOR), up);
         scene.notes = notes;
         Ok(scene)
     }
@@ -345,14 +539,14 @@ impl Scene {
 
     /// A scene file or a model, told apart by [`Scene::kind`].
     pub fn open(path: &Path) -> Result<Scene> {
-        Scene::open_within(path, &Limits::default())
+        Scene::open_within(path, &LoadOptions::default())
     }
 
-    /// [`Scene::open`], every file within `limits`.
-    pub fn open_within(path: &Path, limits: &Limits) -> Result<Scene> {
+    /// [`Scene::open`], every file read with `options`.
+    pub fn open_within(path: &Path, options: &LoadOptions) -> Result<Scene> {
         match Scene::kind(path)? {
-            Kind::Model => Scene::of_model_within(path, limits),
-            Kind::Scene => Scene::load_within(path, limits),
+            Kind::Model => Scene::of_model_within(path, options),
+            Kind::Scene => Scene::load_within(path, options),
         }
     }
 
@@ -363,13 +557,13 @@ impl Scene {
 
     /// Reads and parses a scene file.
     pub fn load(path: &Path) -> Result<Scene> {
-        Scene::load_within(path, &Limits::default())
+        Scene::load_within(path, &LoadOptions::default())
     }
 
-    /// [`Scene::load`], every file within `limits`.
-    pub fn load_within(path: &Path, limits: &Limits) -> Result<Scene> {
+    /// [`Scene::load`], every file read with `options`.
+    pub fn load_within(path: &Path, options: &LoadOptions) -> Result<Scene> {
         use std::io::Read;
-        let (mut f, size) = file::open(path, limits)?;
+        let (mut f, size) = file::open(path, options.max_bytes)?;
         let mut bytes = Vec::with_capacity(size as usize);
         f.read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
         let name = path.display().to_string();
@@ -377,7 +571,7 @@ impl Scene {
             let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
             Error::parse_at(&name, &text, e.utf8_error().valid_up_to(), "not UTF-8 text")
         })?;
-        Scene::parse_with(&src, &name, path.parent(), limits)
+        Scene::parse_with(&src, &name, path.parent(), options)
     }
 
     /// Parses a scene from TOML text; `name` is used in error messages.
@@ -388,18 +582,23 @@ impl Scene {
 
     /// Parses a scene whose mesh paths are relative to `dir`.
     pub fn parse_in(src: &str, name: &str, dir: Option<&Path>) -> Result<Scene> {
-        Scene::parse_with(src, name, dir, &Limits::default())
+        Scene::parse_with(src, name, dir, &LoadOptions::default())
     }
 
     /// Parses a scene whose mesh paths are relative to `dir`, its model
-    /// files within `limits`.
+    /// files read with `options`.
     ///
     /// The text is read in chunks of whole tables of about 64 KiB, each
     /// deserialized on its own, so that memory stays a small multiple of
     /// the file (a TOML document tree of 200,000 triangles at once is 40
     /// times its text). A model file named by several meshes, and a shape,
     /// is loaded once and shared.
-    pub fn parse_with(src: &str, name: &str, dir: Option<&Path>, limits: &Limits) -> Result<Scene> {
+    pub fn parse_with(
+        src: &str,
+        name: &str,
+        dir: Option<&Path>,
+        options: &LoadOptions,
+    ) -> Result<Scene> {
         let mut scene = Scene::default();
         let mut camera_at: Option<usize> = None;
         let mut loaded: FxHashMap<std::path::PathBuf, Arc<Geometry>> = FxHashMap::default();
@@ -475,7 +674,7 @@ impl Scene {
                         match loaded.get(&p) {
                             Some(g) => Arc::clone(g),
                             None => {
-                                let (g, notes) = load_geometry(&p, limits)?;
+                                let (g, notes) = load_geometry(&p, options)?;
                                 scene.notes.extend(notes);
                                 loaded.insert(p, Arc::clone(&g));
                                 g
@@ -656,16 +855,22 @@ fn chunks(src: &str, size: usize) -> Vec<(usize, usize)> {
 
 /// Loads a model file by its extension, or a built-in shape by its name:
 /// its geometry, and what the loader has to tell.
-pub fn load_geometry(path: &Path, limits: &Limits) -> Result<(Arc<Geometry>, Vec<String>)> {
+pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry>, Vec<String>)> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let loaded = match ext.as_deref() {
-        Some("obj") => obj::load(path, limits)?,
-        Some("stl") => stl::load(path, limits)?,
+        Some("obj") => obj::load(path, options)?,
+        Some("stl") => stl::load(path, options)?,
         _ => match path.to_str().and_then(Shape::from_name) {
-            Some(shape) if !path.exists() => return Ok((shape.geometry(), Vec::new())),
+            Some(shape) if !path.exists() => {
+                let mut g = shape.geometry();
+                if options.crease != mesh::DEFAULT_CREASE {
+                    Arc::make_mut(&mut g).compute_normals(options.crease);
+                }
+                return Ok((g, Vec::new()));
+            }
             _ => {
                 return Err(Error::Invalid(format!(
                     "{}: not a model: expected a .obj or .stl file, or one of cube, sphere, torus",
@@ -680,7 +885,7 @@ pub fn load_geometry(path: &Path, limits: &Limits) -> Result<(Arc<Geometry>, Vec
 /// Loads a mesh file by its extension, or a built-in shape by its name, in
 /// `color` where the file gives none.
 pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
-    let (geometry, _) = load_geometry(path, &Limits::default())?;
+    let (geometry, _) = load_geometry(path, &LoadOptions::default())?;
     Ok(Mesh::of(geometry, color))
 }
 
@@ -827,6 +1032,7 @@ impl CameraDef {
             eye: self.eye.into(),
             target: self.target.into(),
             up: self.up.into(),
+            fit: None,
         }
     }
 }

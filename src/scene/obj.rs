@@ -27,10 +27,11 @@ use std::path::Path;
 use glam::Vec3;
 use rustc_hash::FxHashMap;
 
-use super::file::{self, Cursor, Limits, Lines};
+use super::LoadOptions;
+use super::file::{self, Cursor, Lines};
 use super::mesh::{Geometry, MaterialRun};
 use super::polygon::{self, Point, Triangulator};
-use crate::color::Rgb;
+use crate::color::{ColorSpace, Lin};
 use crate::error::{Error, Result};
 
 /// A model read from a file, and what the reader has to tell.
@@ -42,20 +43,20 @@ pub struct Loaded {
 }
 
 /// Loads an OBJ file (and its MTL files, found beside it).
-pub fn load(path: &Path, limits: &Limits) -> Result<Loaded> {
-    let (file, _) = file::open(path, limits)?;
+pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
+    let (file, _) = file::open(path, options.max_bytes)?;
     read(
         file,
         &path.display().to_string(),
         path.parent().unwrap_or(Path::new(".")),
-        limits,
+        options,
     )
 }
 
 /// Parses OBJ bytes; `name` is used in messages, material libraries are
 /// looked for in `dir`.
 pub fn parse(src: &[u8], name: &str, dir: &Path) -> Result<Loaded> {
-    read(src, name, dir, &Limits::default())
+    read(src, name, dir, &LoadOptions::default())
 }
 
 /// No index (a corner without a normal).
@@ -73,7 +74,7 @@ const MAX_VERTICES: usize = EXTRA as usize;
 struct Reader<'a> {
     name: &'a str,
     dir: &'a Path,
-    limits: &'a Limits,
+    options: &'a LoadOptions,
     /// The file's `v`, `vn` and vertex colours, and how many `vt`.
     pos: Vec<Vec3>,
     /// Where each non-finite `v` is (line), counted.
@@ -81,7 +82,7 @@ struct Reader<'a> {
     /// Whether a `v` or `vn` so far is not finite (only then are corners
     /// checked).
     any_bad: bool,
-    colors: Vec<Rgb>,
+    colors: Vec<Lin>,
     vn: Vec<Vec3>,
     vt: usize,
     /// For each `v`, the normal the first corner to use it named (`NONE`:
@@ -93,10 +94,10 @@ struct Reader<'a> {
     extra: Vec<(u32, u32)>,
     extra_ids: FxHashMap<u64, u32>,
     /// Vertices made between corners: position, colour, normal.
-    made: Vec<(Vec3, Rgb, Vec3)>,
+    made: Vec<(Vec3, Lin, Vec3)>,
     triangles: Vec<[u32; 3]>,
     materials: Vec<MaterialRun>,
-    library: FxHashMap<Vec<u8>, Option<Rgb>>,
+    library: FxHashMap<Vec<u8>, Option<Lin>>,
     /// Whether every corner so far named a normal.
     all_normals: bool,
     lines_and_points: usize,
@@ -108,11 +109,11 @@ struct Reader<'a> {
     cut: Vec<[Point; 3]>,
 }
 
-fn read(src: impl std::io::Read, name: &str, dir: &Path, limits: &Limits) -> Result<Loaded> {
+fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) -> Result<Loaded> {
     let mut r = Reader {
         name,
         dir,
-        limits,
+        options,
         pos: Vec::new(),
         bad_pos: Vec::new(),
         any_bad: false,
@@ -222,11 +223,11 @@ impl Reader<'_> {
                         return Err(self.at(n, 1, "a vertex colour is not a finite number"));
                     }
                     // Vertices before the first coloured one were white.
-                    self.colors.resize(self.pos.len(), Rgb::WHITE);
-                    self.colors
-                        .push(Rgb::from_f32(c.map(|x| x.clamp(0.0, 1.0) * 255.0)));
+                    self.colors.resize(self.pos.len(), Lin::WHITE);
+                    // Vertex colours are sRGB-encoded, as 8-bit ones are.
+                    self.colors.push(ColorSpace::Srgb.decode(c));
                 } else if !self.colors.is_empty() {
-                    self.colors.push(Rgb::WHITE);
+                    self.colors.push(Lin::WHITE);
                 }
                 self.pos.push(p);
             }
@@ -393,13 +394,13 @@ impl Reader<'_> {
         let ((va, na), (vb, nb)) = (corners[a], corners[b]);
         let p = self.pos[va as usize].lerp(self.pos[vb as usize], t);
         let color = if self.colors.is_empty() {
-            Rgb::WHITE
+            Lin::WHITE
         } else {
             let (ca, cb) = (
                 self.colors[va as usize].to_f32(),
                 self.colors[vb as usize].to_f32(),
             );
-            Rgb::from_f32(std::array::from_fn(|k| ca[k] + (cb[k] - ca[k]) * t))
+            Lin::from_f32(std::array::from_fn(|k| ca[k] + (cb[k] - ca[k]) * t))
         };
         let normal = if na != NONE && nb != NONE {
             self.vn[na as usize].lerp(self.vn[nb as usize], t)
@@ -436,7 +437,7 @@ impl Reader<'_> {
                     format!("material library {:?} not found", lossy(file)),
                 ));
             }
-            let mtl = mtl(&path, self.limits)?;
+            let mtl = mtl(&path, self.options)?;
             self.library.extend(mtl);
         }
         Ok(())
@@ -502,7 +503,7 @@ impl Reader<'_> {
         positions.extend(self.made.iter().map(|m| m.0));
         let colors = colored.then(|| {
             let mut c = std::mem::take(&mut self.colors);
-            c.resize(extra_base as usize, Rgb::WHITE);
+            c.resize(extra_base as usize, Lin::WHITE);
             for &(v, _) in &self.extra {
                 c.push(c[v as usize]);
             }
@@ -529,7 +530,7 @@ impl Reader<'_> {
                 .collect();
             g.analyze();
         } else {
-            g.compute_normals(super::mesh::DEFAULT_CREASE);
+            g.compute_normals(self.options.crease);
         }
         Ok(Loaded { geometry: g, notes })
     }
@@ -548,8 +549,8 @@ fn corner_offset(line: &[u8], k: usize) -> usize {
 
 /// A material library: each material's diffuse colour (`None`: it has no
 /// `Kd`).
-fn mtl(path: &Path, limits: &Limits) -> Result<FxHashMap<Vec<u8>, Option<Rgb>>> {
-    let (file, _) = file::open(path, limits)?;
+fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Option<Lin>>> {
+    let (file, _) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let at = |line: usize, column: usize, message: String| Error::Parse {
         path: name.clone(),
@@ -606,10 +607,7 @@ fn mtl(path: &Path, limits: &Limits) -> Result<FxHashMap<Vec<u8>, Option<Rgb>>> 
                 let Some(m) = &current else {
                     return Err(at_byte(line, n, kcol, "`Kd` before any `newmtl`".into()));
                 };
-                out.insert(
-                    m.clone(),
-                    Some(Rgb::from_f32(v.map(|x| x.clamp(0.0, 1.0) * 255.0))),
-                );
+                out.insert(m.clone(), Some(options.mtl_colors.decode(v)));
             }
             _ => {}
         }

@@ -22,24 +22,26 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::file::{self, Cursor, Limits, Lines};
+use super::LoadOptions;
+use super::file::{self, Cursor, Lines};
 use super::mesh::{Geometry, PositionSet};
 use super::obj::Loaded;
 use crate::error::{Error, Result};
 
 /// Loads an STL file.
-pub fn load(path: &Path, limits: &Limits) -> Result<Loaded> {
-    let (mut file, size) = file::open(path, limits)?;
+pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
+    let (mut file, size) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let mut head = [0u8; 84];
     let n = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, e))?;
-    read(&head[..n], file, size, &name)
+    read(&head[..n], file, size, &name, options.crease)
 }
 
 /// Parses STL bytes, binary or ASCII; `name` is used in messages.
 pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
     let n = bytes.len().min(84);
-    read(&bytes[..n], &bytes[n..], bytes.len() as u64, name)
+    let crease = LoadOptions::default().crease;
+    read(&bytes[..n], &bytes[n..], bytes.len() as u64, name, crease)
 }
 
 fn read_up_to(r: &mut impl Read, buf: &mut [u8]) -> std::io::Result<usize> {
@@ -63,7 +65,7 @@ fn error(name: &str, line: usize, column: usize, message: impl Into<String>) -> 
 }
 
 /// `head` is the file's first 84 bytes (or all of it), `rest` the others.
-fn read(head: &[u8], rest: impl Read, size: u64, name: &str) -> Result<Loaded> {
+fn read(head: &[u8], rest: impl Read, size: u64, name: &str, crease: f32) -> Result<Loaded> {
     if size == 0 {
         return Err(error(name, 1, 1, "empty file"));
     }
@@ -71,9 +73,9 @@ fn read(head: &[u8], rest: impl Read, size: u64, name: &str) -> Result<Loaded> {
         (head.len() == 84).then(|| u32::from_le_bytes([head[80], head[81], head[82], head[83]]));
     let binary_size = count.map(|c| 84 + 50 * c as u64);
     if binary_size == Some(size) || !head.starts_with(b"solid") {
-        return binary(head, rest, size, name, count);
+        return binary(head, rest, size, name, count).and_then(|w| w.finish(name, crease));
     }
-    ascii(head.chain(rest), name)
+    ascii(head.chain(rest), name).and_then(|w| w.finish(name, crease))
 }
 
 /// Corners welded by position into an indexed mesh.
@@ -81,6 +83,8 @@ struct Welder {
     positions: Vec<Vec3>,
     set: PositionSet,
     faces: Vec<[u32; 3]>,
+    /// Facets dropped for a corner that is not a finite number.
+    dropped: usize,
 }
 
 impl Welder {
@@ -89,6 +93,7 @@ impl Welder {
             positions: Vec::new(),
             set: PositionSet::with_capacity(0),
             faces: Vec::new(),
+            dropped: 0,
         }
     }
 
@@ -105,7 +110,8 @@ impl Welder {
         self.faces.push(f);
     }
 
-    fn finish(self, name: &str, dropped: usize) -> Result<Loaded> {
+    fn finish(self, name: &str, crease: f32) -> Result<Loaded> {
+        let dropped = self.dropped;
         if self.faces.is_empty() {
             let why = if dropped > 0 {
                 "no facet left: every facet has a corner that is not a finite number"
@@ -121,10 +127,9 @@ impl Welder {
         } else {
             Vec::new()
         };
-        Ok(Loaded {
-            geometry: Geometry::new(name, self.positions, self.faces),
-            notes,
-        })
+        let mut geometry = Geometry::new_raw(name, self.positions, self.faces);
+        geometry.compute_normals(crease);
+        Ok(Loaded { geometry, notes })
     }
 }
 
@@ -134,7 +139,7 @@ fn binary(
     size: u64,
     name: &str,
     count: Option<u32>,
-) -> Result<Loaded> {
+) -> Result<Welder> {
     let Some(count) = count else {
         return Err(error(
             name,
@@ -156,7 +161,6 @@ fn binary(
     }
     debug_assert_eq!(head.len(), 84);
     let mut w = Welder::new();
-    let mut dropped = 0;
     let mut buf = vec![0u8; 50 * 1024];
     let mut left = count as usize;
     while left > 0 {
@@ -171,12 +175,12 @@ fn binary(
             if corners.iter().all(|p| p.is_finite()) {
                 w.facet(corners);
             } else {
-                dropped += 1;
+                w.dropped += 1;
             }
         }
         left -= k;
     }
-    w.finish(name, dropped)
+    Ok(w)
 }
 
 /// What the ASCII reader expects next.
@@ -191,10 +195,9 @@ enum Want {
     Done,
 }
 
-fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
+fn ascii(src: impl Read, name: &str) -> Result<Welder> {
     let mut lines = Lines::new(src);
     let mut w = Welder::new();
-    let mut dropped = 0;
     let mut want = Want::Solid;
     let mut corners = [Vec3::ZERO; 3];
     loop {
@@ -263,7 +266,7 @@ fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
                 if corners.iter().all(|p| p.is_finite()) {
                     w.facet(corners);
                 } else {
-                    dropped += 1;
+                    w.dropped += 1;
                 }
                 Want::Facet
             }
@@ -303,7 +306,7 @@ fn ascii(src: impl Read, name: &str) -> Result<Loaded> {
             "the file ends in the middle of a facet (truncated?)",
         ));
     }
-    w.finish(name, dropped)
+    Ok(w)
 }
 
 #[cfg(test)]

@@ -1,0 +1,280 @@
+//! Colour: how it is written, computed and sent.
+//!
+//! **The pipeline works in linear light.** Colours as users write them
+//! (`"#ff8800"` in a scene, vertex colours in a model) are sRGB-encoded
+//! [`Rgb`]: their numbers are not proportional to light, and mixing them
+//! as numbers darkens every blend (a surface lit at 60°, half the light,
+//! would show sRGB 128, which is a fifth of the light). So each colour is
+//! decoded once, to [`Lin`] (16 bits of linear light a channel; the
+//! loaders store model colours decoded, the renderer decodes a scene's few
+//! colours once a frame), and lighting, interpolation, anti-aliasing and a
+//! cell's two-colour split all add and average linear light. The blit
+//! encodes each cell's colours back to sRGB once ([`srgb`]): a white
+//! surface lit head-on shows `#ffffff`, lit at 60° `#bcbcbc`. MTL `Kd`
+//! values, which exporters such as Blender write in linear light, are
+//! taken as linear (a scene can say otherwise). Where a *perceptual*
+//! measure is meant (which palette entry is nearest, which glyph ramp step
+//! a brightness gets) the measure is OKLab, from the encoded colour.
+//!
+//! **Sending** a colour to a terminal of 16 or 256 colours is [`palette`]:
+//! matching in OKLCh and ordered dithering.
+
+pub mod palette;
+pub mod srgb;
+
+pub use palette::{ANSI16, Dither, Metric, Palette, Quantizer, nearest, oklab_distance, xterm256};
+
+use std::fmt;
+use std::str::FromStr;
+
+/// An sRGB colour, 8 bits per channel. In scene files: `"#rrggbb"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(try_from = "String")]
+pub struct Rgb(pub [u8; 3]);
+
+impl Rgb {
+    pub const BLACK: Rgb = Rgb([0, 0, 0]);
+    pub const WHITE: Rgb = Rgb([255, 255, 255]);
+
+    pub const fn new(r: u8, g: u8, b: u8) -> Self {
+        Rgb([r, g, b])
+    }
+
+    /// Luma in [0, 1]: the Rec. 709 weights on the encoded values, which
+    /// are near-perceptual (for ranking brightness on glyph ramps).
+    pub fn luma(self) -> f32 {
+        let [r, g, b] = self.0;
+        (0.2126 * r as f32 + 0.7152 * g as f32 + 0.0722 * b as f32) / 255.0
+    }
+
+    /// The channels as floats in [0, 255].
+    pub fn to_f32(self) -> [f32; 3] {
+        let [r, g, b] = self.0;
+        [r as f32, g as f32, b as f32]
+    }
+
+    /// Rounds (halves up) and clamps float channels in [0, 255]; a NaN
+    /// channel becomes 0.
+    #[inline]
+    pub fn from_f32(c: [f32; 3]) -> Self {
+        // `as u8` truncates, saturates and maps NaN to 0; adding a half
+        // first rounds without `f32::round`'s library call (negative
+        // values all end at 0 either way).
+        Rgb(c.map(|v| (v + 0.5) as u8))
+    }
+}
+
+impl fmt::Display for Rgb {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let [r, g, b] = self.0;
+        write!(f, "#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+/// Linear light, 16 bits a channel (0 is black, 65535 the full
+/// intensity of the sRGB primary): what the pipeline adds and averages.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Lin(pub [u16; 3]);
+
+impl Lin {
+    pub const BLACK: Lin = Lin([0; 3]);
+    pub const WHITE: Lin = Lin([65535; 3]);
+
+    /// Decodes an sRGB colour (a table lookup).
+    #[inline]
+    pub fn from_srgb(c: Rgb) -> Lin {
+        Lin(c.0.map(|v| srgb::DECODE[v as usize]))
+    }
+
+    /// Encodes to sRGB, correctly rounded (a table lookup).
+    #[inline]
+    pub fn to_srgb(self) -> Rgb {
+        Rgb(self.0.map(|v| srgb::ENCODE[v as usize]))
+    }
+
+    /// Linear values in [0, 1] (an MTL `Kd`), clamped; NaN is 0.
+    pub fn from_unit(c: [f32; 3]) -> Lin {
+        Lin::from_f32(c.map(|v| v * 65535.0))
+    }
+
+    /// The channels as floats in [0, 65535], for lighting and
+    /// interpolation.
+    #[inline]
+    pub fn to_f32(self) -> [f32; 3] {
+        self.0.map(|v| v as f32)
+    }
+
+    /// Rounds (halves up) and clamps float channels in [0, 65535]; a NaN
+    /// channel becomes 0.
+    #[inline]
+    pub fn from_f32(c: [f32; 3]) -> Lin {
+        // `as u16` truncates, saturates and maps NaN to 0.
+        Lin(c.map(|v| (v + 0.5) as u16))
+    }
+}
+
+impl From<Rgb> for Lin {
+    fn from(c: Rgb) -> Lin {
+        Lin::from_srgb(c)
+    }
+}
+
+/// How colour numbers in a file are to be read.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum ColorSpace {
+    /// Proportional to light (what Blender and most exporters write for
+    /// MTL `Kd`).
+    #[default]
+    Linear,
+    /// sRGB-encoded, as `#rrggbb` is.
+    Srgb,
+}
+
+impl ColorSpace {
+    /// The name the command line uses.
+    pub const fn name(self) -> &'static str {
+        match self {
+            ColorSpace::Linear => "linear",
+            ColorSpace::Srgb => "srgb",
+        }
+    }
+
+    /// Values in [0, 1] in this space, as linear light (clamped; NaN is 0).
+    pub fn decode(self, c: [f32; 3]) -> Lin {
+        match self {
+            ColorSpace::Linear => Lin::from_unit(c),
+            ColorSpace::Srgb => Lin::from_unit(c.map(|v| {
+                let v = v.clamp(0.0, 1.0);
+                if v <= 0.04045 {
+                    v / 12.92
+                } else {
+                    ((v + 0.055) / 1.055).powf(2.4)
+                }
+            })),
+        }
+    }
+}
+
+/// Why a colour string was refused.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("invalid colour {0:?}: expected \"#rrggbb\"")]
+pub struct ParseRgbError(pub String);
+
+impl FromStr for Rgb {
+    type Err = ParseRgbError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let err = || ParseRgbError(s.to_string());
+        let hex = s.strip_prefix('#').ok_or_else(err)?;
+        if hex.len() != 6 || !hex.bytes().all(|b| b.is_ascii_hexdigit()) {
+            return Err(err());
+        }
+        let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|_| err());
+        Ok(Rgb([channel(0)?, channel(2)?, channel(4)?]))
+    }
+}
+
+impl TryFrom<String> for Rgb {
+    type Error = ParseRgbError;
+    fn try_from(s: String) -> Result<Self, Self::Error> {
+        s.parse()
+    }
+}
+
+/// How many colours the terminal shows, fewest first.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum ColorDepth {
+    /// Glyphs only: no colour escape sequence at all.
+    None,
+    /// The 16 ANSI colours (SGR 30–37, 90–97 and 40–47, 100–107).
+    Ansi16,
+    /// The xterm 256-colour palette's 6×6×6 cube and 24 greys
+    /// (`38;5;n`).
+    Ansi256,
+    /// 24-bit SGR (`38;2;r;g;b`).
+    #[default]
+    TrueColor,
+}
+
+impl ColorDepth {
+    pub const ALL: [ColorDepth; 4] = [
+        ColorDepth::None,
+        ColorDepth::Ansi16,
+        ColorDepth::Ansi256,
+        ColorDepth::TrueColor,
+    ];
+
+    /// The name the command line uses (`--color 256`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ColorDepth::None => "none",
+            ColorDepth::Ansi16 => "16",
+            ColorDepth::Ansi256 => "256",
+            ColorDepth::TrueColor => "truecolor",
+        }
+    }
+
+    /// Whether cells carry colours at all.
+    pub fn has_color(self) -> bool {
+        self != ColorDepth::None
+    }
+}
+
+/// A colour as the terminal is told it: its default, a palette index, or
+/// 24-bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Ink {
+    #[default]
+    Default,
+    Indexed(u8),
+    Rgb(Rgb),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_and_prints_hex() {
+        assert_eq!("#ff8800".parse::<Rgb>(), Ok(Rgb([255, 136, 0])));
+        assert_eq!("#FF8800".parse::<Rgb>(), Ok(Rgb([255, 136, 0])));
+        assert_eq!(Rgb([255, 136, 0]).to_string(), "#ff8800");
+        for bad in ["ff8800", "#ff880", "#ff88000", "#gg8800", "", "#"] {
+            assert!(bad.parse::<Rgb>().is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn luma_orders_black_grey_white() {
+        assert_eq!(Rgb::BLACK.luma(), 0.0);
+        assert!((Rgb::WHITE.luma() - 1.0).abs() < 1e-6);
+        assert!(Rgb::new(0, 0, 255).luma() < Rgb::new(255, 0, 0).luma());
+    }
+
+    #[test]
+    fn linear_light_round_trips_and_halves_to_bc() {
+        for v in 0..=255u8 {
+            let c = Rgb([v, 255 - v, v / 2]);
+            assert_eq!(Lin::from_srgb(c).to_srgb(), c);
+        }
+        // Half the light of white is sRGB 188 (#bcbcbc), not 128.
+        assert_eq!(Lin::from_f32([32767.5; 3]).to_srgb(), Rgb([188; 3]));
+        assert_eq!(Lin::from_unit([1.0, 0.5, f32::NAN]), Lin([65535, 32768, 0]));
+        // An sRGB value in [0, 1] decodes as its byte does.
+        for v in [0u8, 1, 10, 128, 188, 254, 255] {
+            let unit = v as f32 / 255.0;
+            assert_eq!(
+                ColorSpace::Srgb.decode([unit; 3]),
+                Lin::from_srgb(Rgb([v; 3])),
+                "{v}"
+            );
+        }
+    }
+
+    #[test]
+    fn from_f32_rounds_clamps_and_survives_nan() {
+        assert_eq!(Rgb::from_f32([0.4, 254.6, 300.0]), Rgb([0, 255, 255]));
+        assert_eq!(Rgb::from_f32([f32::NAN, -5.0, 127.5]), Rgb([0, 0, 128]));
+        assert_eq!(Rgb::from_f32([2.5, 2.4999, 254.5]), Rgb([3, 2, 255]));
+    }
+}
