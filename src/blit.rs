@@ -2,8 +2,9 @@
 //!
 //! A [`GlyphMode`] fixes how many samples a cell holds (`w × h`) and how
 //! they become a [`Cell`]. Blitters know nothing of ANSI: they produce
-//! characters and full-precision colours; the encoder decides how to send
-//! them. The glyph tables live in [`glyphs`], which draws each one's bit
+//! characters and 24-bit sRGB colours; the encoder decides how to send
+//! them. Samples are linear light: the split and the means below add light
+//! as the eye does, and each cell's colours are encoded to sRGB once, here. The glyph tables live in [`glyphs`], which draws each one's bit
 //! layout: sample `i` of a cell is column `i % w`, row `i / w` counted from
 //! the top.
 //!

@@ -1,7 +1,9 @@
 //! Stage 5: the framebuffer, one colour and one depth per sample.
 //!
 //! A sample holds `Some(colour)` once something was drawn on it and `None`
-//! while it shows the background. Keeping "nothing drawn" apart from any
+//! while it shows the background; colours are linear light (16 bits a
+//! channel, 8 bytes a sample with the depth), encoded to sRGB only when the
+//! blitter turns a cell's samples into its two colours. Keeping "nothing drawn" apart from any
 //! colour lets the blitters draw shapes even where a triangle has the
 //! background's colour, and lets a scene without a background keep the
 //! terminal's own. Depth is the canonical cube's z (larger is nearer),

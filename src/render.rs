@@ -20,9 +20,10 @@
 //! **Fragments.** Depth is the canonical cube's z, interpolated in screen
 //! space (where it is linear), clamped to its vertices' range, and tested
 //! per sample: larger is nearer, and of equal depths the first drawn wins.
-//! Colours are interpolated perspective-correctly: the rasterizer's
-//! screen-space weights `e_i` are divided by each vertex's `w` and
-//! renormalised. A triangle of one colour is written without any
+//! Colours are linear light ([`crate::color`]), lit and interpolated
+//! perspective-correctly: the rasterizer's screen-space weights `e_i` are
+//! divided by each vertex's `w` and renormalised. A camera that frames a
+//! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
 //! interpolation.
 
 use std::time::{Duration, Instant};

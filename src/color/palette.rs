@@ -278,12 +278,12 @@ pub struct Mix {
 }
 
 /// How many of the nearest entries a mix is made from.
-const MIX_CANDIDATES: usize = 8;
+pub const MIX_CANDIDATES: usize = 8;
 /// What a pair's own distance adds to a mix's error: two entries far apart
 /// make a pattern that reads as two colours rather than their blend
 /// (Yliluoma's penalty), so that an orange is drawn as red and yellow, not
 /// red and green.
-const MIX_SPREAD: f32 = 0.05;
+pub const MIX_SPREAD: f32 = 0.05;
 
 /// The mix for `c`: two of its [`MIX_CANDIDATES`] nearest entries (by
 /// `metric`, among those it allows: greys mix only with greys) and the

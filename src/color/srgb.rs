@@ -9,8 +9,8 @@
 //! step is twenty linear steps.
 //!
 //! The tables are the IEC 61966-2-1 transfer function: `c ≤ 0.04045 ?
-//! c / 12.92 : ((c + 0.055) / 1.055)^2.4`. [`DECODE`]`[v]` is the linear
-//! value of sRGB `v`, rounded to 16 bits; [`THRESHOLD`]`[v]` is the least
+//! c / 12.92 : ((c + 0.055) / 1.055)^2.4`. `DECODE[v]` is the linear
+//! value of sRGB `v`, rounded to 16 bits; `THRESHOLD[v]` is the least
 //! linear value whose sRGB value rounds to `v` (the linear value of
 //! `v − ½`, rounded up), so encoding is "the largest `v` whose threshold
 //! is not above the value": the correctly rounded sRGB value. The unit

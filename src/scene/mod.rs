@@ -128,41 +128,78 @@ pub struct Camera {
 }
 
 /// What a camera frames: a model's outline, as the points of the model
-/// farthest out in [`Fit::DIRECTIONS`] directions spread evenly over the
-/// sphere (a 32-sided hull that hugs the model's convex hull), so that the
-/// model's projected bounding box can be found for any view in a few
-/// hundred operations.
+/// farthest out both ways along 13 axes (the coordinate axes, the face
+/// diagonals and the space diagonals of a cube: a 26-sided hull that hugs
+/// the model's convex hull, found with additions alone), so that the
+/// model's projected extent can be found for any view in a few hundred
+/// operations.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fit {
-    pub points: [Vec3; Fit::DIRECTIONS],
+    pub points: [Vec3; Fit::POINTS],
 }
 
 impl Fit {
-    /// How many extreme points are kept.
-    pub const DIRECTIONS: usize = 32;
+    /// How many extreme points are kept: two for each of 13 axes.
+    pub const POINTS: usize = 26;
     /// The share of the view's limiting dimension a framed model fills.
     pub const FILL: f32 = 0.9;
 
     /// The outline of `points` (at least one).
-    pub fn of(points: impl Iterator<Item = Vec3>) -> Fit {
-        // A Fibonacci sphere: evenly spread directions.
-        let dirs: [Vec3; Fit::DIRECTIONS] = std::array::from_fn(|k| {
-            let y = 1.0 - 2.0 * (k as f32 + 0.5) / Fit::DIRECTIONS as f32;
-            let r = (1.0 - y * y).sqrt();
-            let a = k as f32 * 2.399_963_2;
-            Vec3::new(r * a.cos(), y, r * a.sin())
-        });
-        let mut best = [(f32::NEG_INFINITY, Vec3::ZERO); Fit::DIRECTIONS];
-        for p in points {
-            for (b, d) in best.iter_mut().zip(&dirs) {
-                let s = p.dot(*d);
-                if s > b.0 {
-                    *b = (s, p);
-                }
+    pub fn of(points: &[Vec3]) -> Fit {
+        // Along each axis, unnormalised (only the order matters), padded
+        // to 16 lanes so that the comparisons below go four at a time.
+        let along = |p: Vec3| -> [f32; 16] {
+            [
+                p.x,
+                p.y,
+                p.z,
+                p.x + p.y,
+                p.x - p.y,
+                p.x + p.z,
+                p.x - p.z,
+                p.y + p.z,
+                p.y - p.z,
+                p.x + p.y + p.z,
+                p.x + p.y - p.z,
+                p.x - p.y + p.z,
+                -p.x + p.y + p.z,
+                0.0,
+                0.0,
+                0.0,
+            ]
+        };
+        let (mut lo, mut hi) = ([f32::INFINITY; 16], [f32::NEG_INFINITY; 16]);
+        let (mut lo_at, mut hi_at) = ([0u32; 16], [0u32; 16]);
+        for (i, &p) in points.iter().enumerate() {
+            if !p.is_finite() {
+                continue;
+            }
+            let s = along(p);
+            for k in 0..16 {
+                let (below, above) = (s[k] < lo[k], s[k] > hi[k]);
+                lo[k] = if below { s[k] } else { lo[k] };
+                lo_at[k] = if below { i as u32 } else { lo_at[k] };
+                hi[k] = if above { s[k] } else { hi[k] };
+                hi_at[k] = if above { i as u32 } else { hi_at[k] };
             }
         }
+        let at = |i: u32| points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
         Fit {
-            points: best.map(|b| b.1),
+            points: std::array::from_fn(|i| {
+                if i < 13 {
+                    at(lo_at[i])
+                } else {
+                    at(hi_at[i - 13])
+                }
+            }),
+        }
+    }
+
+    /// The outline moved by `m`; exact for a turn that takes the 13 axes
+    /// to themselves (a model's up axis turned onto y).
+    pub fn transformed(self, m: Mat4) -> Fit {
+        Fit {
+            points: self.points.map(|p| m.transform_point3(p)),
         }
     }
 }
@@ -446,12 +483,9 @@ impl Scene {
             transform::Axis::Y => Mat4::IDENTITY,
             transform::Axis::Z => Mat4::from_cols(Vec4::X, -Vec4::Z, Vec4::Y, Vec4::W),
         };
-        let fit = Fit::of(
-            mesh.positions
-                .iter()
-                .filter(|p| p.is_finite())
-                .map(|&p| mesh.model.transform_point3(p)),
-        );
+        // The 13 axes are the same set after any turn of the up axis onto
+        // y: the outline can be found before the turn.
+        let fit = Fit::of(&mesh.positions).transformed(mesh.model);
         Scene {
             background: None,
             camera: Camera {
