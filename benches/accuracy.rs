@@ -8,11 +8,11 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rastty::blit::Split;
+use rastty::Precision;
+use rastty::Split;
 use rastty::color::Metric;
 use rastty::encode::Encoder;
-use rastty::raster::Precision;
-use rastty::render::{Aa, Interpolation};
+use rastty::{Aa, Interpolation};
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
 fn knobs(c: &mut Criterion) {

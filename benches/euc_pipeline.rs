@@ -13,7 +13,7 @@ pub struct Lit<'a> {
     normal: glam::Mat3,
     positions: &'a [Vec3],
     normals: &'a [Vec3],
-    lights: rastty::shade::Lights,
+    lights: rastty::Lights,
 }
 
 impl Pipeline for Lit<'_> {
@@ -71,7 +71,7 @@ pub fn setup<'a>(
         normal: glam::Mat3::from_mat4(model).inverse().transpose(),
         positions: &mesh.positions,
         normals: &mesh.normals,
-        lights: rastty::shade::Lights::new(&scene.lights),
+        lights: rastty::Lights::new(&scene.lights),
     };
     let grid = opts.glyphs.grid(opts.cols, opts.rows);
     let size = [grid.width as usize, grid.height as usize];

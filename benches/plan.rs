@@ -7,8 +7,8 @@ use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
-use rastty::plan::Pipeline;
-use rastty::shade::Shading;
+use rastty::Pipeline;
+use rastty::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
 /// The scenes, their shading, and whether they turn (models do; scene files

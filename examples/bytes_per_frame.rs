@@ -8,7 +8,8 @@
 //! cargo run --release --example bytes_per_frame
 //! ```
 
-use rastty::animate::{self, Axis, Spin};
+use rastty::animate;
+use rastty::animate::{Axis, Spin};
 use rastty::encode::{Encoder, Rep};
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene};
 

@@ -12,8 +12,8 @@
 use std::path::Path;
 
 use glam::Vec3;
-use rastty::plan::Pipeline;
-use rastty::shade::Shading;
+use rastty::Pipeline;
+use rastty::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
 fn main() {

@@ -98,6 +98,7 @@ impl Poly {
     }
 
     /// The part inside another convex polygon.
+    #[cfg_attr(not(feature = "bench"), allow(dead_code))]
     pub fn intersect(&self, other: &Poly) -> Poly {
         let mut out = *self;
         let w = other.vertices();

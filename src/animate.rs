@@ -17,7 +17,8 @@ use crate::blit::GlyphMode;
 use crate::color::{ColorDepth, Rgb};
 use crate::encode::Encoder;
 use crate::frame::{Cell, Frame};
-use crate::render::{RenderOptions, Renderer};
+use crate::options::RenderOptions;
+use crate::render::Renderer;
 use crate::scene::{Camera, Scene};
 use crate::shade::Shading;
 

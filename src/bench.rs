@@ -27,9 +27,11 @@ use crate::accuracy::{Poly, area_in_rect};
 use crate::blit::{GlyphMode, Split};
 use crate::color::{self, ColorDepth, Dither, Ink, Lin, Metric, Palette, Rgb};
 use crate::encode::Encoder;
-use crate::raster::{Grid, Precision, Traversal};
-use crate::render::{Aa, Interpolation, RenderOptions, Renderer};
+use crate::options::{Aa, Interpolation, RenderOptions};
+use crate::raster::{Precision, Traversal};
+use crate::render::Renderer;
 use crate::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
+use crate::transform::Grid;
 
 /// A scene to time, and whether it turns from frame to frame.
 pub struct Workload {

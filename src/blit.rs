@@ -38,10 +38,11 @@ pub mod glyphs;
 use crate::color::{ColorDepth, Lin, Rgb};
 use crate::frame::{Cell, Frame};
 use crate::framebuffer::Framebuffer;
-use crate::raster::Grid;
+use crate::transform::Grid;
 
 /// How samples become glyphs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum GlyphMode {
     /// 1×1: a character of a brightness ramp.
     Ascii,
@@ -415,7 +416,8 @@ pub fn split(colors: &[Lin]) -> u8 {
 }
 
 /// How a cell of more than two colours is split into two.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Split {
     /// Every split tried: the least squared error (at most 128 tries).
     #[default]

@@ -6,14 +6,14 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use rastty::Shading;
+use rastty::Split;
 use rastty::animate::Axis;
-use rastty::blit::Split;
 use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
-use rastty::raster::{Cull, Precision};
-use rastty::render::{Aa, Interpolation};
-use rastty::shade::Shading;
+use rastty::{Aa, Interpolation};
 use rastty::{ColorDepth, GlyphMode, Traversal};
+use rastty::{Cull, Precision};
 
 use rastty::MAX_CELLS;
 
@@ -37,9 +37,11 @@ pub enum Command {
     Spin(SpinArgs),
     /// Measure what accuracy costs: every accuracy knob's time per frame
     /// and error, as a Markdown table on stdout and an SVG plot.
+    #[cfg(feature = "bench")]
     Bench(BenchArgs),
 }
 
+#[cfg(feature = "bench")]
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// Where to find models to time (bunny, teapot, fox, shiba-inu,

@@ -56,7 +56,8 @@
 
 use glam::{DMat4, DVec4, Vec3, Vec4};
 
-use crate::raster::FixedPoint;
+use crate::fixed::FixedPoint;
+use crate::scene::Projection;
 use crate::transform::Viewport;
 
 /// Smallest `w` that survives clipping.
@@ -166,6 +167,18 @@ impl Clipper {
             gy: 2.0 * GUARD_SAMPLES / height.max(1) as f64,
             w_min: W_MIN,
         }
+    }
+
+    /// The clip planes for a grid seen through `projection`: the smallest
+    /// `w` a clipped vertex may keep is [`W_MIN`], or for a perspective
+    /// camera whose near plane is closer than that, half the near distance
+    /// (the scene is tiny: what matters is `w` relative to `near`).
+    pub fn for_projection(width: u32, height: u32, projection: &Projection) -> Clipper {
+        let w_min = match *projection {
+            Projection::Perspective { near, .. } => W_MIN.min(near as f64 * 0.5),
+            _ => W_MIN,
+        };
+        Clipper::new(width, height).with_w_min(w_min)
     }
 
     /// Keeps `w` down to `w_min` (≤ [`W_MIN`]) rather than [`W_MIN`]: for a

@@ -84,7 +84,8 @@ impl TermCell {
 }
 
 /// Whether runs of identical cells may be sent with REP (`CSI n b`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Rep {
     #[default]
     Off,

@@ -11,7 +11,7 @@
 //! it); the blitters turn them over.
 
 use crate::color::Lin;
-use crate::raster::Grid;
+use crate::transform::Grid;
 
 /// A `width × height` grid of samples.
 #[derive(Clone, Debug, PartialEq)]

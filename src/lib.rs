@@ -41,32 +41,58 @@
 //! and the projection is given the physical aspect of the view
 //! ([`RenderOptions::aspect`]), since cells are not square.
 
-pub mod accuracy;
-pub mod animate;
-pub mod bench;
-pub mod blit;
-pub mod clip;
+// Modules are declared in layers, and a module uses only modules declared
+// before it (tests/architecture.rs checks this): foundations, then the
+// stages in data-flow order, then what runs them, then where frames go.
+
+// Foundations: errors, colours, fixed point, matrices and the sample grid.
+mod accuracy;
 pub mod color;
-pub mod encode;
-pub mod error;
-pub mod frame;
-pub mod framebuffer;
-pub mod live;
-pub mod plan;
-pub mod raster;
-pub mod render;
-pub mod scene;
-pub mod shade;
-pub mod terminal;
+mod error;
+pub mod fixed;
 pub mod transform;
 
-pub use blit::GlyphMode;
+// The stages, in data-flow order.
+mod blit;
+pub mod clip;
+pub mod encode;
+mod frame;
+mod framebuffer;
+pub mod raster;
+pub mod scene;
+mod shade;
+
+// What runs them: the options, the planner that decides, the renderer that
+// obeys, the animation loop's core, and the measurements.
+pub mod animate;
+#[cfg(feature = "bench")]
+pub mod bench;
+mod options;
+mod plan;
+mod render;
+
+// Where frames go: a terminal (the program), or a ratatui buffer.
+#[cfg(feature = "cli")]
+pub mod live;
+#[cfg(feature = "ratatui")]
+pub mod ratatui;
+#[cfg(feature = "cli")]
+pub mod terminal;
+
+pub use glam;
+
+pub use blit::{GlyphMode, Split};
 pub use color::{ColorDepth, Rgb};
+pub use encode::Encoder;
 pub use error::{Error, Result};
 pub use frame::{Cell, Frame};
-pub use raster::Traversal;
-pub use render::{MAX_CELLS, RenderOptions, Renderer, render};
-pub use scene::Scene;
+pub use framebuffer::Framebuffer;
+pub use options::{Aa, Interpolation, MAX_CELLS, Pipeline, RenderOptions};
+pub use plan::{Decision, Plan};
+pub use raster::{Precision, Traversal};
+pub use render::{FrameStats, FrameTimes, Renderer, render};
+pub use scene::{Camera, Cull, Light, Mesh, Projection, Scene};
+pub use shade::{Lights, Shading};
 
 /// The scene `rastty render` draws when it is given none.
 pub const DEFAULT_SCENE: &str = include_str!("../examples/scenes/default.toml");

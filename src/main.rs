@@ -9,10 +9,12 @@ use std::process::ExitCode;
 use clap::Parser as _;
 
 use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
-use rastty::animate::{self, Player, Spin};
+use rastty::Pipeline;
+use rastty::animate;
+use rastty::animate::{Player, Spin};
 use rastty::encode::Encoder;
-use rastty::live::{self, Exit, LiveOptions};
-use rastty::plan::Pipeline;
+use rastty::live;
+use rastty::live::{Exit, LiveOptions};
 use rastty::terminal;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, encode};
 
@@ -87,10 +89,12 @@ fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
     match command {
         Command::Render(args) => render(&args).map(|()| ExitCode::SUCCESS),
         Command::Spin(args) => spin(&args),
+        #[cfg(feature = "bench")]
         Command::Bench(args) => bench(&args).map(|()| ExitCode::SUCCESS),
     }
 }
 
+#[cfg(feature = "bench")]
 fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     let workloads = rastty::bench::workloads(&args.models);
     let report = rastty::bench::run(&workloads, args.reps as usize);
@@ -149,10 +153,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         .map_err(stdout_error)?;
     if args.explain {
         let encode = start.elapsed();
-        eprint!(
-            "{}",
-            rastty::plan::explain(&scene, &opts, &renderer, encode, buf.len())
-        );
+        eprint!("{}", renderer.explain(&scene, &opts, encode, buf.len()));
     }
     Ok(())
 }

@@ -20,27 +20,14 @@
 //!
 //! When unsure, the planner runs the stage.
 
-use std::fmt::{self, Write as _};
-use std::time::Duration;
+use std::fmt;
 
 use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
-use crate::raster::Cull;
-use crate::render::{Interpolation, RenderOptions, Renderer};
-use crate::scene::{Projection, Scene, TriangleColor};
+use crate::options::{Interpolation, Pipeline, RenderOptions};
+use crate::scene::{Cull, Projection, Scene, TriangleColor};
 use crate::shade::Shading;
-
-/// Whether the planner may skip stages.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Pipeline {
-    /// Run only the stages the scene calls for.
-    #[default]
-    Planned,
-    /// Run every stage on every primitive (`--full-pipeline`): the
-    /// reference the planned frames are checked against.
-    Full,
-}
 
 /// One stage's decision, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,89 +57,155 @@ impl fmt::Display for Decision {
     }
 }
 
-/// The stages of one frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The stages of one frame: every decision the renderer acts on, made
+/// here and nowhere else.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
+    /// Whether samples are depth-tested.
     pub depth: Decision,
-    /// Whether any clip test runs (decided per mesh; see [`needs_clip_tests`]).
+    /// Whether any clip test runs (decided per group: see
+    /// [`Plan::clip_tests`]).
     pub clip: Decision,
+    /// Whether colours are interpolated over triangles (see
+    /// [`Plan::interpolates`] for one triangle).
     pub interpolation: Decision,
+    /// Whether interpolation goes through `1/w`.
     pub perspective: Decision,
+    /// Whether lights are evaluated.
     pub lighting: Decision,
+    /// The shading applied: the options' shading when the scene is lit,
+    /// [`Shading::None`] otherwise.
+    pub shading: Shading,
+    /// The full pipeline: every stage on every primitive.
     pub full: bool,
+    /// Per group (each mesh in order, then the loose triangles): whether
+    /// its vertices are tested against the clip planes.
+    clip_tests: Vec<bool>,
 }
 
 const FORCED: &str = "forced on by the full pipeline";
 
-/// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
-/// view-projection for this frame and `turn` the scene's turn.
-pub fn plan(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4, clipper: &Clipper) -> Plan {
-    let full = opts.pipeline == Pipeline::Full;
-    let lit = opts.shading != Shading::None && !scene.lights.is_empty();
-    let lighting = if lit {
-        Decision::run("the scene has lights and the shading uses them")
-    } else if scene.lights.is_empty() {
-        Decision::skip("the scene has no lights")
-    } else {
-        Decision::skip("shading is none")
-    };
-    let smooth = lit && opts.shading == Shading::Smooth;
-    let vertex_colors = scene
-        .triangles
-        .iter()
-        .any(|t| matches!(t.color, TriangleColor::PerVertex(_)))
-        || scene.meshes.iter().any(|m| m.colors.is_some());
-    let interpolation = if full {
-        Decision::run(FORCED)
-    } else if smooth {
-        Decision::run("smooth shading varies the light over each triangle")
-    } else if vertex_colors {
-        Decision::run("per-vertex colours vary over their triangles")
-    } else {
-        Decision::skip("every triangle is one colour: written without barycentrics")
-    };
-    let perspective_view = matches!(scene.camera.projection, Projection::Perspective { .. });
-    let perspective = if opts.interpolation == Interpolation::Affine {
-        Decision::skip("affine interpolation was asked for")
-    } else if full {
-        Decision::run(FORCED)
-    } else if !interpolation.run {
-        Decision::skip("nothing is interpolated")
-    } else if perspective_view {
-        Decision::run("a perspective view interpolates through 1/w")
-    } else {
-        Decision::skip("a parallel view has w = 1: affine weights are exact")
-    };
-    let depth = if full {
-        Decision::run(FORCED)
-    } else {
-        depth(scene, opts, vp, turn)
-    };
-    let clip = if full {
-        Decision::run(FORCED)
-    } else {
+impl Plan {
+    /// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
+    /// view-projection for this frame, `turn` the scene's turn and
+    /// `clipper` the clip planes of the frame's grid.
+    #[must_use]
+    pub fn new(
+        scene: &Scene,
+        opts: &RenderOptions,
+        vp: Mat4,
+        turn: Mat4,
+        clipper: &Clipper,
+    ) -> Plan {
+        let mut plan = Plan {
+            depth: Decision::run(FORCED),
+            clip: Decision::run(FORCED),
+            interpolation: Decision::run(FORCED),
+            perspective: Decision::run(FORCED),
+            lighting: Decision::run(FORCED),
+            shading: opts.shading,
+            full: true,
+            clip_tests: Vec::new(),
+        };
+        plan.replan(scene, opts, vp, turn, clipper);
+        plan
+    }
+
+    /// [`Plan::new`] in place, reusing this plan's memory.
+    pub fn replan(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        vp: Mat4,
+        turn: Mat4,
+        clipper: &Clipper,
+    ) {
+        let full = opts.pipeline == Pipeline::Full;
+        let lit = opts.shading != Shading::None && !scene.lights.is_empty();
+        let lighting = if lit {
+            Decision::run("the scene has lights and the shading uses them")
+        } else if scene.lights.is_empty() {
+            Decision::skip("the scene has no lights")
+        } else {
+            Decision::skip("shading is none")
+        };
+        let shading = if lit { opts.shading } else { Shading::None };
+        let vertex_colors = scene
+            .triangles
+            .iter()
+            .any(|t| matches!(t.color, TriangleColor::PerVertex(_)))
+            || scene.meshes.iter().any(|m| m.colors.is_some());
+        let interpolation = if full {
+            Decision::run(FORCED)
+        } else if shading == Shading::Smooth {
+            Decision::run("smooth shading varies the light over each triangle")
+        } else if vertex_colors {
+            Decision::run("per-vertex colours vary over their triangles")
+        } else {
+            Decision::skip("every triangle is one colour: written without barycentrics")
+        };
+        let perspective_view = matches!(scene.camera.projection, Projection::Perspective { .. });
+        let perspective = if opts.interpolation == Interpolation::Affine {
+            Decision::skip("affine interpolation was asked for")
+        } else if full {
+            Decision::run(FORCED)
+        } else if !interpolation.run {
+            Decision::skip("nothing is interpolated")
+        } else if perspective_view {
+            Decision::run("a perspective view interpolates through 1/w")
+        } else {
+            Decision::skip("a parallel view has w = 1: affine weights are exact")
+        };
+        let depth = if full {
+            Decision::run(FORCED)
+        } else {
+            depth(scene, opts, vp, turn)
+        };
+        self.clip_tests.clear();
         let groups = scene
             .meshes
             .iter()
             .map(|m| (turn * m.model, m.bounds))
             .chain((!scene.triangles.is_empty()).then(|| (turn, loose_bounds(scene))));
-        let mut any = false;
-        for (model, bounds) in groups {
-            any |= needs_clip_tests(clipper, vp * model, bounds);
-        }
-        if any {
+        self.clip_tests.extend(
+            groups.map(|(model, bounds)| full || needs_clip_tests(clipper, vp * model, bounds)),
+        );
+        let clip = if full {
+            Decision::run(FORCED)
+        } else if self.clip_tests.contains(&true) {
             Decision::run("geometry reaches a clip plane or leaves the guard band")
         } else {
             Decision::skip("every bounding box is inside the clip volume")
-        }
-    };
-    Plan {
-        depth,
-        clip,
-        interpolation,
-        perspective,
-        lighting,
-        full,
+        };
+        *self = Plan {
+            depth,
+            clip,
+            interpolation,
+            perspective,
+            lighting,
+            shading,
+            full,
+            clip_tests: std::mem::take(&mut self.clip_tests),
+        };
+    }
+
+    /// Whether group `i` (mesh `i`, or the loose triangles after the last
+    /// mesh) has its vertices tested against the clip planes.
+    pub fn clip_tests(&self, group: usize) -> bool {
+        self.clip_tests.get(group).copied().unwrap_or(true)
+    }
+
+    /// Whether a triangle whose vertices have these colours is
+    /// interpolated: when its colours differ (a triangle of one colour is
+    /// written as it is, which is bit for bit what interpolating it gives),
+    /// and always in the full pipeline.
+    pub fn interpolates<T: PartialEq>(&self, colors: &[T; 3]) -> bool {
+        let one = colors[0] == colors[1] && colors[1] == colors[2];
+        debug_assert!(
+            self.interpolation.run || one,
+            "the plan skipped interpolation, yet a triangle has several colours"
+        );
+        self.full || !one
     }
 }
 
@@ -225,95 +278,4 @@ impl fmt::Display for Plan {
         writeln!(f, "interpolation  {}", self.interpolation)?;
         write!(f, "perspective    {}", self.perspective)
     }
-}
-
-/// The report `rastty render --explain` prints: the frame, each stage run
-/// or skipped and why, the work each did (from the frame's statistics,
-/// where a skipped stage shows zero) and where the time went.
-pub fn explain(
-    scene: &Scene,
-    opts: &RenderOptions,
-    renderer: &Renderer,
-    encode: Duration,
-    bytes: usize,
-) -> String {
-    let Some(plan) = renderer.plan() else {
-        return "no frame rendered\n".into();
-    };
-    let s = renderer.stats();
-    let t = renderer.times();
-    let grid = opts.glyphs.grid(opts.cols, opts.rows);
-    let (w, h) = opts.glyphs.cell_size();
-    let ms = |d: Duration| format!("{:.3} ms", d.as_secs_f64() * 1e3);
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "frame: {}×{} cells, {:?} glyphs ({} samples a cell, {}×{} samples), {} triangles, {} pipeline",
-        opts.cols,
-        opts.rows,
-        opts.glyphs,
-        w * h,
-        grid.width,
-        grid.height,
-        scene.triangle_count(),
-        if plan.full { "full" } else { "planned" },
-    );
-    // Each stage runs inside a timed phase (the last line): the vertex
-    // phase holds the clip tests and per-vertex lighting, the triangle
-    // phase the rest.
-    let rows = [
-        (
-            "clip",
-            plan.clip,
-            format!(
-                "{} vertices tested, {} triangles cut, {} removed",
-                s.clip_tests, s.clipped, s.clip_rejected
-            ),
-        ),
-        (
-            "lighting",
-            plan.lighting,
-            format!("{} evaluations", s.lighting_evaluations),
-        ),
-        (
-            "depth",
-            plan.depth,
-            format!("{} depth tests", s.depth_tests),
-        ),
-        (
-            "interpolation",
-            plan.interpolation,
-            format!("{} samples interpolated", s.interpolated_samples),
-        ),
-        (
-            "perspective",
-            plan.perspective,
-            format!("{} samples through 1/w", s.perspective_samples),
-        ),
-    ];
-    for (name, d, work) in &rows {
-        let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
-    }
-    let r = &s.raster;
-    let _ = writeln!(
-        out,
-        "raster: {} triangles set up, {} culled, {} degenerate, {} not finite; {} samples tested, {} covered",
-        r.triangles_drawn,
-        r.culled,
-        r.dropped_degenerate,
-        r.dropped_non_finite,
-        r.samples_tested,
-        r.samples_covered
-    );
-    let _ = writeln!(
-        out,
-        "time: plan {} · vertices {} · triangles {} · blit {} · encode {} ({} bytes)",
-        ms(t.plan),
-        ms(t.vertices),
-        ms(t.triangles),
-        ms(t.blit),
-        ms(encode),
-        bytes
-    );
-    out
 }

@@ -44,95 +44,13 @@
 //! covered sample, with its three edge values (the unnormalised barycentric
 //! weights), to a closure.
 
-/// Fractional bits of a snapped coordinate.
-pub const FRAC_BITS: u32 = 8;
-/// One sample in fixed-point units.
-pub const ONE: i64 = 1 << FRAC_BITS;
-/// Largest vertex coordinate magnitude accepted, in samples (2^21).
-pub const MAX_COORD: f32 = (1u32 << 21) as f32;
-/// Largest grid side, in samples (2^16).
-pub const MAX_GRID: u32 = 1 << 16;
-
-/// A coordinate in samples, snapped to 1/256 of a sample.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Fixed(pub i64);
-
-impl Fixed {
-    /// Snaps a coordinate in samples to the nearest 1/256 (ties away from
-    /// zero). `None` for NaN, infinity, or a magnitude beyond [`MAX_COORD`].
-    pub fn snap(v: f32) -> Option<Fixed> {
-        if v.is_finite() && v.abs() <= MAX_COORD {
-            Some(Fixed(round_half_away(v * ONE as f32)))
-        } else {
-            None
-        }
-    }
-
-    /// Snaps a coordinate given in f64 (the clip path's), as
-    /// [`Fixed::snap`] does.
-    pub fn snap64(v: f64) -> Option<Fixed> {
-        if v.is_finite() && v.abs() <= MAX_COORD as f64 {
-            // Exact: a power-of-two scale, then truncation and a difference
-            // of nearby values, as in `round_half_away`.
-            let s = v * ONE as f64;
-            let t = s as i64;
-            let frac = s - t as f64;
-            Some(Fixed(t + (frac >= 0.5) as i64 - (frac <= -0.5) as i64))
-        } else {
-            None
-        }
-    }
-
-    /// The centre of sample `i`: `i + 0.5`.
-    pub const fn sample_centre(i: u32) -> Fixed {
-        Fixed(i as i64 * ONE + ONE / 2)
-    }
-
-    pub fn to_f32(self) -> f32 {
-        self.0 as f32 / ONE as f32
-    }
-}
-
-/// `s` rounded to the nearest integer, ties away from zero, as
-/// `f32::round` does but without its library call (x86-64's baseline has no
-/// rounding instruction). Exact: `s · 256` is exact in f32 (a power-of-two
-/// scale), truncation is exact, and so is `s − trunc(s)`, a difference of
-/// two floats less than 1 apart in the same binade or below.
-#[inline(always)]
-fn round_half_away(s: f32) -> i64 {
-    let t = s as i64;
-    let frac = s - t as f32;
-    t + (frac >= 0.5) as i64 - (frac <= -0.5) as i64
-}
-
-/// A snapped point on the sample grid.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct FixedPoint {
-    pub x: Fixed,
-    pub y: Fixed,
-}
-
-impl FixedPoint {
-    /// Snaps a point given in samples; `None` when either coordinate cannot
-    /// be snapped (see [`Fixed::snap`]).
-    pub fn snap(p: [f32; 2]) -> Option<FixedPoint> {
-        Some(FixedPoint {
-            x: Fixed::snap(p[0])?,
-            y: Fixed::snap(p[1])?,
-        })
-    }
-
-    /// Snaps a point given in samples, in f64.
-    pub fn snap64(p: [f64; 2]) -> Option<FixedPoint> {
-        Some(FixedPoint {
-            x: Fixed::snap64(p[0])?,
-            y: Fixed::snap64(p[1])?,
-        })
-    }
-}
+use crate::fixed::{Fixed, FixedPoint, MAX_COORD, ONE};
+use crate::scene::Cull;
+use crate::transform::{Grid, MAX_GRID};
 
 /// How the rasterizer walks the samples. All give identical coverage.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Traversal {
     /// Every sample of the grid.
     Scan,
@@ -159,45 +77,6 @@ impl Traversal {
         Traversal::BoundingBox,
         Traversal::Incremental,
     ];
-}
-
-/// Which triangles to discard by their winding on screen (y up;
-/// counter-clockwise faces the viewer, as in OpenGL).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Cull {
-    /// Draw both windings.
-    #[default]
-    None,
-    /// Drop clockwise (back-facing) triangles.
-    Back,
-    /// Drop counter-clockwise (front-facing) triangles.
-    Front,
-}
-
-/// The sample grid: `width × height` samples, sample `(x, y)` centred on
-/// `(x + 0.5, y + 0.5)`, y up.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Grid {
-    pub width: u32,
-    pub height: u32,
-}
-
-impl Grid {
-    /// A grid; each side is clamped to [`MAX_GRID`].
-    pub fn new(width: u32, height: u32) -> Grid {
-        Grid {
-            width: width.min(MAX_GRID),
-            height: height.min(MAX_GRID),
-        }
-    }
-
-    pub fn len(&self) -> usize {
-        self.width as usize * self.height as usize
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
 }
 
 /// What the rasterizer did, summed over the triangles it was given.
@@ -469,7 +348,8 @@ fn min_max(v: [i64; 3]) -> (i64, i64) {
 /// How edge functions are evaluated: the exact fixed point (the default),
 /// or the notes' rasterizer without the snap, in f64 or f32, for measuring
 /// what exactness costs and what it buys (`rastty bench`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Precision {
     /// Vertices snapped to 1/256 of a sample, edge functions in `i64`:
     /// exact, watertight.
@@ -759,38 +639,6 @@ mod tests {
             out[(y * grid.width + x) as usize] += 1
         });
         out
-    }
-
-    #[test]
-    fn fast_rounding_is_f32_round() {
-        let mut x = 0x1234_5678u32;
-        for _ in 0..100_000 {
-            // xorshift over coordinates within the accepted range.
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            let v = (x as f32 / u32::MAX as f32 - 0.5) * 2.0 * MAX_COORD;
-            for s in [v * ONE as f32, (v * 8.0).round() / 16.0] {
-                assert_eq!(round_half_away(s), s.round() as i64, "{s}");
-            }
-        }
-        for s in [
-            0.5f32, -0.5, 1.5, -1.5, 2.4999998, -2.4999998, 8388607.5, -8388607.5, 0.0, -0.0,
-        ] {
-            assert_eq!(round_half_away(s), s.round() as i64, "{s}");
-        }
-    }
-
-    #[test]
-    fn snap_rounds_to_the_nearest_256th() {
-        assert_eq!(Fixed::snap(1.0), Some(Fixed(256)));
-        assert_eq!(Fixed::snap(0.5 / 256.0), Some(Fixed(1)));
-        assert_eq!(Fixed::snap(0.49 / 256.0), Some(Fixed(0)));
-        assert_eq!(Fixed::snap(-1.5 / 256.0), Some(Fixed(-2)));
-        assert_eq!(Fixed::snap(f32::NAN), None);
-        assert_eq!(Fixed::snap(f32::INFINITY), None);
-        assert_eq!(Fixed::snap(MAX_COORD * 2.0), None);
-        assert_eq!(Fixed::sample_centre(3), Fixed(3 * 256 + 128));
     }
 
     #[test]

@@ -26,171 +26,24 @@
 //! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
 //! interpolation.
 
+mod explain;
+
 use std::time::{Duration, Instant};
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 
-use crate::blit::{self, GlyphMode, Split};
+use crate::blit;
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
-use crate::color::{ColorDepth, Lin, Rgb};
+use crate::color::{Lin, Rgb};
+use crate::fixed::FixedPoint;
 use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
-use crate::plan::{self, Pipeline, Plan};
-use crate::raster::{
-    Coverage, Cull, FixedPoint, FloatSetup, Grid, Precision, RasterStats, Rejected, Setup,
-    Traversal,
-};
-use crate::scene::{Projection, Scene};
+use crate::options::{Aa, RenderOptions};
+use crate::plan::Plan;
+use crate::raster::{Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal};
+use crate::scene::{Cull, Projection, Scene};
 use crate::shade::{Lights, Shading};
-use crate::transform;
-
-/// Largest frame side, in cells: a bigger terminal is drawn at this size
-/// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
-pub const MAX_CELLS: u16 = 4096;
-
-/// Everything about a frame that is not the scene.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RenderOptions {
-    pub cols: u16,
-    pub rows: u16,
-    pub glyphs: GlyphMode,
-    pub color: ColorDepth,
-    /// A cell's width over its height, physically (about 0.5 in most
-    /// terminals).
-    pub cell_aspect: f32,
-    pub traversal: Traversal,
-    /// Turns the whole scene about the world origin: degrees about x
-    /// (pitch), then y (yaw), then z (roll). What `spin` animates. Lights
-    /// and camera stay put.
-    pub turn: Vec3,
-    pub shading: Shading,
-    /// Culling for everything, overriding each mesh's own (`None`: meshes
-    /// cull as their scene says, loose triangles never).
-    pub cull: Option<Cull>,
-    /// Whether the planner may skip stages the scene does not need.
-    pub pipeline: Pipeline,
-    /// Anti-aliasing: sub-samples per sample, or exact area coverage.
-    pub aa: Aa,
-    /// How interpolated attributes are weighted.
-    pub interpolation: Interpolation,
-    /// How two-colour cells split their samples.
-    pub split: Split,
-    /// How edge functions are evaluated.
-    pub precision: Precision,
-}
-
-/// How attributes are interpolated across a triangle.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Interpolation {
-    /// Screen-space weights divided by `w` (correct under perspective).
-    #[default]
-    Perspective,
-    /// Screen-space weights as they are: cheaper, and wrong under
-    /// perspective (for measuring what correctness costs).
-    Affine,
-}
-
-impl Interpolation {
-    /// The name the command line uses (`--interpolation affine`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Interpolation::Perspective => "perspective",
-            Interpolation::Affine => "affine",
-        }
-    }
-}
-
-/// How a sample's colour is found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Aa {
-    /// One test at the sample's centre: the lecture's sampling.
-    #[default]
-    None,
-    /// Four sub-samples in the rotated-grid pattern, averaged.
-    #[value(name = "4x")]
-    X4,
-    /// Sixteen sub-samples on an ordered 4×4 grid, averaged.
-    #[value(name = "16x")]
-    X16,
-    /// The exact area of each triangle inside the sample's square.
-    Exact,
-}
-
-/// The rotated-grid pattern of 4× anti-aliasing, in a sample's square.
-const RGSS: [(f32, f32); 4] = [
-    (0.375, 0.125),
-    (0.875, 0.375),
-    (0.125, 0.625),
-    (0.625, 0.875),
-];
-
-/// The ordered 4×4 grid of 16× anti-aliasing.
-const ORDERED_16: [(f32, f32); 16] = {
-    let mut g = [(0.0, 0.0); 16];
-    let mut i = 0;
-    while i < 16 {
-        g[i] = (((i % 4) as f32 + 0.5) / 4.0, ((i / 4) as f32 + 0.5) / 4.0);
-        i += 1;
-    }
-    g
-};
-
-impl Aa {
-    pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
-
-    /// The name the command line uses (`--aa 16x`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Aa::None => "none",
-            Aa::X4 => "4x",
-            Aa::X16 => "16x",
-            Aa::Exact => "exact",
-        }
-    }
-
-    /// How many times a frame's geometry is drawn.
-    pub fn passes(self) -> u64 {
-        self.offsets().len() as u64
-    }
-
-    /// The sub-sample positions inside a sample's unit square.
-    pub fn offsets(self) -> &'static [(f32, f32)] {
-        match self {
-            Aa::None | Aa::Exact => &[(0.5, 0.5)],
-            Aa::X4 => &RGSS,
-            Aa::X16 => &ORDERED_16,
-        }
-    }
-}
-
-impl Default for RenderOptions {
-    fn default() -> Self {
-        RenderOptions {
-            cols: 80,
-            rows: 24,
-            glyphs: GlyphMode::default(),
-            color: ColorDepth::default(),
-            cell_aspect: 0.5,
-            traversal: Traversal::default(),
-            turn: Vec3::ZERO,
-            shading: Shading::default(),
-            cull: None,
-            pipeline: Pipeline::default(),
-            aa: Aa::None,
-            interpolation: Interpolation::default(),
-            split: Split::default(),
-            precision: Precision::default(),
-        }
-    }
-}
-
-impl RenderOptions {
-    /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:
-    /// what the projection is given.
-    pub fn aspect(&self) -> f32 {
-        self.cols as f32 * self.cell_aspect / self.rows.max(1) as f32
-    }
-}
+use crate::transform::{self, Grid};
 
 /// What one frame cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -296,20 +149,18 @@ struct ScreenTriangle {
 
 /// Per-frame constants of the vertex and triangle stages.
 #[derive(Clone, Copy)]
-struct Stage {
+struct Stage<'a> {
     /// Accumulate exact area coverage instead of sampling.
     exact: bool,
     clipper: Clipper,
     viewport: transform::Viewport,
     lights: Lights,
-    shading: Shading,
     traversal: Traversal,
     precision: Precision,
-    /// From the plan: depth-test; interpolate through 1/w; the full
-    /// pipeline (light before culling, interpolate one-colour triangles).
-    depth: bool,
-    perspective: bool,
-    full: bool,
+    /// What the stages do: depth-test or not, interpolate (through 1/w) or
+    /// not, which shading, which groups are clip-tested, the full pipeline
+    /// (light before culling, interpolate one-colour triangles).
+    plan: &'a Plan,
     /// Where the viewer is, to tell which side of a face is seen: a point
     /// (perspective) or a direction towards the viewer (parallel views).
     eye: Eye,
@@ -367,8 +218,33 @@ impl Renderer {
         }
     }
 
-    /// Renders `scene` and returns the frame.
+    /// Renders `scene` and returns the frame, kept in the renderer.
     pub fn render(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
+        let mut frame = std::mem::take(&mut self.frame);
+        self.render_into(scene, opts, &mut frame);
+        self.frame = frame;
+        &self.frame
+    }
+
+    /// Renders `scene` into the caller's `frame`, resizing it to the
+    /// options' `cols × rows`. The renderer keeps only its working memory
+    /// (samples, depths, vertices, the plan) between calls: once the sizes
+    /// are stable, a frame allocates nothing.
+    ///
+    /// ```
+    /// use rastty::{Frame, RenderOptions, Renderer, Rgb, Scene};
+    ///
+    /// let scene = Scene::of_mesh(rastty::scene::Shape::Cube.mesh(Rgb::WHITE));
+    /// let opts = RenderOptions { cols: 40, rows: 12, ..Default::default() };
+    /// let (mut renderer, mut frame) = (Renderer::new(), Frame::default());
+    /// for yaw in [0.0, 10.0, 20.0] {
+    ///     let opts = RenderOptions { turn: rastty::glam::Vec3::new(0.0, yaw, 0.0), ..opts };
+    ///     renderer.render_into(&scene, &opts, &mut frame);
+    /// }
+    /// assert_eq!((frame.cols(), frame.rows()), (40, 12));
+    /// assert!(frame.cells().iter().any(|c| c.ch != ' '));
+    /// ```
+    pub fn render_into(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
         let grid = opts.glyphs.grid(opts.cols, opts.rows);
         self.stats = FrameStats::default();
         self.times = FrameTimes::default();
@@ -384,24 +260,28 @@ impl Renderer {
         // A camera that frames a model is placed for this view's aspect.
         let cam = &scene.camera.resolved(opts.aspect());
         let vp = cam.view_projection(opts.aspect());
-        let clipper = Clipper::new(grid.width, grid.height).with_w_min(cam.w_min());
-        let p = plan::plan(scene, opts, vp, turn, &clipper);
-        self.plan = Some(p);
+        let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
+        // The plan is taken out of `self` for the frame (the stages borrow
+        // it) and put back: replanning reuses its memory.
+        let mut plan = self.plan.take();
+        let p: &Plan = match &mut plan {
+            Some(p) => {
+                p.replan(scene, opts, vp, turn, &clipper);
+                p
+            }
+            None => plan.insert(Plan::new(scene, opts, vp, turn, &clipper)),
+        };
         let eye = match cam.projection {
             Projection::Perspective { .. } => Eye::At(cam.eye),
             Projection::Orthographic { .. } => Eye::Towards(cam.eye - cam.target),
             Projection::None => Eye::Towards(Vec3::Z),
         };
-        let lit = opts.shading != Shading::None && !scene.lights.is_empty();
         let stage = Stage {
             exact: false,
             clipper,
-            depth: p.depth.run,
-            perspective: p.perspective.run,
-            full: p.full,
+            plan: p,
             viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
-            lights: Lights::new(if lit { &scene.lights } else { &[] }),
-            shading: if lit { opts.shading } else { Shading::None },
+            lights: Lights::new(if p.lighting.run { &scene.lights } else { &[] }),
             traversal: opts.traversal,
             precision: opts.precision,
             eye,
@@ -457,10 +337,10 @@ impl Renderer {
             opts.color,
             scene.background,
             opts.split,
-            &mut self.frame,
+            frame,
         );
         self.times.blit += lap();
-        &self.frame
+        self.plan = plan;
     }
 
     /// Draws every mesh and loose triangle into the framebuffer (or, for
@@ -469,15 +349,15 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         opts: &RenderOptions,
-        stage: &Stage,
+        stage: &Stage<'_>,
         vp: Mat4,
         turn: Mat4,
         lap: &mut impl FnMut() -> Duration,
     ) {
-        let p = self.plan.expect("planned");
-        for mesh in &scene.meshes {
+        let p = stage.plan;
+        for (i, mesh) in scene.meshes.iter().enumerate() {
             let model = turn * mesh.model;
-            let tests = p.full || plan::needs_clip_tests(&stage.clipper, vp * model, mesh.bounds);
+            let tests = p.clip_tests(i);
             let transforms = Transforms::new(vp, model);
             self.vertex_stage(stage, &transforms, &mesh.positions, &mesh.normals, tests);
             self.times.vertices += lap();
@@ -500,10 +380,11 @@ impl Renderer {
         }
         let cull = opts.cull.unwrap_or(Cull::None);
         let loose = Transforms::new(vp, turn);
+        let loose_tests = p.clip_tests(scene.meshes.len());
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
-            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], p.clip.run);
+            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
                 stage,
@@ -543,7 +424,7 @@ impl Renderer {
     /// Transforms `positions` (with `normals`) into `self.verts`.
     fn vertex_stage(
         &mut self,
-        stage: &Stage,
+        stage: &Stage<'_>,
         t: &Transforms,
         positions: &[Vec3],
         normals: &[Vec3],
@@ -555,7 +436,7 @@ impl Renderer {
             normal: normal_matrix,
             ..
         } = *t;
-        let smooth = stage.shading == Shading::Smooth;
+        let smooth = stage.plan.shading == Shading::Smooth;
         self.verts.clear();
         self.stats.vertices += positions.len() as u64;
         if smooth {
@@ -606,7 +487,7 @@ impl Renderer {
     /// them to clip space, for the clip path.
     fn triangle(
         &mut self,
-        stage: &Stage,
+        stage: &Stage<'_>,
         v: [&Vert; 3],
         base: [Lin; 3],
         cull: Cull,
@@ -626,6 +507,7 @@ impl Renderer {
             // triangles and those covering no sample are never lit (the
             // full pipeline lights them all, first).
             let early = stage
+                .plan
                 .full
                 .then(|| self.shade(stage, v, base, !front_facing(v)));
             let fixed = v.map(|v| v.fixed);
@@ -722,15 +604,15 @@ impl Renderer {
     /// that interpolating three equal colours gives back exactly that
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
-    fn shade(&mut self, stage: &Stage, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
+    fn shade(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
         self.light(stage, v, base, back)
             .map(|c| Vec3::from(Lin::from_f32(c.to_array()).to_f32()))
     }
 
-    fn light(&mut self, stage: &Stage, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
+    fn light(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
         let base = base.map(|c| Vec3::from(c.to_f32()));
         let side = if back { -1.0 } else { 1.0 };
-        match stage.shading {
+        match stage.plan.shading {
             Shading::None => base,
             Shading::Flat => {
                 self.stats.lighting_evaluations += 1;
@@ -788,15 +670,15 @@ impl Renderer {
             color: o.map(|i| t.color[i]),
         };
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
-        let use_depth = stage.depth;
+        let use_depth = stage.plan.depth.run;
         let depth = move |e: C::Weights| {
             let e = C::f32(e);
             let z = (e[0] * z0 + e[1] * z1 + e[2] * z2) * inv_area;
             z.clamp(z_lo, z_hi)
         };
-        let flat = !stage.full && t.color[0] == t.color[1] && t.color[1] == t.color[2];
+        let flat = !stage.plan.interpolates(&t.color);
         // Weights e_i, or e_i / w_i for perspective correction, renormalised.
-        let [a, b, c] = if stage.perspective {
+        let [a, b, c] = if stage.plan.perspective.run {
             unit_scale(t.inv_w)
         } else {
             [1.0; 3]
@@ -833,7 +715,7 @@ impl Renderer {
         }
         if !flat {
             stats.interpolated_samples += covered;
-            if stage.perspective {
+            if stage.plan.perspective.run {
                 stats.perspective_samples += covered;
             }
         }

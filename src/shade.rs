@@ -9,10 +9,11 @@
 
 use glam::Vec3;
 
-use crate::scene::Light;
+use crate::scene::{Light, MAX_LIGHTS};
 
 /// How surfaces are shaded.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Shading {
     /// Surface colours as they are, unlit.
     None,
@@ -35,9 +36,6 @@ impl Shading {
         }
     }
 }
-
-/// Most lights a scene may have.
-pub const MAX_LIGHTS: usize = 8;
 
 /// A scene's lights, ready for shading: towards the light, colour in
 /// [0, 1]. Fixed-size, so a frame sets it up without allocating.

@@ -22,7 +22,8 @@
 use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
 /// An axis of a coordinate system: one to turn about, or a model's up.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Axis {
     X,
     #[default]
@@ -288,6 +289,35 @@ pub fn direction(v: Vec3) -> Vec3 {
 /// The homogeneous divide: clip space to the canonical cube.
 pub fn divide(clip: Vec4) -> Vec3 {
     clip.truncate() / clip.w
+}
+
+/// Largest grid side, in samples (2^16).
+pub const MAX_GRID: u32 = 1 << 16;
+
+/// The sample grid: `width × height` samples, sample `(x, y)` centred on
+/// `(x + 0.5, y + 0.5)`, y up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Grid {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Grid {
+    /// A grid; each side is clamped to [`MAX_GRID`].
+    pub fn new(width: u32, height: u32) -> Grid {
+        Grid {
+            width: width.min(MAX_GRID),
+            height: height.min(MAX_GRID),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 #[cfg(test)]

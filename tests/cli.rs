@@ -220,17 +220,17 @@ fn settings_are_named_as_the_command_line_names_them() {
             "2",
         ]);
     }
-    for shading in rastty::shade::Shading::ALL {
+    for shading in rastty::Shading::ALL {
         let name = shading.to_possible_value().unwrap().get_name().to_string();
         assert_eq!(shading.name(), name);
     }
     for t in rastty::Traversal::ALL {
         assert_eq!(t.name(), t.to_possible_value().unwrap().get_name());
     }
-    for p in rastty::raster::Precision::ALL {
+    for p in rastty::Precision::ALL {
         assert_eq!(p.name(), p.to_possible_value().unwrap().get_name());
     }
-    for aa in rastty::render::Aa::ALL {
+    for aa in rastty::Aa::ALL {
         assert_eq!(aa.name(), aa.to_possible_value().unwrap().get_name());
     }
     for depth in rastty::ColorDepth::ALL {

@@ -7,10 +7,12 @@ use std::collections::BTreeSet;
 use glam::{Vec3, Vec4};
 use proptest::prelude::*;
 use rastty::clip::{ClipVertex, Clipper, Polygon};
-use rastty::raster::{Cull, Grid, RasterStats, Setup, Traversal, rasterize};
+use rastty::raster::{RasterStats, Setup, rasterize};
 use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
+use rastty::transform::Grid;
 use rastty::transform::Viewport;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
+use rastty::{Cull, Traversal};
 
 type Tri = [[f32; 2]; 3];
 
@@ -769,7 +771,7 @@ fn a_dented_cube_far_from_the_origin_is_drawn_with_its_depth_test() {
     full.render(
         &scene,
         &RenderOptions {
-            pipeline: rastty::plan::Pipeline::Full,
+            pipeline: rastty::Pipeline::Full,
             ..opts
         },
     );
@@ -942,14 +944,13 @@ fn perspective_correct_colours_match_f64_and_differ_from_affine() {
     // red near and blue far; every drawn sample against the floor point
     // behind it, found by casting the ray in f64 (rastty::bench measures
     // the same for its table).
-    let (max, mean) =
-        rastty::bench::interpolation_error(rastty::render::Interpolation::Perspective);
+    let (max, mean) = rastty::bench::interpolation_error(rastty::Interpolation::Perspective);
     assert!(
         max <= 2.0 && mean <= 0.5,
         "perspective-correct: max {max}, mean {mean}"
     );
     let (affine_max, affine_mean) =
-        rastty::bench::interpolation_error(rastty::render::Interpolation::Affine);
+        rastty::bench::interpolation_error(rastty::Interpolation::Affine);
     assert!(
         affine_max > 100.0 && affine_mean > 40.0,
         "affine: max {affine_max}, mean {affine_mean}"

@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use glam::Vec3;
+use rastty::Shading;
 use rastty::color::Lin;
-use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
 
 fn model(name: &str) -> Scene {

@@ -354,7 +354,7 @@ fn an_open_mesh_shows_both_sides_and_a_closed_one_is_culled() {
     )
     .unwrap();
     let scene = Scene::of_model(&dir.join("tri.obj")).unwrap();
-    assert_eq!(scene.meshes[0].cull, rastty::raster::Cull::None);
+    assert_eq!(scene.meshes[0].cull, rastty::Cull::None);
     for yaw in [0.0, 180.0] {
         let opts = RenderOptions {
             turn: glam::Vec3::new(0.0, yaw, 0.0),
@@ -367,7 +367,7 @@ fn an_open_mesh_shows_both_sides_and_a_closed_one_is_culled() {
         );
     }
     let cube = Scene::of_model(Path::new("cube")).unwrap();
-    assert_eq!(cube.meshes[0].cull, rastty::raster::Cull::Back);
+    assert_eq!(cube.meshes[0].cull, rastty::Cull::Back);
 }
 
 #[test]

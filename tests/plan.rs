@@ -7,18 +7,15 @@ use std::path::Path;
 
 use glam::Vec3;
 use proptest::prelude::*;
-use rastty::plan::Pipeline;
-use rastty::raster::Cull;
-use rastty::render::Aa;
+use rastty::Aa;
+use rastty::Cull;
+use rastty::Pipeline;
+use rastty::Shading;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
-use rastty::shade::Shading;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
 
 /// Renders both ways; returns the planned renderer's statistics.
-fn same_both_ways(
-    scene: &Scene,
-    opts: &RenderOptions,
-) -> Result<rastty::render::FrameStats, String> {
+fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameStats, String> {
     let mut planned = Renderer::new();
     let mut full = Renderer::new();
     let a = planned
@@ -332,7 +329,7 @@ fn skipped_stages_do_no_work() {
     // A flat 2D scene of one-colour triangles, inside the screen, unlit.
     let mut r = Renderer::new();
     r.render(&example("shared-edge"), &opts);
-    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(
         !p.depth.run
             && !p.clip.run
@@ -376,7 +373,7 @@ fn skipped_stages_do_no_work() {
             ..opts
         },
     );
-    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(!p.depth.run && !p.clip.run && !p.interpolation.run && p.lighting.run);
     assert_eq!(
         (s.depth_tests, s.clip_tests, s.interpolated_samples),
@@ -386,7 +383,7 @@ fn skipped_stages_do_no_work() {
 
     // The torus is not convex: depth runs; smooth shading interpolates.
     r.render(&rastty::default_scene(), &opts);
-    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(p.depth.run && p.interpolation.run && p.perspective.run);
     assert!(s.depth_tests > 0 && s.perspective_samples > 0);
 
@@ -398,7 +395,7 @@ fn skipped_stages_do_no_work() {
         far: 50.0,
     };
     r.render(&ortho, &opts);
-    let (s, p) = (*r.stats(), *r.plan().unwrap());
+    let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(p.interpolation.run && !p.perspective.run);
     assert!(s.interpolated_samples > 0);
     assert_eq!(s.perspective_samples, 0);

@@ -189,7 +189,8 @@ proptest! {
 /// and replaying every frame in the emulator ends on the last frame.
 #[test]
 fn spinning_square_in_half_mode_stays_within_budget() {
-    use rastty::animate::{self, Axis, Spin};
+    use rastty::animate;
+    use rastty::animate::{Axis, Spin};
     let scene = scene("square");
     let o = opts(80, 24, GlyphMode::Half, ColorDepth::TrueColor);
     let spin = Spin {

@@ -4,7 +4,9 @@
 //! sample.
 
 use proptest::prelude::*;
-use rastty::raster::{Cull, Grid, RasterStats, Traversal, rasterize};
+use rastty::raster::{RasterStats, rasterize};
+use rastty::transform::Grid;
+use rastty::{Cull, Traversal};
 
 const W: u32 = 24;
 const H: u32 = 16;

@@ -120,7 +120,8 @@ impl From<Rgb> for Lin {
 }
 
 /// How colour numbers in a file are to be read.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ColorSpace {
     /// Proportional to light (what Blender and most exporters write for
     /// MTL `Kd`).

@@ -71,7 +71,8 @@ pub fn xterm256(i: u8) -> Rgb {
 }
 
 /// How "nearest" is measured when a colour is mapped onto a palette.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Metric {
     /// Squared distance of the sRGB bytes: cheap, and visibly wrong for
     /// darks and blues.
@@ -98,7 +99,8 @@ impl Metric {
 }
 
 /// Whether colours between palette entries are drawn as patterns of two.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Dither {
     /// Ordered for 16 colours, none for 256 (and truecolor never needs it).
     #[default]

@@ -53,7 +53,6 @@ use glam::{DVec3, Mat4, Vec3};
 use rustc_hash::FxHashMap;
 
 use crate::color::{Lin, Rgb};
-use crate::raster::Cull;
 
 /// The crease angle: faces meeting at a sharper angle than this keep their
 /// own normals at the edge between them.
@@ -337,7 +336,37 @@ impl Mesh {
     pub fn face_color(&self, f: usize) -> Lin {
         self.geometry.face_color(f, Lin::from_srgb(self.color))
     }
+
+    /// This mesh placed in the world by `model` (model to world), for
+    /// building a scene in code.
+    #[must_use]
+    pub fn with_model(self, model: Mat4) -> Mesh {
+        Mesh { model, ..self }
+    }
+
+    /// This mesh with the windings `cull` discards.
+    #[must_use]
+    pub fn with_cull(self, cull: Cull) -> Mesh {
+        Mesh { cull, ..self }
+    }
 }
+
+/// Which triangles to discard by their winding on screen (y up;
+/// counter-clockwise faces the viewer, as in OpenGL).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Cull {
+    /// Draw both windings.
+    #[default]
+    None,
+    /// Drop clockwise (back-facing) triangles.
+    Back,
+    /// Drop counter-clockwise (front-facing) triangles.
+    Front,
+}
+
+/// Most lights a scene may have.
+pub const MAX_LIGHTS: usize = 8;
 
 /// A directional light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -363,6 +392,22 @@ impl Default for Light {
 }
 
 impl Light {
+    /// Whether this light can be drawn: a finite, non-zero direction and
+    /// an ambient share between 0 and 1. The message says what is wrong.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let d = self.direction;
+        if !d.is_finite() || d.length_squared() == 0.0 {
+            return Err("light direction must be a finite, non-zero vector".into());
+        }
+        if !(0.0..=1.0).contains(&self.ambient) {
+            return Err(format!(
+                "light ambient must be between 0 and 1, not {}",
+                self.ambient
+            ));
+        }
+        Ok(())
+    }
+
     /// The lights of a model shown alone: a key light from the upper left
     /// in front (0.8 of white, in linear light, 0.12 of it ambient) and a
     /// fill from the right, a little below (0.3 of white): a white face

@@ -49,6 +49,7 @@
 //! name the file, line and column. Mesh files' own errors name their file
 //! and line.
 
+mod builder;
 pub mod file;
 pub mod mesh;
 pub mod obj;
@@ -65,13 +66,13 @@ use rustc_hash::FxHashMap;
 use serde::Deserialize;
 use toml::Spanned;
 
-pub use mesh::{Geometry, Light, MaterialRun, Mesh};
+pub use builder::SceneBuilder;
+pub use mesh::{Cull, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh};
 pub use shapes::Shape;
 pub use transform::Axis;
 
 use crate::color::{ColorSpace, Rgb};
 use crate::error::{Error, Result};
-use crate::raster::Cull;
 use crate::transform;
 
 /// Everything there is to draw, in world coordinates. `Scene::default()`
@@ -330,17 +331,6 @@ impl Camera {
                 transform::orthographic64(height as f64, aspect, near as f64, far as f64) * view
             }
             Projection::None => glam::DMat4::IDENTITY,
-        }
-    }
-
-    /// The smallest `w` a clipped vertex may keep: 1e-5, or for a
-    /// perspective camera whose near plane is closer than that, half the
-    /// near distance (the scene is tiny: what matters is `w` relative to
-    /// `near`).
-    pub fn w_min(&self) -> f64 {
-        match self.projection {
-            Projection::Perspective { near, .. } => crate::clip::W_MIN.min(near as f64 * 0.5),
-            _ => crate::clip::W_MIN,
         }
     }
 
@@ -742,30 +732,19 @@ impl Scene {
             }
             for l in def.light {
                 let span = l.span();
-                if scene.lights.len() == crate::shade::MAX_LIGHTS {
-                    return Err(at(
-                        span,
-                        format!("at most {} lights", crate::shade::MAX_LIGHTS),
-                    ));
+                if scene.lights.len() == MAX_LIGHTS {
+                    return Err(at(span, format!("at most {} lights", MAX_LIGHTS)));
                 }
                 let l = l.into_inner();
-                let d = Vec3::from(l.direction);
-                if !d.is_finite() || d.length_squared() == 0.0 {
-                    return Err(at(
-                        span,
-                        "light direction must be a finite, non-zero vector".into(),
-                    ));
-                }
-                if !(0.0..=1.0).contains(&l.ambient) {
-                    return Err(at(
-                        span,
-                        format!("light ambient must be between 0 and 1, not {}", l.ambient),
-                    ));
-                }
-                scene.lights.push(Light {
-                    direction: d.normalize(),
+                let light = Light {
+                    direction: Vec3::from(l.direction),
                     color: l.color,
                     ambient: l.ambient,
+                };
+                light.check().map_err(|e| at(span, e))?;
+                scene.lights.push(Light {
+                    direction: light.direction.normalize(),
+                    ..light
                 });
             }
         }

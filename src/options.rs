@@ -1,0 +1,175 @@
+//! What a frame is drawn with, apart from the scene: its size in cells,
+//! glyphs, colour depth, and every accuracy knob ([`Aa`],
+//! [`Interpolation`], [`Split`], [`Precision`], [`Traversal`]) with its
+//! default at the exact, lecture-faithful setting. The planner and the
+//! renderer both read these; neither owns them.
+
+use glam::Vec3;
+
+use crate::blit::{GlyphMode, Split};
+use crate::color::ColorDepth;
+use crate::raster::{Precision, Traversal};
+use crate::scene::Cull;
+use crate::shade::Shading;
+
+/// Largest frame side, in cells: a bigger terminal is drawn at this size
+/// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
+pub const MAX_CELLS: u16 = 4096;
+
+/// Everything about a frame that is not the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderOptions {
+    pub cols: u16,
+    pub rows: u16,
+    pub glyphs: GlyphMode,
+    pub color: ColorDepth,
+    /// A cell's width over its height, physically (about 0.5 in most
+    /// terminals).
+    pub cell_aspect: f32,
+    pub traversal: Traversal,
+    /// Turns the whole scene about the world origin: degrees about x
+    /// (pitch), then y (yaw), then z (roll). What `spin` animates. Lights
+    /// and camera stay put.
+    pub turn: Vec3,
+    pub shading: Shading,
+    /// Culling for everything, overriding each mesh's own (`None`: meshes
+    /// cull as their scene says, loose triangles never).
+    pub cull: Option<Cull>,
+    /// Whether the planner may skip stages the scene does not need.
+    pub pipeline: Pipeline,
+    /// Anti-aliasing: sub-samples per sample, or exact area coverage.
+    pub aa: Aa,
+    /// How interpolated attributes are weighted.
+    pub interpolation: Interpolation,
+    /// How two-colour cells split their samples.
+    pub split: Split,
+    /// How edge functions are evaluated.
+    pub precision: Precision,
+}
+
+/// How attributes are interpolated across a triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Interpolation {
+    /// Screen-space weights divided by `w` (correct under perspective).
+    #[default]
+    Perspective,
+    /// Screen-space weights as they are: cheaper, and wrong under
+    /// perspective (for measuring what correctness costs).
+    Affine,
+}
+
+impl Interpolation {
+    /// The name the command line uses (`--interpolation affine`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Interpolation::Perspective => "perspective",
+            Interpolation::Affine => "affine",
+        }
+    }
+}
+
+/// How a sample's colour is found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Aa {
+    /// One test at the sample's centre: the lecture's sampling.
+    #[default]
+    None,
+    /// Four sub-samples in the rotated-grid pattern, averaged.
+    #[cfg_attr(feature = "cli", value(name = "4x"))]
+    X4,
+    /// Sixteen sub-samples on an ordered 4×4 grid, averaged.
+    #[cfg_attr(feature = "cli", value(name = "16x"))]
+    X16,
+    /// The exact area of each triangle inside the sample's square.
+    Exact,
+}
+
+/// The rotated-grid pattern of 4× anti-aliasing, in a sample's square.
+const RGSS: [(f32, f32); 4] = [
+    (0.375, 0.125),
+    (0.875, 0.375),
+    (0.125, 0.625),
+    (0.625, 0.875),
+];
+
+/// The ordered 4×4 grid of 16× anti-aliasing.
+const ORDERED_16: [(f32, f32); 16] = {
+    let mut g = [(0.0, 0.0); 16];
+    let mut i = 0;
+    while i < 16 {
+        g[i] = (((i % 4) as f32 + 0.5) / 4.0, ((i / 4) as f32 + 0.5) / 4.0);
+        i += 1;
+    }
+    g
+};
+
+impl Aa {
+    pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
+
+    /// The name the command line uses (`--aa 16x`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Aa::None => "none",
+            Aa::X4 => "4x",
+            Aa::X16 => "16x",
+            Aa::Exact => "exact",
+        }
+    }
+
+    /// How many times a frame's geometry is drawn.
+    pub fn passes(self) -> u64 {
+        self.offsets().len() as u64
+    }
+
+    /// The sub-sample positions inside a sample's unit square.
+    pub fn offsets(self) -> &'static [(f32, f32)] {
+        match self {
+            Aa::None | Aa::Exact => &[(0.5, 0.5)],
+            Aa::X4 => &RGSS,
+            Aa::X16 => &ORDERED_16,
+        }
+    }
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            cols: 80,
+            rows: 24,
+            glyphs: GlyphMode::default(),
+            color: ColorDepth::default(),
+            cell_aspect: 0.5,
+            traversal: Traversal::default(),
+            turn: Vec3::ZERO,
+            shading: Shading::default(),
+            cull: None,
+            pipeline: Pipeline::default(),
+            aa: Aa::None,
+            interpolation: Interpolation::default(),
+            split: Split::default(),
+            precision: Precision::default(),
+        }
+    }
+}
+
+impl RenderOptions {
+    /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:
+    /// what the projection is given.
+    pub fn aspect(&self) -> f32 {
+        self.cols as f32 * self.cell_aspect / self.rows.max(1) as f32
+    }
+}
+
+/// Whether the planner may skip stages.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Pipeline {
+    /// Run only the stages the scene calls for.
+    #[default]
+    Planned,
+    /// Run every stage on every primitive (`--full-pipeline`): the
+    /// reference the planned frames are checked against.
+    Full,
+}

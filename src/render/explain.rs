@@ -1,0 +1,104 @@
+//! `rastty render --explain`: the renderer's last frame told as a report,
+//! the plan's decisions beside the work each stage did. Kept next to the
+//! renderer, whose statistics it reads; the planner only decides.
+
+use std::fmt::Write as _;
+use std::time::Duration;
+
+use super::Renderer;
+use crate::options::RenderOptions;
+use crate::scene::Scene;
+
+impl Renderer {
+    /// The report `rastty render --explain` prints: the frame, each stage run
+    /// or skipped and why, the work each did (from the frame's statistics,
+    /// where a skipped stage shows zero) and where the time went.
+    #[must_use]
+    pub fn explain(
+        &self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        encode: Duration,
+        bytes: usize,
+    ) -> String {
+        let Some(plan) = self.plan() else {
+            return "no frame rendered\n".into();
+        };
+        let s = self.stats();
+        let t = self.times();
+        let grid = opts.glyphs.grid(opts.cols, opts.rows);
+        let (w, h) = opts.glyphs.cell_size();
+        let ms = |d: Duration| format!("{:.3} ms", d.as_secs_f64() * 1e3);
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "frame: {}×{} cells, {:?} glyphs ({} samples a cell, {}×{} samples), {} triangles, {} pipeline",
+            opts.cols,
+            opts.rows,
+            opts.glyphs,
+            w * h,
+            grid.width,
+            grid.height,
+            scene.triangle_count(),
+            if plan.full { "full" } else { "planned" },
+        );
+        // Each stage runs inside a timed phase (the last line): the vertex
+        // phase holds the clip tests and per-vertex lighting, the triangle
+        // phase the rest.
+        let rows = [
+            (
+                "clip",
+                plan.clip,
+                format!(
+                    "{} vertices tested, {} triangles cut, {} removed",
+                    s.clip_tests, s.clipped, s.clip_rejected
+                ),
+            ),
+            (
+                "lighting",
+                plan.lighting,
+                format!("{} evaluations", s.lighting_evaluations),
+            ),
+            (
+                "depth",
+                plan.depth,
+                format!("{} depth tests", s.depth_tests),
+            ),
+            (
+                "interpolation",
+                plan.interpolation,
+                format!("{} samples interpolated", s.interpolated_samples),
+            ),
+            (
+                "perspective",
+                plan.perspective,
+                format!("{} samples through 1/w", s.perspective_samples),
+            ),
+        ];
+        for (name, d, work) in &rows {
+            let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
+        }
+        let r = &s.raster;
+        let _ = writeln!(
+            out,
+            "raster: {} triangles set up, {} culled, {} degenerate, {} not finite; {} samples tested, {} covered",
+            r.triangles_drawn,
+            r.culled,
+            r.dropped_degenerate,
+            r.dropped_non_finite,
+            r.samples_tested,
+            r.samples_covered
+        );
+        let _ = writeln!(
+            out,
+            "time: plan {} · vertices {} · triangles {} · blit {} · encode {} ({} bytes)",
+            ms(t.plan),
+            ms(t.vertices),
+            ms(t.triangles),
+            ms(t.blit),
+            ms(encode),
+            bytes
+        );
+        out
+    }
+}
