@@ -27,7 +27,9 @@ pub use crate::transform::Axis;
 /// A turn of `step` degrees per frame about `axis`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spin {
+    /// The axis turned about.
     pub axis: Axis,
+    /// Degrees per frame.
     pub step: f32,
 }
 
@@ -44,21 +46,30 @@ impl Spin {
 /// What a key (or the terminal) asks of a running animation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Command {
+    /// End the animation.
     Quit,
+    /// Stop turning, or go on.
     TogglePause,
     /// Move the eye around the target: degrees of yaw and pitch.
     Orbit {
+        /// Degrees about the up axis.
         yaw: f32,
+        /// Degrees towards the up axis.
         pitch: f32,
     },
     /// Multiply the eye's distance from the target.
     Zoom(f32),
+    /// Draw with the next glyph mode.
     NextGlyphs,
+    /// Send colours at the next colour depth.
     NextColor,
+    /// Shade with the next shading.
     NextShading,
     /// The terminal's new size in cells.
     Resize {
+        /// Columns.
         cols: u16,
+        /// Rows.
         rows: u16,
     },
     /// Send the next frame in full.
@@ -103,6 +114,8 @@ pub struct Player {
 }
 
 impl Player {
+    /// A player of `scene` drawn with `opts`, turned by `spin` each frame and
+    /// sent through `encoder`.
     pub fn new(scene: Scene, opts: RenderOptions, spin: Spin, encoder: Encoder) -> Player {
         Player {
             base: scene.camera,
@@ -147,18 +160,22 @@ impl Player {
         self.opts.glyphs = glyphs;
     }
 
+    /// The options the next frame is drawn with.
     pub fn options(&self) -> &RenderOptions {
         &self.opts
     }
 
+    /// The encoder, to change how frames are sent.
     pub fn encoder_mut(&mut self) -> &mut Encoder {
         &mut self.encoder
     }
 
+    /// The number of the next frame (0 for the first).
     pub fn frame_number(&self) -> u64 {
         self.k
     }
 
+    /// Whether the turn is paused.
     pub fn is_paused(&self) -> bool {
         self.paused
     }
@@ -179,6 +196,7 @@ impl Player {
         self.notice_serial += 1;
     }
 
+    /// Forgets the notice shown on the status line.
     pub fn clear_notice(&mut self) {
         self.notice = None;
     }
@@ -210,8 +228,8 @@ impl Player {
                 self.set_notice(format!("shading {}", self.opts.shading.name()));
             }
             Command::Resize { cols, rows } => {
-                self.opts.cols = cols.clamp(1, crate::MAX_CELLS);
-                self.opts.rows = rows.clamp(1, crate::MAX_CELLS);
+                self.opts.cols = cols.clamp(1, crate::options::MAX_CELLS);
+                self.opts.rows = rows.clamp(1, crate::options::MAX_CELLS);
                 self.encoder.invalidate();
             }
             Command::Redraw => self.encoder.invalidate(),
@@ -228,15 +246,7 @@ impl Player {
 
     /// The camera after orbiting and zooming.
     fn camera(&self) -> Camera {
-        let c = self.base;
-        let offset = (c.eye - c.target) * self.zoom;
-        let yaw = glam::Quat::from_axis_angle(c.up.normalize_or_zero(), self.orbit.0.to_radians());
-        let right = offset.cross(c.up).normalize_or_zero();
-        let pitch = glam::Quat::from_axis_angle(right, self.orbit.1.to_radians());
-        Camera {
-            eye: c.target + yaw * (pitch * offset),
-            ..c
-        }
+        self.base.orbited(self.orbit.0, self.orbit.1, self.zoom)
     }
 
     /// Renders the current frame and encodes it; returns the bytes to send
@@ -404,7 +414,10 @@ mod tests {
             cols: 60_000,
             rows: 0,
         });
-        assert_eq!((p.options().cols, p.options().rows), (crate::MAX_CELLS, 1));
+        assert_eq!(
+            (p.options().cols, p.options().rows),
+            (crate::options::MAX_CELLS, 1)
+        );
     }
 
     #[test]

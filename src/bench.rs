@@ -8,7 +8,7 @@
 //!
 //! | knob | settings | error measures |
 //! |---|---|---|
-//! | coverage | samples per cell (1, 2, 4, 6, 8) × `--aa none, 4x, 16x`, and `--aa exact` | mean and largest absolute error of each cell's coverage against the analytic area ([`crate::accuracy`]), over random triangles |
+//! | coverage | samples per cell (1, 2, 4, 6, 8) × `--aa none, 4x, 16x`, and `--aa exact` | mean and largest absolute error of each cell's coverage against the analytic area (`src/accuracy.rs`), over random triangles |
 //! | precision | unsnapped f32 and f64 edge functions, the exact i64 fixed point | cracks and double hits on random tilings of the screen |
 //! | traversal | scan, bounding box, incremental | samples that differ from incremental (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
@@ -35,21 +35,29 @@ use crate::transform::Grid;
 
 /// A scene to time, and whether it turns from frame to frame.
 pub struct Workload {
+    /// What the table calls it.
     pub name: String,
+    /// What is drawn.
     pub scene: Scene,
 }
 
 /// One knob setting: its time per frame on each workload and its errors.
 pub struct Row {
+    /// The knob's name.
     pub knob: &'static str,
+    /// Its setting.
     pub setting: String,
+    /// Median time per frame, one per workload.
     pub times: Vec<Duration>,
+    /// Each error measure's name and value.
     pub errors: Vec<(&'static str, f64)>,
 }
 
 /// Everything `rastty bench` measured.
 pub struct Report {
+    /// The workloads' names, in the order of each row's times.
     pub workloads: Vec<String>,
+    /// One row per knob setting.
     pub rows: Vec<Row>,
 }
 
@@ -59,7 +67,7 @@ pub fn workloads(models: &Path) -> Vec<Workload> {
     let mut w = vec![
         Workload {
             name: "torus (built-in)".into(),
-            scene: crate::default_scene(),
+            scene: crate::scene::default_scene(),
         },
         Workload {
             name: "tiles (2D)".into(),
@@ -312,6 +320,7 @@ pub struct CoverageError {
     /// Mean and largest absolute error of a cell's coverage, each triangle
     /// alone.
     pub mean: f64,
+    /// Largest absolute error of a cell's coverage, each triangle alone.
     pub max: f64,
     /// Largest error where two triangles overlap (the union's coverage):
     /// what `--aa exact`, which ignores depth, gets wrong.
@@ -714,7 +723,7 @@ fn encode_times(workloads: &[Workload], palette: Palette, reps: usize) -> Vec<Du
 pub struct MatchingError {
     /// Mean OKLab distance to the colour sent, over random colours.
     pub mean: f64,
-    /// Of near-greys (OKLab chroma below [`color::palette::GREY_CHROMA`]),
+    /// Of near-greys (OKLab chroma below `GREY_CHROMA`),
     /// the share sent to a chromatic entry, in %.
     pub greys_coloured: f64,
     /// Of clearly chromatic colours (chroma 0.08 or more), the share sent
@@ -775,6 +784,7 @@ pub struct DitherCost {
     pub error: f64,
     /// Mean bytes of a first frame and of the next one (turned 3°).
     pub full_bytes: f64,
+    /// Mean bytes of the next frame.
     pub next_bytes: f64,
 }
 
@@ -1018,7 +1028,7 @@ mod tests {
     fn the_split_error_is_measured_through_the_blitter() {
         let w = vec![Workload {
             name: "torus".into(),
-            scene: crate::default_scene(),
+            scene: crate::scene::default_scene(),
         }];
         let exhaustive = split_error(&w, Split::Exhaustive);
         let widest = split_error(&w, Split::WidestChannel);

@@ -62,6 +62,7 @@ pub enum GlyphMode {
 }
 
 impl GlyphMode {
+    /// Every mode, from the fewest samples a cell to the most.
     pub const ALL: [GlyphMode; 7] = [
         GlyphMode::Ascii,
         GlyphMode::Block,

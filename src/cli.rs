@@ -112,7 +112,7 @@ pub struct InputArgs {
     pub up: Option<Axis>,
     /// Faces meeting at a sharper angle keep their own normals along the
     /// edge (computed normals only)
-    #[arg(long, value_name = "DEG", default_value_t = rastty::scene::mesh::DEFAULT_CREASE, value_parser = parse_crease)]
+    #[arg(long, value_name = "DEG", default_value_t = rastty::scene::DEFAULT_CREASE, value_parser = parse_crease)]
     pub crease: f32,
     /// How MTL Kd colours are read: linear light (as Blender and most
     /// exporters write them) or sRGB

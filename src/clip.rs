@@ -82,21 +82,28 @@ pub struct ClipVertex {
 /// A vertex as the vertex stage placed it on screen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Snapped {
+    /// Its position, snapped.
     pub fixed: FixedPoint,
+    /// Its position in samples.
     pub xy: [f32; 2],
+    /// Depth in the canonical cube.
     pub z: f32,
+    /// `1/w`, for perspective-correct interpolation.
     pub inv_w: f32,
 }
 
 /// A vertex of the clipped polygon, on screen.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ScreenVertex {
+    /// Its position, snapped.
     pub fixed: FixedPoint,
     /// Position in samples (unsnapped).
     pub xy: [f64; 2],
     /// Depth in the canonical cube.
     pub z: f32,
+    /// `1/w`, for perspective-correct interpolation.
     pub inv_w: f32,
+    /// Its colour, linear light in [0, 65535].
     pub color: Vec3,
 }
 
@@ -128,6 +135,7 @@ impl Default for Polygon {
 }
 
 impl Polygon {
+    /// The polygon's vertices, in order around it.
     pub fn vertices(&self) -> &[ScreenVertex] {
         &self.verts[..self.len]
     }
@@ -159,6 +167,8 @@ struct V {
 }
 
 impl Clipper {
+    /// The clip planes for a grid of `width × height` samples, keeping `w` down
+    /// to [`W_MIN`].
     pub fn new(width: u32, height: u32) -> Clipper {
         // The viewport maps NDC x to (x + 1)·W/2, so |x_screen − W/2| ≤ G
         // samples is |x_ndc| ≤ 2G/W.

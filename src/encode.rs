@@ -39,16 +39,19 @@
 use std::io::{self, Write};
 
 use crate::color::{ColorDepth, Dither, Ink, Metric, Palette, Quantizer, Rgb};
-use crate::frame::Frame;
+use crate::frame::{Cell, Frame};
 
 /// Synchronized output: begin and end.
 pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
+/// Synchronized output: end.
 pub const SYNC_END: &[u8] = b"\x1b[?2026l";
 
 /// The colours the terminal currently draws with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pen {
+    /// The foreground.
     pub fg: Ink,
+    /// The background.
     pub bg: Ink,
 }
 
@@ -56,17 +59,38 @@ pub struct Pen {
 /// foreground is always [`Ink::Default`] (it shows nothing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TermCell {
+    /// The character.
     pub ch: char,
+    /// Its foreground.
     pub fg: Ink,
+    /// Its background.
     pub bg: Ink,
 }
 
 impl TermCell {
+    /// A space in the default colours.
     pub const BLANK: TermCell = TermCell {
         ch: ' ',
         fg: Ink::Default,
         bg: Ink::Default,
     };
+
+    /// How the frame's `cell`, at column `x` and row `y` of its frame (which
+    /// anchor the dithering pattern), is told to a terminal whose colours
+    /// `q` maps to: what every frame this encoder sends is made of, and
+    /// what other back ends (the ratatui widget) take to show the same.
+    #[inline]
+    pub fn of(cell: &Cell, q: &mut Quantizer, x: u16, y: u16) -> TermCell {
+        TermCell {
+            ch: cell.ch,
+            fg: if cell.ch == ' ' {
+                Ink::Default
+            } else {
+                q.ink_at(cell.fg, x, y)
+            },
+            bg: q.ink_at(cell.bg, x, y),
+        }
+    }
 
     /// The pen this cell needs, given the current one: a blank keeps the
     /// current foreground.
@@ -88,7 +112,9 @@ impl TermCell {
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Rep {
     #[default]
+    /// Every cell written out (the default).
     Off,
+    /// Runs sent with REP where that is shorter.
     On,
 }
 
@@ -178,17 +204,8 @@ fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
     out.clear();
     let cols = frame.cols().max(1) as usize;
     out.extend(frame.cells().iter().enumerate().map(|(i, c)| {
-        // The cell's place anchors the dithering pattern.
         let (x, y) = ((i % cols) as u16, (i / cols) as u16);
-        TermCell {
-            ch: c.ch,
-            fg: if c.ch == ' ' {
-                Ink::Default
-            } else {
-                q.ink_at(c.fg, x, y)
-            },
-            bg: q.ink_at(c.bg, x, y),
-        }
+        TermCell::of(c, q, x, y)
     }));
 }
 
@@ -426,6 +443,8 @@ pub struct Encoder {
 }
 
 impl Encoder {
+    /// An encoder for `depth`, with synchronized output and the default palette
+    /// matching; the first frame is drawn in full.
     pub fn new(depth: ColorDepth) -> Encoder {
         Encoder {
             quantizer: Quantizer::of(depth.into()),
@@ -495,11 +514,13 @@ impl Encoder {
         }
     }
 
+    /// Sends runs of identical cells with REP when `rep` is [`Rep::On`].
     pub fn with_rep(mut self, rep: Rep) -> Encoder {
         self.rep = rep;
         self
     }
 
+    /// The colour depth frames are sent at.
     pub fn depth(&self) -> ColorDepth {
         self.quantizer.depth()
     }

@@ -10,16 +10,22 @@ pub enum Error {
     /// A file could not be read.
     #[error("{path}: {source}")]
     Io {
+        /// The file.
         path: String,
         #[source]
+        /// What went wrong.
         source: io::Error,
     },
     /// A file was read but its contents are wrong.
     #[error("{path}:{line}:{column}: {message}")]
     Parse {
+        /// The file.
         path: String,
+        /// The line, from 1.
         line: usize,
+        /// The column, from 1.
         column: usize,
+        /// What is wrong there.
         message: String,
     },
     /// A setting out of range.
@@ -28,6 +34,7 @@ pub enum Error {
 }
 
 impl Error {
+    /// A file that could not be read, named by its path.
     pub fn io(path: &Path, source: io::Error) -> Error {
         Error::Io {
             path: path.display().to_string(),
@@ -63,6 +70,7 @@ pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
+/// rastty's result: [`Error`] unless said otherwise.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 #[cfg(test)]

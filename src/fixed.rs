@@ -49,6 +49,7 @@ impl Fixed {
         Fixed(i as i64 * ONE + ONE / 2)
     }
 
+    /// The coordinate in samples.
     pub fn to_f32(self) -> f32 {
         self.0 as f32 / ONE as f32
     }
@@ -69,7 +70,9 @@ fn round_half_away(s: f32) -> i64 {
 /// A snapped point on the sample grid.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FixedPoint {
+    /// x, in samples.
     pub x: Fixed,
+    /// y, in samples (up).
     pub y: Fixed,
 }
 

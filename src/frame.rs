@@ -12,12 +12,16 @@ use crate::color::Rgb;
 /// One terminal cell. `None` colours are the terminal's defaults.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Cell {
+    /// The glyph.
     pub ch: char,
+    /// The glyph's colour.
     pub fg: Option<Rgb>,
+    /// The cell's background.
     pub bg: Option<Rgb>,
 }
 
 impl Cell {
+    /// A space in the terminal's default colours.
     pub const BLANK: Cell = Cell {
         ch: ' ',
         fg: None,
@@ -40,6 +44,7 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// A blank frame of `cols × rows` cells.
     pub fn new(cols: u16, rows: u16) -> Frame {
         Frame {
             cols,
@@ -67,14 +72,17 @@ impl Frame {
             .resize(cols as usize * rows as usize, Cell::BLANK);
     }
 
+    /// Columns.
     pub fn cols(&self) -> u16 {
         self.cols
     }
 
+    /// Rows.
     pub fn rows(&self) -> u16 {
         self.rows
     }
 
+    /// Every cell, row by row from the top.
     pub fn cells(&self) -> &[Cell] {
         &self.cells
     }
@@ -84,6 +92,7 @@ impl Frame {
         self.cells[row as usize * self.cols as usize + col as usize]
     }
 
+    /// Puts `cell` at column `col` of row `row` (row 0 at the top).
     pub fn set(&mut self, col: u16, row: u16, cell: Cell) {
         let i = row as usize * self.cols as usize + col as usize;
         self.cells[i] = cell;

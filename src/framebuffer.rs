@@ -22,6 +22,7 @@ pub struct Framebuffer {
 }
 
 impl Framebuffer {
+    /// An empty framebuffer of `grid`'s samples.
     pub fn new(grid: Grid) -> Framebuffer {
         Framebuffer {
             grid,
@@ -30,6 +31,7 @@ impl Framebuffer {
         }
     }
 
+    /// The sample grid.
     pub fn grid(&self) -> Grid {
         self.grid
     }
@@ -48,12 +50,14 @@ impl Framebuffer {
     }
 
     #[inline(always)]
+    /// Where sample `(x, y)` is stored (rows from the bottom).
     pub fn index(&self, x: u32, y: u32) -> usize {
         debug_assert!(x < self.grid.width && y < self.grid.height);
         y as usize * self.grid.width as usize + x as usize
     }
 
     #[inline(always)]
+    /// Colours sample `(x, y)`.
     pub fn set(&mut self, x: u32, y: u32, c: Lin) {
         let i = self.index(x, y);
         self.samples[i] = Some(c);
@@ -87,6 +91,7 @@ impl Framebuffer {
     }
 
     #[inline(always)]
+    /// Sample `(x, y)`'s colour; `None` where nothing was drawn.
     pub fn get(&self, x: u32, y: u32) -> Option<Lin> {
         self.samples[self.index(x, y)]
     }

@@ -1,24 +1,27 @@
 //! rastty makes the terminal's character grid a raster display.
 //!
 //! It runs the pipeline of GAMES101 Lecture 5 ("Rasterization 1:
-//! Triangles") for real, one module per stage in data-flow order:
+//! Triangles") for real, one stage after another:
 //!
-//! | stage | module | in → out |
+//! | stage | where | in → out |
 //! |---|---|---|
-//! | 1 | [`scene`] | TOML → [`Scene`] (world-space triangles, camera) |
+//! | 1 | [`scene`] | TOML, a model file or [`Scene::builder`] → [`Scene`] (triangles, meshes, camera, lights) |
 //! | 2 | [`transform`] | model, view, projection, viewport matrices |
 //! | 3 | [`clip`] | clip-space triangles → clipped convex polygons |
 //! | 4 | [`raster`] | screen triangles → covered samples, exactly |
-//! | 5 | [`framebuffer`] | one colour per sample |
-//! | 6 | [`blit`] | a cell's samples → one glyph and its colours ([`Frame`]) |
-//! | 7 | [`encode`] | a frame → ANSI bytes for any `io::Write` |
-//! | 8 | [`terminal`] | the terminal's size, cell shape and colours |
+//! | 5 | [`Framebuffer`] | one colour (and depth) per sample |
+//! | 6 | [`GlyphMode`] | a cell's samples → one glyph and two colours: a [`Cell`] of a [`Frame`] |
+//! | 7 | [`encode`] | a frame → ANSI bytes for any `io::Write`, only what changed |
 //!
-//! [`animate`] turns a scene frame after frame through stages 1–7, with or
-//! without a terminal.
+//! A [`Renderer`] runs stages 1–6 as its [`Plan`] says (a stage a scene does
+//! not need is skipped, and the frame is bit for bit the full pipeline's);
+//! [`RenderOptions`] holds everything about a frame that is not the scene,
+//! each accuracy knob at its exact setting by default. [`animate`] turns a
+//! scene frame after frame, with or without a terminal.
 //!
-//! [`render`](render::render) runs stages 1–6 and returns a [`Frame`] whose
-//! `Display` is plain text, ready for a snapshot:
+//! [`render()`] is the one-call form, and returns a [`Frame`] whose
+//! `Display` is plain text, ready for a snapshot
+//! (`insta::assert_snapshot!(frame.to_string())`):
 //!
 //! ```
 //! use rastty::{render, RenderOptions, Scene, GlyphMode, ColorDepth};
@@ -36,48 +39,66 @@
 //! assert_eq!(frame.to_string(), "    \n@   \n@@  \n@@@ \n");
 //! ```
 //!
+//! Frame after frame, [`Renderer::render_into`] draws into the caller's
+//! [`Frame`] and allocates nothing once the sizes are stable; an
+//! [`Encoder`] sends each frame as the bytes that change the last one into
+//! it.
+//!
+//! # Cargo features
+//!
+//! | feature | default | what it adds |
+//! |---|---|---|
+//! | `cli` | yes | the `rastty` program, and the terminal it runs in (`terminal`, `live`) |
+//! | `bench` | yes | `bench`: every accuracy knob timed and measured, and its plot |
+//! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
+//!
+//! With `default-features = false` the crate is the renderer alone (glam,
+//! the model loaders and the scene format).
+//!
 //! Conventions: y points up (sample row 0 is the bottom; terminal row `r`
 //! shows sample row `H − 1 − r`), sample `(x, y)` sits at `(x + 0.5, y + 0.5)`,
 //! and the projection is given the physical aspect of the view
 //! ([`RenderOptions::aspect`]), since cells are not square.
+
+#![warn(missing_docs)]
 
 // Modules are declared in layers, and a module uses only modules declared
 // before it (tests/architecture.rs checks this): foundations, then the
 // stages in data-flow order, then what runs them, then where frames go.
 
 // Foundations: errors, colours, fixed point, matrices and the sample grid.
-mod accuracy;
-pub mod color;
 mod error;
+pub mod color;
 pub mod fixed;
 pub mod transform;
+mod accuracy;
 
 // The stages, in data-flow order.
-mod blit;
-pub mod clip;
-pub mod encode;
-mod frame;
-mod framebuffer;
-pub mod raster;
 pub mod scene;
 mod shade;
+pub mod clip;
+pub mod raster;
+mod framebuffer;
+mod frame;
+mod blit;
+pub mod encode;
 
 // What runs them: the options, the planner that decides, the renderer that
 // obeys, the animation loop's core, and the measurements.
-pub mod animate;
-#[cfg(feature = "bench")]
-pub mod bench;
 mod options;
 mod plan;
 mod render;
+pub mod animate;
+#[cfg(feature = "bench")]
+pub mod bench;
 
 // Where frames go: a terminal (the program), or a ratatui buffer.
+#[cfg(feature = "cli")]
+pub mod terminal;
 #[cfg(feature = "cli")]
 pub mod live;
 #[cfg(feature = "ratatui")]
 pub mod ratatui;
-#[cfg(feature = "cli")]
-pub mod terminal;
 
 pub use glam;
 
@@ -91,13 +112,7 @@ pub use options::{Aa, Interpolation, MAX_CELLS, Pipeline, RenderOptions};
 pub use plan::{Decision, Plan};
 pub use raster::{Precision, Traversal};
 pub use render::{FrameStats, FrameTimes, Renderer, render};
-pub use scene::{Camera, Cull, Light, Mesh, Projection, Scene};
+pub use scene::{
+    Camera, Cull, DEFAULT_SCENE, Light, Mesh, Projection, Scene, SceneBuilder, default_scene,
+};
 pub use shade::{Lights, Shading};
-
-/// The scene `rastty render` draws when it is given none.
-pub const DEFAULT_SCENE: &str = include_str!("../examples/scenes/default.toml");
-
-/// [`DEFAULT_SCENE`], parsed.
-pub fn default_scene() -> Scene {
-    Scene::parse(DEFAULT_SCENE, "<built-in default scene>").expect("the built-in scene parses")
-}

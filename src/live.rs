@@ -46,7 +46,7 @@ pub struct LiveOptions {
     pub fps: u32,
     /// Stop after this many frames.
     pub frames: Option<u64>,
-    /// Ask the terminal what it draws before drawing ([`probe`]).
+    /// Ask the terminal what it draws before drawing (the terminal's glyph probe).
     pub probe: bool,
     /// Alternate screen and cursor moves (`false`: plain lines, for a dumb
     /// terminal).
@@ -71,7 +71,9 @@ pub enum Exit {
 /// (a glyph mode the terminal cannot draw, say).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Outcome {
+    /// How the loop ended.
     pub exit: Exit,
+    /// What to tell the user.
     pub messages: Vec<String>,
 }
 

@@ -19,18 +19,24 @@ pub const MAX_CELLS: u16 = 4096;
 /// Everything about a frame that is not the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
+    /// Columns of the frame.
     pub cols: u16,
+    /// Rows of the frame.
     pub rows: u16,
+    /// How a cell's samples become a glyph.
     pub glyphs: GlyphMode,
+    /// How many colours the frame may use.
     pub color: ColorDepth,
     /// A cell's width over its height, physically (about 0.5 in most
     /// terminals).
     pub cell_aspect: f32,
+    /// How the rasterizer walks the samples (all give the same coverage).
     pub traversal: Traversal,
     /// Turns the whole scene about the world origin: degrees about x
     /// (pitch), then y (yaw), then z (roll). What `spin` animates. Lights
     /// and camera stay put.
     pub turn: Vec3,
+    /// How surfaces are lit.
     pub shading: Shading,
     /// Culling for everything, overriding each mesh's own (`None`: meshes
     /// cull as their scene says, loose triangles never).
@@ -106,6 +112,7 @@ const ORDERED_16: [(f32, f32); 16] = {
 };
 
 impl Aa {
+    /// Every setting, cheapest first.
     pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
 
     /// The name the command line uses (`--aa 16x`).

@@ -32,7 +32,9 @@ use crate::shade::Shading;
 /// One stage's decision, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Decision {
+    /// Whether the stage runs.
     pub run: bool,
+    /// Why.
     pub why: &'static str,
 }
 

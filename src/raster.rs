@@ -72,6 +72,7 @@ impl Traversal {
         }
     }
 
+    /// Every traversal.
     pub const ALL: [Traversal; 3] = [
         Traversal::Scan,
         Traversal::BoundingBox,
@@ -99,6 +100,7 @@ pub struct RasterStats {
 }
 
 impl RasterStats {
+    /// Adds another's counts to these.
     pub fn add(&mut self, o: &RasterStats) {
         self.triangles_drawn += o.triangles_drawn;
         self.dropped_non_finite += o.dropped_non_finite;
@@ -180,9 +182,13 @@ pub struct Setup {
 /// Why a triangle produced no [`Setup`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rejected {
+    /// A coordinate is NaN or infinite.
     NonFinite,
+    /// A coordinate lies beyond [`MAX_COORD`].
     OutOfRange,
+    /// Its area is zero after snapping.
     Degenerate,
+    /// Its winding is culled.
     Culled,
 }
 
@@ -364,6 +370,7 @@ pub enum Precision {
 }
 
 impl Precision {
+    /// Every precision, the exact one first.
     pub const ALL: [Precision; 3] = [Precision::Fixed, Precision::F64, Precision::F32];
 
     /// The name the command line uses (`--precision f32`).
@@ -444,8 +451,11 @@ pub trait Real:
     + std::ops::Sub<Output = Self>
     + std::ops::Mul<Output = Self>
 {
+    /// Zero.
     const ZERO: Self;
+    /// From an f64, rounded to nearest.
     fn from_f64(v: f64) -> Self;
+    /// To an f64.
     fn to_f64(self) -> f64;
 }
 
@@ -618,6 +628,7 @@ pub fn rasterize<F: FnMut(u32, u32, [i64; 3])>(
 }
 
 impl RasterStats {
+    /// Counts a rejected triangle under its reason.
     pub fn count_rejected(&mut self, r: Rejected) {
         match r {
             Rejected::NonFinite => self.dropped_non_finite += 1,

@@ -68,6 +68,7 @@ pub struct FrameStats {
     pub clip_tests: u64,
     /// Triangles dropped for a NaN or infinite normal.
     pub dropped_non_finite_normals: u64,
+    /// What the rasterizer did.
     pub raster: RasterStats,
 }
 
@@ -75,12 +76,14 @@ pub struct FrameStats {
 /// [`FrameStats`], which is deterministic).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameTimes {
+    /// Planning.
     pub plan: Duration,
     /// Transforms, clip tests and per-vertex lighting.
     pub vertices: Duration,
     /// Setup, clipping, per-face lighting, traversal, depth tests,
     /// interpolation and writes.
     pub triangles: Duration,
+    /// Turning samples into cells.
     pub blit: Duration,
 }
 
@@ -204,6 +207,7 @@ impl Default for Renderer {
 }
 
 impl Renderer {
+    /// A renderer with no memory yet: the first frame allocates it.
     pub fn new() -> Renderer {
         Renderer {
             fb: Framebuffer::new(Grid::new(0, 0)),
@@ -766,6 +770,8 @@ impl Renderer {
             ((x1.saturating_sub(x0)) * (y1.saturating_sub(y0))) as u64;
     }
 
+    /// The last frame [`Renderer::render`] drew (not one drawn with
+    /// [`Renderer::render_into`]).
     pub fn frame(&self) -> &Frame {
         &self.frame
     }
@@ -775,6 +781,7 @@ impl Renderer {
         &mut self.frame
     }
 
+    /// The samples of the last frame.
     pub fn framebuffer(&self) -> &Framebuffer {
         &self.fb
     }
@@ -800,6 +807,7 @@ impl Renderer {
         }
     }
 
+    /// What the last frame cost.
     pub fn stats(&self) -> &FrameStats {
         &self.stats
     }
@@ -838,6 +846,7 @@ fn unit_scale(v: [f32; 3]) -> [f32; 3] {
 }
 
 /// Renders one frame of `scene`.
+#[must_use]
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
     Renderer::new().render(scene, opts).clone()
 }

@@ -25,6 +25,7 @@ pub enum Shading {
 }
 
 impl Shading {
+    /// Every shading, cheapest first.
     pub const ALL: [Shading; 3] = [Shading::None, Shading::Flat, Shading::Smooth];
 
     /// The name the command line uses (`--shading flat`).
@@ -61,6 +62,7 @@ impl Lights {
         l
     }
 
+    /// Whether there is no light.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

@@ -25,9 +25,12 @@ use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Axis {
+    /// x.
     X,
     #[default]
+    /// y.
     Y,
+    /// z.
     Z,
 }
 
@@ -42,6 +45,7 @@ impl Axis {
         }
     }
 
+    /// The unit vector along the axis.
     pub fn unit(self) -> Vec3 {
         match self {
             Axis::X => Vec3::X,
@@ -55,11 +59,17 @@ impl Axis {
 /// near plane, `n` and `f` as (negative) z values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frustum {
+    /// Left, on the near plane.
     pub l: f32,
+    /// Right.
     pub r: f32,
+    /// Bottom.
     pub b: f32,
+    /// Top.
     pub t: f32,
+    /// Near (a negative z).
     pub n: f32,
+    /// Far (a negative z, below `n`).
     pub f: f32,
 }
 
@@ -154,6 +164,7 @@ pub struct Viewport {
 }
 
 impl Viewport {
+    /// The viewport onto a grid of `width × height` samples.
     pub fn new(width: f32, height: f32) -> Viewport {
         Viewport {
             half_w: width / 2.0,
@@ -298,7 +309,9 @@ pub const MAX_GRID: u32 = 1 << 16;
 /// `(x + 0.5, y + 0.5)`, y up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Grid {
+    /// Samples across.
     pub width: u32,
+    /// Samples up.
     pub height: u32,
 }
 
@@ -311,10 +324,12 @@ impl Grid {
         }
     }
 
+    /// Samples in all.
     pub fn len(&self) -> usize {
         self.width as usize * self.height as usize
     }
 
+    /// Whether the grid has no sample.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -938,6 +938,8 @@ fn the_near_touching_pair_leaves_no_hole_on_the_diagonal() {
 
 // 9. Perspective-correct interpolation.
 
+// The f64 measure is `rastty bench`'s own (feature `bench`).
+#[cfg(feature = "bench")]
 #[test]
 fn perspective_correct_colours_match_f64_and_differ_from_affine() {
     // A floor from 1 to 8 units in front of the eye (w differs eightfold),

@@ -9,7 +9,7 @@ use std::process::{Command, Output};
 
 use glam::Vec3;
 use rastty::color::Lin;
-use rastty::scene::mesh::Geometry;
+use rastty::scene::Geometry;
 use rastty::scene::{Scene, obj, stl};
 
 /// A fresh directory for one test's files.

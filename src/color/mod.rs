@@ -9,18 +9,18 @@
 //! loaders store model colours decoded, the renderer decodes a scene's few
 //! colours once a frame), and lighting, interpolation, anti-aliasing and a
 //! cell's two-colour split all add and average linear light. The blit
-//! encodes each cell's colours back to sRGB once ([`srgb`]): a white
+//! encodes each cell's colours back to sRGB once (by tables in `srgb.rs`): a white
 //! surface lit head-on shows `#ffffff`, lit at 60° `#bcbcbc`. MTL `Kd`
 //! values, which exporters such as Blender write in linear light, are
 //! taken as linear (a scene can say otherwise). Where a *perceptual*
 //! measure is meant (which palette entry is nearest, which glyph ramp step
 //! a brightness gets) the measure is OKLab, from the encoded colour.
 //!
-//! **Sending** a colour to a terminal of 16 or 256 colours is [`palette`]:
+//! **Sending** a colour to a terminal of 16 or 256 colours is the palette's work ([`Palette`], [`Quantizer`]):
 //! matching in OKLCh and ordered dithering.
 
-pub mod palette;
-pub mod srgb;
+pub(crate) mod palette;
+mod srgb;
 
 pub use palette::{ANSI16, Dither, Metric, Palette, Quantizer, nearest, oklab_distance, xterm256};
 
@@ -33,9 +33,12 @@ use std::str::FromStr;
 pub struct Rgb(pub [u8; 3]);
 
 impl Rgb {
+    /// Black.
     pub const BLACK: Rgb = Rgb([0, 0, 0]);
+    /// White.
     pub const WHITE: Rgb = Rgb([255, 255, 255]);
 
+    /// A colour from its sRGB bytes.
     pub const fn new(r: u8, g: u8, b: u8) -> Self {
         Rgb([r, g, b])
     }
@@ -77,7 +80,9 @@ impl fmt::Display for Rgb {
 pub struct Lin(pub [u16; 3]);
 
 impl Lin {
+    /// No light.
     pub const BLACK: Lin = Lin([0; 3]);
+    /// Full light.
     pub const WHITE: Lin = Lin([65535; 3]);
 
     /// Decodes an sRGB colour (a table lookup).
@@ -198,6 +203,7 @@ pub enum ColorDepth {
 }
 
 impl ColorDepth {
+    /// Every depth, from the most colours to none.
     pub const ALL: [ColorDepth; 4] = [
         ColorDepth::None,
         ColorDepth::Ansi16,
@@ -226,8 +232,12 @@ impl ColorDepth {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Ink {
     #[default]
+    /// The terminal's own default colour.
     Default,
+    /// An entry of the terminal's palette (0–15 the ANSI colours, 16–255
+    /// xterm's cube and greys).
     Indexed(u8),
+    /// A 24-bit colour.
     Rgb(Rgb),
 }
 

@@ -86,6 +86,7 @@ pub enum Metric {
 }
 
 impl Metric {
+    /// Every metric.
     pub const ALL: [Metric; 3] = [Metric::Rgb, Metric::Oklab, Metric::Oklch];
 
     /// The name the command line uses.
@@ -112,6 +113,7 @@ pub enum Dither {
 }
 
 impl Dither {
+    /// Every setting.
     pub const ALL: [Dither; 3] = [Dither::Auto, Dither::None, Dither::Ordered];
 
     /// The name the command line uses.
@@ -137,8 +139,11 @@ impl Dither {
 /// `dither` says.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Palette {
+    /// How many colours the terminal has.
     pub depth: ColorDepth,
+    /// How the nearest palette colour is measured.
     pub metric: Metric,
+    /// Whether colours between palette entries are dithered.
     pub dither: Dither,
 }
 
@@ -185,6 +190,7 @@ pub fn oklab_distance(a: Rgb, b: Rgb) -> f32 {
 }
 
 /// A colour's OKLab chroma.
+#[cfg_attr(not(feature = "bench"), allow(dead_code))]
 pub fn chroma(c: Rgb) -> f32 {
     let [_, a, b] = lab(c);
     a.hypot(b)
@@ -296,12 +302,25 @@ pub const MIX_SPREAD: f32 = 0.05;
 pub fn mix(depth: ColorDepth, metric: Metric, c: Rgb) -> Mix {
     let p = lab(c);
     let cp = p[1].hypot(p[2]);
-    // The candidates, nearest first.
-    let mut near: Vec<(f32, u8)> = range(depth)
-        .filter_map(|i| distance(metric, c, p, cp, i).map(|d| (d, i)))
-        .collect();
-    near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    near.truncate(MIX_CANDIDATES);
+    // The candidates, nearest first (ties to the lower index), kept in a
+    // fixed array by insertion: a mix is found on a palette cache miss,
+    // while a frame is encoded, which must not allocate.
+    let mut kept = [(0.0f32, 0u8); MIX_CANDIDATES];
+    let mut len = 0;
+    for i in range(depth) {
+        let Some(d) = distance(metric, c, p, cp, i) else {
+            continue;
+        };
+        // Entries come in increasing index: a tie goes after those kept.
+        let at = kept[..len].partition_point(|k| k.0.total_cmp(&d).is_le());
+        if at < MIX_CANDIDATES {
+            let end = len.min(MIX_CANDIDATES - 1);
+            kept.copy_within(at..end, at + 1);
+            kept[at] = (d, i);
+            len = (len + 1).min(MIX_CANDIDATES);
+        }
+    }
+    let near = &kept[..len];
     let Some(&(first, a)) = near.first() else {
         return Mix {
             a: 0,
@@ -379,10 +398,12 @@ impl Quantizer {
         Quantizer::new(palette.depth, palette.metric).with_dither(palette.dither)
     }
 
+    /// The colour depth it maps to.
     pub fn depth(&self) -> ColorDepth {
         self.depth
     }
 
+    /// How it measures nearness.
     pub fn metric(&self) -> Metric {
         self.metric
     }

@@ -61,6 +61,7 @@ pub const DEFAULT_CREASE: f32 = 60.0;
 /// Faces of one colour, from `first` to the next run's first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MaterialRun {
+    /// The first face of the run.
     pub first: u32,
     /// The material's colour, in linear light; `None`: the mesh's own
     /// colour.
@@ -72,12 +73,14 @@ pub struct MaterialRun {
 pub struct Geometry {
     /// Where it came from: a file name or a shape, for messages.
     pub name: String,
+    /// Vertex positions in model space.
     pub positions: Vec<Vec3>,
     /// One unit normal per position.
     pub normals: Vec<Vec3>,
     /// One colour per position, when the source has them; they override
     /// the face colours.
     pub colors: Option<Vec<Lin>>,
+    /// Triangles, as indices into `positions` (and `normals`, `colors`).
     pub faces: Vec<[u32; 3]>,
     /// The faces' colours, as runs in face order; empty: every face in the
     /// mesh's colour.
@@ -283,6 +286,7 @@ impl Geometry {
 /// colour, transform and culling.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
+    /// The shape, shared between meshes drawn from one file.
     pub geometry: Arc<Geometry>,
     /// The colour of faces whose material gives none.
     pub color: Rgb,
@@ -373,6 +377,7 @@ pub const MAX_LIGHTS: usize = 8;
 pub struct Light {
     /// The direction the light travels (unit length).
     pub direction: Vec3,
+    /// Its colour.
     pub color: Rgb,
     /// The share of the light that reaches every surface whatever its
     /// facing, in [0, 1].

@@ -50,11 +50,11 @@
 //! and line.
 
 mod builder;
-pub mod file;
-pub mod mesh;
+mod file;
+mod mesh;
 pub mod obj;
-pub mod polygon;
-pub mod shapes;
+mod polygon;
+mod shapes;
 pub mod stl;
 
 use std::path::Path;
@@ -67,7 +67,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 pub use builder::SceneBuilder;
-pub use mesh::{Cull, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh};
+pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh};
 pub use shapes::Shape;
 pub use transform::Axis;
 
@@ -81,10 +81,13 @@ use crate::transform;
 pub struct Scene {
     /// The colour of uncovered samples; `None` keeps the terminal's own.
     pub background: Option<Rgb>,
+    /// Where the scene is seen from.
     pub camera: Camera,
     /// Loose triangles, never culled.
     pub triangles: Vec<Triangle>,
+    /// Meshes, each with its transform.
     pub meshes: Vec<Mesh>,
+    /// Directional lights (none: colours are drawn unlit).
     pub lights: Vec<Light>,
     /// What loading found but did not draw (non-finite vertices, line
     /// elements…), one line each, for the user to be told.
@@ -94,14 +97,18 @@ pub struct Scene {
 /// A triangle and its colouring.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
+    /// Corners in world space.
     pub vertices: [Vec3; 3],
+    /// Its colouring.
     pub color: TriangleColor,
 }
 
 /// One colour for the whole triangle, or one per vertex, interpolated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum TriangleColor {
+    /// One colour.
     Flat(Rgb),
+    /// A colour per vertex, interpolated.
     PerVertex([Rgb; 3]),
 }
 
@@ -118,9 +125,13 @@ impl TriangleColor {
 /// Where the viewer stands and how the view is projected.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// How the view is projected.
     pub projection: Projection,
+    /// Where the eye is.
     pub eye: Vec3,
+    /// What it looks at.
     pub target: Vec3,
+    /// Which way is up.
     pub up: Vec3,
     /// Frame a model: with this, `eye − target` is a direction and a zoom
     /// (length 1: the model just fits), and the eye's distance is chosen
@@ -136,6 +147,7 @@ pub struct Camera {
 /// operations.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fit {
+    /// The outline's points.
     pub points: [Vec3; Fit::POINTS],
 }
 
@@ -210,9 +222,23 @@ impl Fit {
 pub enum Projection {
     /// `fov_y` in degrees; `near` and `far` are distances in front of the
     /// eye, `0 < near < far`.
-    Perspective { fov_y: f32, near: f32, far: f32 },
+    Perspective {
+        /// The vertical field of view, in degrees.
+        fov_y: f32,
+        /// The near plane's distance.
+        near: f32,
+        /// The far plane's distance.
+        far: f32,
+    },
     /// A box `height` tall, as wide as the aspect makes it.
-    Orthographic { height: f32, near: f32, far: f32 },
+    Orthographic {
+        /// The box's height in world units.
+        height: f32,
+        /// The near plane's distance.
+        near: f32,
+        /// The far plane's distance.
+        far: f32,
+    },
     /// The vertices are in the canonical cube already; eye, target and up
     /// are ignored.
     None,
@@ -235,6 +261,22 @@ impl Default for Camera {
 }
 
 impl Camera {
+    /// This camera moved around its target: the eye turned `yaw` degrees
+    /// about the up axis and `pitch` degrees towards it, and its distance
+    /// from the target multiplied by `zoom`. What `spin`'s arrow keys and
+    /// the ratatui viewer's mouse do.
+    #[must_use]
+    pub fn orbited(&self, yaw: f32, pitch: f32, zoom: f32) -> Camera {
+        let offset = (self.eye - self.target) * zoom;
+        let yaw = glam::Quat::from_axis_angle(self.up.normalize_or_zero(), yaw.to_radians());
+        let right = offset.cross(self.up).normalize_or_zero();
+        let pitch = glam::Quat::from_axis_angle(right, pitch.to_radians());
+        Camera {
+            eye: self.target + yaw * (pitch * offset),
+            ..*self
+        }
+    }
+
     /// This camera for a view of `aspect` (width over height): where it
     /// frames a model ([`Camera::fit`]), the eye moved along `eye − target`
     /// to the distance at which the model's outline, turned any way about
@@ -758,6 +800,14 @@ impl Scene {
         }
         Ok(scene)
     }
+}
+
+/// The scene `rastty render` draws when it is given none.
+pub const DEFAULT_SCENE: &str = include_str!("../../examples/scenes/default.toml");
+
+/// [`DEFAULT_SCENE`], parsed.
+pub fn default_scene() -> Scene {
+    Scene::parse(DEFAULT_SCENE, "<built-in default scene>").expect("the built-in scene parses")
 }
 
 /// What a path names.

@@ -2,7 +2,7 @@
 //!
 //! Read in one pass over the bytes, a line at a time through a buffer
 //! (never the whole file in memory); each line is scanned once by a
-//! [`Cursor`], which reads short decimals eight digits
+//! `Cursor`, which reads short decimals eight digits
 //! at a time and converts them exactly (others go to `fast-float2`), and
 //! every error names the file, line and column of what is wrong. rastty's
 //! own parser rather than `tobj`: tobj parsed Tux (41k triangles) in 209M
@@ -15,10 +15,10 @@
 //! from the end), `usemtl`, `mtllib` (one or more files). `l` and `p`
 //! (lines and points) are not faces: they are skipped and counted, and a
 //! file of nothing else has no faces. Other statements (`o`, `g`, `s`, …)
-//! are ignored. Polygons are cut into triangles by [`super::polygon`].
+//! are ignored. Polygons are cut into triangles by the polygon triangulator (`polygon.rs`).
 //!
 //! Normals come from the file when every corner names one; otherwise they
-//! are computed (see [`super::mesh`]). A vertex that is not a finite number
+//! are computed (see [`Geometry::compute_normals`](super::Geometry::compute_normals)). A vertex that is not a finite number
 //! is not an error, but the faces that use it are not drawn, and the loader
 //! says so.
 
@@ -37,6 +37,7 @@ use crate::error::{Error, Result};
 /// A model read from a file, and what the reader has to tell.
 #[derive(Debug)]
 pub struct Loaded {
+    /// The triangles read.
     pub geometry: Geometry,
     /// Things read but not drawn: non-finite vertices, lines and points.
     pub notes: Vec<String>,

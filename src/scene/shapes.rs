@@ -23,8 +23,10 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// Every shape.
     pub const ALL: [Shape; 3] = [Shape::Cube, Shape::Sphere, Shape::Torus];
 
+    /// Its name in a scene file and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Shape::Cube => "cube",
@@ -33,6 +35,7 @@ impl Shape {
         }
     }
 
+    /// The shape of that name.
     pub fn from_name(name: &str) -> Option<Shape> {
         Shape::ALL.into_iter().find(|s| s.name() == name)
     }

@@ -1,11 +1,11 @@
 //! Stage 8: the terminal itself: its size and cell shape, the colours it
-//! shows, what it draws ([`probe`]), raw mode and the alternate screen, and
-//! reading its input ([`input`]).
+//! shows, what it draws (a probe of its glyph widths), raw mode and the alternate screen, and
+//! reading its input (a byte parser for keys and answers).
 //!
 //! rastty talks to the tty directly (through `rustix`), not through
 //! crossterm: the interactive loop must read keys whatever its pacing, read
 //! the answers to its queries within a deadline, write without blocking on a
-//! slow link, and give signals back when it ends (see [`signals`]).
+//! slow link, and give signals back when it ends (see `signals.rs`).
 //!
 //! **The controlling terminal.** Keys are read from `/dev/tty`, so `spin`
 //! needs a controlling terminal even when stdout is one (`setsid rastty
@@ -19,9 +19,9 @@
 //! bytes start with CAN, which ends any escape sequence a frame cut short
 //! left open, and end synchronized output, in case the cut frame began it.
 
-pub mod input;
-pub mod probe;
-pub mod signals;
+pub(crate) mod input;
+pub(crate) mod probe;
+pub(crate) mod signals;
 
 use std::io::{self, IsTerminal};
 use std::os::fd::{AsFd, AsRawFd, BorrowedFd, OwnedFd, RawFd};
@@ -31,8 +31,8 @@ use std::time::{Duration, Instant};
 use rustix::fs::{Mode, OFlags};
 use rustix::termios::{self, OptionalActions, Termios};
 
-use crate::MAX_CELLS;
 use crate::color::ColorDepth;
+use crate::options::MAX_CELLS;
 
 /// Whether stdout is a terminal.
 pub fn stdout_is_terminal() -> bool {
@@ -42,9 +42,13 @@ pub fn stdout_is_terminal() -> bool {
 /// A terminal's size: cells, and pixels where it reports them (0 if not).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct WindowSize {
+    /// Columns.
     pub cols: u16,
+    /// Rows.
     pub rows: u16,
+    /// Width in pixels (0 when the terminal does not say).
     pub width_px: u16,
+    /// Height in pixels (0 when the terminal does not say).
     pub height_px: u16,
 }
 
@@ -141,8 +145,10 @@ pub enum TtyError {
     /// Any other failure, with what was being done.
     #[error("the terminal: {what}: {source}")]
     Io {
+        /// What was being done.
         what: &'static str,
         #[source]
+        /// What went wrong.
         source: io::Error,
     },
 }
@@ -300,7 +306,9 @@ pub fn wait_readable(fd: BorrowedFd<'_>, timeout: Duration) -> io::Result<()> {
 /// What [`poll`] waits for on a descriptor.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Interest {
+    /// Readable.
     Read,
+    /// Writable.
     Write,
 }
 
@@ -383,6 +391,7 @@ impl Screen {
         Ok(s)
     }
 
+    /// The terminal's descriptor.
     pub fn tty(&self) -> &Tty {
         &self.tty
     }

@@ -1,0 +1,306 @@
+//! A model viewer built with ratatui: a list of models beside a spinning 3D
+//! view ([`rastty::ratatui::SceneWidget`]) and a status line.
+//!
+//! ```text
+//! cargo run --release --example viewer --features ratatui -- [MODEL ...]
+//! ```
+//!
+//! Without arguments it lists the built-in shapes and the shared models
+//! found in `../shared/models`. Keys: arrows orbit, `+`/`-` zoom, Tab and
+//! Shift-Tab pick a model, `g` the next glyph mode, space pauses, `q` or
+//! Esc quits. Mouse: drag in the view to orbit, the wheel zooms, a click in
+//! the list picks a model.
+
+use std::io;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use rastty::glam::Vec3;
+use rastty::ratatui::{SceneState, SceneWidget};
+use rastty::scene::Shape;
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene};
+use ratatui::crossterm::event::{
+    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, MouseButton,
+    MouseEventKind,
+};
+use ratatui::crossterm::execute;
+use ratatui::layout::{Constraint, Layout, Position, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Block, List, ListState, Paragraph};
+use ratatui::{DefaultTerminal, Frame};
+
+/// A model the list offers, loaded when first picked.
+struct Entry {
+    name: String,
+    source: Source,
+    scene: Option<Result<Scene, String>>,
+}
+
+enum Source {
+    Shape(Shape),
+    File(PathBuf),
+}
+
+impl Entry {
+    fn scene(&mut self) -> &Result<Scene, String> {
+        self.scene.get_or_insert_with(|| match &self.source {
+            Source::Shape(s) => Ok(Scene::of_mesh(s.mesh(Rgb::new(0xff, 0x90, 0x40)))),
+            Source::File(p) => Scene::of_model(p).map_err(|e| e.to_string()),
+        })
+    }
+}
+
+struct App {
+    entries: Vec<Entry>,
+    list: ListState,
+    options: RenderOptions,
+    state: SceneState,
+    /// Orbit (degrees of yaw and pitch) and zoom of the camera.
+    yaw: f32,
+    pitch: f32,
+    zoom: f32,
+    /// The model's own turn, in degrees, and whether it goes on turning.
+    spin: f32,
+    paused: bool,
+    /// Where a left-button drag was last seen.
+    drag: Option<(u16, u16)>,
+    /// The areas of the last frame, for the mouse.
+    list_area: Rect,
+    view_area: Rect,
+    fps: f32,
+}
+
+fn entries(args: Vec<String>) -> Vec<Entry> {
+    let file = |p: PathBuf| Entry {
+        name: p
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned(),
+        source: Source::File(p),
+        scene: None,
+    };
+    if !args.is_empty() {
+        return args.into_iter().map(|a| file(PathBuf::from(a))).collect();
+    }
+    let mut out: Vec<Entry> = Shape::ALL
+        .iter()
+        .map(|&s| Entry {
+            name: s.name().to_string(),
+            source: Source::Shape(s),
+            scene: None,
+        })
+        .collect();
+    for name in ["bunny.obj", "teapot.obj", "fox.obj", "linux-mascot-tux.obj"] {
+        let p = PathBuf::from("../shared/models").join(name);
+        if p.exists() {
+            out.push(file(p));
+        }
+    }
+    out
+}
+
+fn color_depth() -> ColorDepth {
+    match std::env::var("COLORTERM").as_deref() {
+        Ok("truecolor" | "24bit") => ColorDepth::TrueColor,
+        _ => ColorDepth::Ansi256,
+    }
+}
+
+impl App {
+    fn new(entries: Vec<Entry>) -> App {
+        App {
+            entries,
+            list: ListState::default().with_selected(Some(0)),
+            options: RenderOptions {
+                glyphs: GlyphMode::Octant,
+                color: color_depth(),
+                ..Default::default()
+            },
+            state: SceneState::new(),
+            yaw: 0.0,
+            pitch: 0.0,
+            zoom: 1.0,
+            spin: 0.0,
+            paused: false,
+            drag: None,
+            list_area: Rect::default(),
+            view_area: Rect::default(),
+            fps: 0.0,
+        }
+    }
+
+    fn selected(&self) -> usize {
+        self.list.selected().unwrap_or(0)
+    }
+
+    fn pick(&mut self, i: usize) {
+        if i < self.entries.len() && i != self.selected() {
+            self.list.select(Some(i));
+            (self.yaw, self.pitch, self.zoom) = (0.0, 0.0, 1.0);
+        }
+    }
+
+    fn orbit(&mut self, yaw: f32, pitch: f32) {
+        self.yaw += yaw;
+        self.pitch = (self.pitch + pitch).clamp(-85.0, 85.0);
+    }
+
+    fn zoom(&mut self, factor: f32) {
+        self.zoom = (self.zoom * factor).clamp(0.2, 5.0);
+    }
+
+    /// Handles one event; `false` to quit.
+    fn event(&mut self, event: Event) -> bool {
+        match event {
+            Event::Key(k) if k.kind != KeyEventKind::Release => match k.code {
+                KeyCode::Char('q') | KeyCode::Esc => return false,
+                KeyCode::Left => self.orbit(-10.0, 0.0),
+                KeyCode::Right => self.orbit(10.0, 0.0),
+                KeyCode::Up => self.orbit(0.0, 10.0),
+                KeyCode::Down => self.orbit(0.0, -10.0),
+                KeyCode::Char('+' | '=') => self.zoom(1.0 / 1.25),
+                KeyCode::Char('-') => self.zoom(1.25),
+                KeyCode::Tab => self.pick((self.selected() + 1) % self.entries.len()),
+                KeyCode::BackTab => {
+                    let n = self.entries.len();
+                    self.pick((self.selected() + n - 1) % n)
+                }
+                KeyCode::Char('g') => {
+                    let modes = GlyphMode::ALL;
+                    let i = modes
+                        .iter()
+                        .position(|&m| m == self.options.glyphs)
+                        .unwrap_or(0);
+                    self.options.glyphs = modes[(i + 1) % modes.len()];
+                }
+                KeyCode::Char(' ') => self.paused = !self.paused,
+                _ => {}
+            },
+            Event::Mouse(m) => {
+                let at = Position::new(m.column, m.row);
+                match m.kind {
+                    MouseEventKind::Down(MouseButton::Left) if self.list_area.contains(at) => {
+                        // Inside the list's border, one model a row.
+                        let row = m.row.saturating_sub(self.list_area.y + 1) as usize;
+                        self.pick(row + self.list.offset());
+                    }
+                    MouseEventKind::Down(MouseButton::Left) if self.view_area.contains(at) => {
+                        self.drag = Some((m.column, m.row));
+                    }
+                    MouseEventKind::Drag(MouseButton::Left) => {
+                        if let Some((x, y)) = self.drag {
+                            // Three degrees a column; a row is twice as tall.
+                            let dx = m.column as f32 - x as f32;
+                            let dy = m.row as f32 - y as f32;
+                            self.orbit(-3.0 * dx, 6.0 * dy);
+                            self.drag = Some((m.column, m.row));
+                        }
+                    }
+                    MouseEventKind::Up(_) => self.drag = None,
+                    MouseEventKind::ScrollUp if self.view_area.contains(at) => self.zoom(1.0 / 1.1),
+                    MouseEventKind::ScrollDown if self.view_area.contains(at) => self.zoom(1.1),
+                    _ => {}
+                }
+            }
+            _ => {}
+        }
+        true
+    }
+
+    fn draw(&mut self, f: &mut Frame) {
+        let [main, status] =
+            Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(f.area());
+        let [list, view] =
+            Layout::horizontal([Constraint::Length(26), Constraint::Fill(1)]).areas(main);
+        (self.list_area, self.view_area) = (list, view);
+
+        let names: Vec<&str> = self.entries.iter().map(|e| e.name.as_str()).collect();
+        let list_widget = List::new(names)
+            .block(Block::bordered().title(" models "))
+            .highlight_style(Style::new().add_modifier(Modifier::REVERSED))
+            .highlight_symbol("▶ ");
+        f.render_stateful_widget(list_widget, list, &mut self.list);
+
+        let block = Block::bordered().title(" view ");
+        let inner = block.inner(view);
+        f.render_widget(block, view);
+        let i = self.selected();
+        let (name, (yaw, pitch, zoom)) = (
+            self.entries[i].name.clone(),
+            (self.yaw, self.pitch, self.zoom),
+        );
+        let text = match self.entries[i].scene() {
+            Ok(scene) => {
+                let mut scene = scene.clone();
+                scene.camera = scene.camera.orbited(yaw, pitch, zoom);
+                let options = RenderOptions {
+                    turn: Vec3::new(0.0, self.spin, 0.0),
+                    ..self.options
+                };
+                f.render_stateful_widget(
+                    SceneWidget::new(&scene, &options),
+                    inner,
+                    &mut self.state,
+                );
+                let stats = self.state.renderer().stats();
+                format!(
+                    " {name}: {} triangles · {} glyphs · {} · {:.0} fps · yaw {:.0}° pitch {:.0}° zoom {:.2}{} · arrows/drag orbit, wheel zoom, Tab model, g glyphs, q quits",
+                    stats.triangles_in,
+                    self.options.glyphs.name(),
+                    self.options.color.name(),
+                    self.fps,
+                    yaw,
+                    pitch,
+                    1.0 / zoom,
+                    if self.paused { " · paused" } else { "" },
+                )
+            }
+            Err(e) => {
+                f.render_widget(
+                    Paragraph::new(e.as_str()).style(Style::new().fg(Color::Red)),
+                    inner,
+                );
+                format!(" {name}: could not be loaded")
+            }
+        };
+        f.render_widget(
+            Line::from(text).style(Style::new().add_modifier(Modifier::REVERSED)),
+            status,
+        );
+    }
+}
+
+fn run(terminal: &mut DefaultTerminal, mut app: App) -> io::Result<()> {
+    const FRAME: Duration = Duration::from_millis(33);
+    let mut last = Instant::now();
+    loop {
+        let start = Instant::now();
+        terminal.draw(|f| app.draw(f))?;
+        // Every waiting event is handled before the next frame.
+        let deadline = start + FRAME;
+        while event::poll(deadline.saturating_duration_since(Instant::now()))? {
+            if !app.event(event::read()?) {
+                return Ok(());
+            }
+        }
+        let now = Instant::now();
+        let dt = (now - last).as_secs_f32();
+        last = now;
+        app.fps = 0.9 * app.fps + 0.1 / dt.max(1e-3);
+        if !app.paused {
+            app.spin = (app.spin + 40.0 * dt) % 360.0;
+        }
+    }
+}
+
+fn main() -> io::Result<()> {
+    let app = App::new(entries(std::env::args().skip(1).collect()));
+    let mut terminal = ratatui::init();
+    execute!(io::stdout(), EnableMouseCapture)?;
+    let result = run(&mut terminal, app);
+    execute!(io::stdout(), DisableMouseCapture)?;
+    ratatui::restore();
+    result
+}

@@ -1,0 +1,181 @@
+//! The crate's shape, checked from its sources: `src/lib.rs` declares the
+//! modules in layers (foundations, the stages in data-flow order, what runs
+//! them, where frames go), and a module may use only itself and modules
+//! declared before it. That rules out import cycles (a cycle needs a use of
+//! a later module) and keeps the pipeline's order readable in `lib.rs`.
+//! Modules reach each other by their own paths, not through the root's
+//! re-exports, which are for users.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::Path;
+
+/// The modules `lib.rs` declares, in order.
+fn declared(lib: &str) -> Vec<String> {
+    lib.lines()
+        .map(str::trim)
+        .filter_map(|l| {
+            let l = l.strip_prefix("pub ").unwrap_or(l);
+            let name = l.strip_prefix("mod ")?.strip_suffix(';')?;
+            Some(name.to_string())
+        })
+        .collect()
+}
+
+/// A source file without its comments and its unit tests (tests may use
+/// any module).
+fn code(src: &str) -> String {
+    let src = match src.find("#[cfg(test)]\nmod tests") {
+        Some(i) => &src[..i],
+        None => src,
+    };
+    src.lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Every `crate::name` in `code`, with `use crate::{a, b::c}` lists
+/// expanded to their first segments.
+fn crate_paths(code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(i) = rest.find("crate::") {
+        let after = &rest[i + "crate::".len()..];
+        if let Some(list) = after.strip_prefix('{') {
+            let end = list.find('}').unwrap_or(list.len());
+            for item in list[..end].split(',') {
+                let item = item.trim();
+                let first = item.split("::").next().unwrap_or("").trim();
+                if !first.is_empty() {
+                    out.push(first.to_string());
+                }
+            }
+        } else {
+            let name: String = after
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            out.push(name);
+        }
+        rest = after;
+    }
+    out
+}
+
+/// The rule's violations: `(module, what it uses, why)`.
+fn violations(order: &[String], sources: &BTreeMap<String, String>) -> Vec<String> {
+    let rank = |m: &str| order.iter().position(|o| o == m);
+    let mut out = Vec::new();
+    for (module, src) in sources {
+        let mine = rank(module).expect("a declared module");
+        for used in crate_paths(&code(src)) {
+            match rank(&used) {
+                Some(r) if r > mine => out.push(format!(
+                    "{module} uses {used}, which lib.rs declares after it"
+                )),
+                Some(_) => {}
+                None => out.push(format!(
+                    "{module} uses crate::{used}, a root re-export: use the module's own path"
+                )),
+            }
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// Each declared module's code (see [`code`]), `src/m.rs` and everything
+/// under `src/m/`, concatenated.
+fn sources(order: &[String]) -> BTreeMap<String, String> {
+    fn walk(dir: &Path, out: &mut String) {
+        let Ok(entries) = fs::read_dir(dir) else {
+            return;
+        };
+        let mut paths: Vec<_> = entries.map(|e| e.unwrap().path()).collect();
+        paths.sort();
+        for p in paths {
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                out.push_str(&code(&fs::read_to_string(&p).unwrap()));
+                out.push('\n');
+            }
+        }
+    }
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    order
+        .iter()
+        .map(|m| {
+            let file = src.join(format!("{m}.rs"));
+            assert!(
+                file.exists() || src.join(m).join("mod.rs").exists(),
+                "no source for module {m}"
+            );
+            let mut text = fs::read_to_string(file)
+                .map(|t| code(&t))
+                .unwrap_or_default();
+            walk(&src.join(m), &mut text);
+            (m.clone(), text)
+        })
+        .collect()
+}
+
+fn lib() -> String {
+    fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/lib.rs")).unwrap()
+}
+
+#[test]
+fn modules_use_only_modules_declared_before_them() {
+    let order = declared(&lib());
+    let found = violations(&order, &sources(&order));
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+#[test]
+fn lib_declares_the_stages_in_data_flow_order() {
+    let order = declared(&lib());
+    let stages = [
+        "scene",
+        "shade",
+        "clip",
+        "raster",
+        "framebuffer",
+        "frame",
+        "blit",
+        "encode",
+    ];
+    let at: Vec<usize> = stages
+        .iter()
+        .map(|s| order.iter().position(|o| o == s).unwrap())
+        .collect();
+    assert!(at.windows(2).all(|w| w[0] < w[1]), "{order:?}");
+    // What runs the stages comes after the last of them.
+    for runner in ["options", "plan", "render", "animate"] {
+        let r = order.iter().position(|o| o == runner).unwrap();
+        assert!(r > at[at.len() - 1], "{runner} in {order:?}");
+    }
+}
+
+#[test]
+fn a_cycle_or_a_root_re_export_is_caught() {
+    let order: Vec<String> = ["scene", "plan", "render"].map(String::from).to_vec();
+    let mut sources = BTreeMap::new();
+    sources.insert("scene".to_string(), "use crate::Renderer;\n".to_string());
+    sources.insert(
+        "plan".to_string(),
+        "use crate::{render::Renderer, scene};\n// crate::render in a comment\n".to_string(),
+    );
+    sources.insert(
+        "render".to_string(),
+        "use crate::plan::Plan;\n#[cfg(test)]\nmod tests { use crate::Nothing; }\n".to_string(),
+    );
+    assert_eq!(
+        violations(&order, &sources),
+        [
+            "plan uses render, which lib.rs declares after it",
+            "scene uses crate::Renderer, a root re-export: use the module's own path",
+        ]
+    );
+}
