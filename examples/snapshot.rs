@@ -16,31 +16,25 @@
 //! }
 //! ```
 
-use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
+use rastty::glam::Vec3;
+use rastty::{ColorDepth, GlyphMode, Projection, RenderOptions, Rgb, Scene, render};
 
 fn main() {
     // A scene built in code rather than read from TOML: two triangles that
     // share an edge, straight in the canonical cube.
-    let v = glam::Vec3::new;
-    let scene = Scene {
-        background: None,
-        camera: Camera {
-            projection: Projection::None,
-            ..Camera::default()
-        },
-        triangles: vec![
-            Triangle {
-                vertices: [v(-0.9, -0.8, 0.0), v(0.9, -0.8, 0.0), v(0.9, 0.8, 0.0)],
-                color: TriangleColor::Flat(Rgb::WHITE),
-            },
-            Triangle {
-                vertices: [v(-0.9, -0.8, 0.0), v(0.9, 0.8, 0.0), v(-0.9, 0.8, 0.0)],
-                color: TriangleColor::Flat(Rgb::new(60, 60, 60)),
-            },
-        ],
-        ..Scene::default()
-    };
+    let v = Vec3::new;
+    let scene = Scene::builder()
+        .projection(Projection::None)
+        .triangle(
+            [v(-0.9, -0.8, 0.0), v(0.9, -0.8, 0.0), v(0.9, 0.8, 0.0)],
+            Rgb::WHITE,
+        )
+        .triangle(
+            [v(-0.9, -0.8, 0.0), v(0.9, 0.8, 0.0), v(-0.9, 0.8, 0.0)],
+            Rgb::new(60, 60, 60),
+        )
+        .build()
+        .expect("a scene with triangles and a camera that projects");
     let opts = RenderOptions {
         cols: 32,
         rows: 10,

@@ -114,7 +114,10 @@ impl App {
             entries,
             list: ListState::default().with_selected(Some(0)),
             options: RenderOptions {
-                glyphs: GlyphMode::Octant,
+                // Block elements every terminal and tmux draw one cell wide
+                // (octants are Unicode 16: a terminal or tmux that does not
+                // know them garbles the screen; `g` reaches them).
+                glyphs: GlyphMode::Quadrant,
                 color: color_depth(),
                 ..Default::default()
             },
