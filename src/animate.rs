@@ -5,7 +5,7 @@
 //! A [`Player`] holds everything that changes while a scene spins (the
 //! frame number, the view, the settings the keys cycle through) and reacts
 //! to [`Command`]s; it knows nothing of clocks or keys. `rastty spin` drives
-//! it from the terminal (`terminal::run`: a clock, keys, signals and
+//! it from the terminal (`live::run`, feature `cli`: a clock, keys, signals and
 //! resizes); tests and the byte-count table drive it headless ([`play`]),
 //! so that what they measure is exactly what a terminal receives.
 

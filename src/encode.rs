@@ -422,6 +422,25 @@ pub fn diff<'a>(
 }
 
 /// Sends frames to a terminal, each as the difference from the last.
+///
+/// ```
+/// use rastty::{ColorDepth, Encoder, Frame, RenderOptions, Renderer, Rgb, Scene};
+/// use rastty::glam::Vec3;
+///
+/// let scene = Scene::of_mesh(rastty::scene::Shape::Cube.mesh(Rgb::WHITE));
+/// let (mut renderer, mut frame) = (Renderer::new(), Frame::default());
+/// let mut encoder = Encoder::new(ColorDepth::TrueColor);
+/// let mut sent = Vec::new();
+/// for yaw in [0.0, 2.0] {
+///     let opts = RenderOptions { turn: Vec3::new(0.0, yaw, 0.0), ..Default::default() };
+///     renderer.render_into(&scene, &opts, &mut frame);
+///     sent.push(encoder.encode(&frame, &mut Vec::new()).unwrap());
+/// }
+/// // The first frame is drawn in full, the second only where it changed.
+/// assert!(sent[1] < sent[0] / 2, "{sent:?}");
+/// // Nothing changed: nothing is sent.
+/// assert_eq!(encoder.encode(&frame, &mut Vec::new()).unwrap(), 0);
+/// ```
 #[derive(Debug)]
 pub struct Encoder {
     quantizer: Quantizer,
