@@ -11,6 +11,7 @@ use rastty::Split;
 use rastty::animate::Axis;
 use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
+use rastty::picture::CellPx;
 use rastty::{Aa, Interpolation};
 use rastty::{ColorDepth, GlyphMode, Traversal};
 use rastty::{Cull, Precision};
@@ -56,7 +57,7 @@ pub struct BenchArgs {
     pub reps: u32,
 }
 
-#[derive(Args, Debug, Default)]
+#[derive(Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
     pub input: InputArgs,
@@ -66,6 +67,19 @@ pub struct RenderArgs {
     /// skipped, why, what it did and how long it took
     #[arg(long)]
     pub explain: bool,
+    /// Write the frame to PATH instead of stdout, in the format its
+    /// extension names: .png or .svg (a picture: each cell painted at
+    /// --cell-px, no font needed), .ans (the ANSI frame) or .txt (plain
+    /// text). --color auto is truecolor for these, none for .txt
+    #[arg(long, short = 'o', value_name = "PATH")]
+    pub output: Option<PathBuf>,
+    /// Pixels a cell in .png and .svg pictures, W×H (or WxH); the frame is
+    /// drawn for that cell shape unless --cell-aspect says otherwise
+    #[arg(long, value_name = "W×H", default_value = "8x16")]
+    pub cell_px: CellPx,
+    /// Also write the frame as a one-frame asciicast v2 recording
+    #[arg(long, value_name = "FILE.cast")]
+    pub record: Option<PathBuf>,
 }
 
 #[derive(Args, Debug, Default)]
@@ -95,6 +109,11 @@ pub struct SpinArgs {
     /// checks, within 150 ms, and falls back from modes it cannot draw)
     #[arg(long)]
     pub no_probe: bool,
+    /// Record the frames as asciicast v2 (asciinema play FILE replays
+    /// them): in a terminal, what was shown, when it was shown; otherwise
+    /// (with --frames N) frame k at k/fps seconds, and nothing on stdout
+    #[arg(long, value_name = "FILE.cast")]
+    pub record: Option<PathBuf>,
 }
 
 /// What is drawn.

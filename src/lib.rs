@@ -50,6 +50,7 @@
 //! |---|---|---|
 //! | `cli` | yes | the `rastty` program, and the terminal it runs in (`terminal`, `live`) |
 //! | `bench` | yes | `bench`: every accuracy knob timed and measured, and its plot |
+//! | `share` | yes | `picture`: a frame as PNG or SVG; `cast`: frames as an asciicast v2 recording |
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
 //! With `default-features = false` the crate is the renderer alone (glam,
@@ -92,7 +93,12 @@ pub mod animate;
 #[cfg(feature = "bench")]
 pub mod bench;
 
-// Where frames go: a terminal (the program), or a ratatui buffer.
+// Where frames go: a picture, a recording, a terminal (the program), or a
+// ratatui buffer.
+#[cfg(feature = "share")]
+pub mod picture;
+#[cfg(feature = "share")]
+pub mod cast;
 #[cfg(feature = "cli")]
 pub mod terminal;
 #[cfg(feature = "cli")]

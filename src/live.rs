@@ -30,9 +30,11 @@
 //! and are given back when it returns.
 
 use std::collections::VecDeque;
+use std::io::Write;
 use std::time::{Duration, Instant};
 
 use crate::animate::{Command, LiveStatus, Player};
+use crate::cast::Recorder;
 use crate::color::ColorDepth;
 use crate::terminal::input::{Input, Key, Parser};
 use crate::terminal::probe::{self, Capabilities};
@@ -343,8 +345,14 @@ fn io_err(what: &'static str) -> impl FnOnce(std::io::Error) -> TtyError {
 
 /// Spins `player` in the terminal until a key, a signal, or (with
 /// `frames`) the last frame. The terminal and the signal handlers are
-/// restored before it returns.
-pub fn run(player: &mut Player, opts: &LiveOptions) -> Result<Outcome, TtyError> {
+/// restored before it returns. With `record`, every frame sent is recorded
+/// at the loop's clock (frames skipped are missing there too), and every
+/// resize.
+pub fn run(
+    player: &mut Player,
+    opts: &LiveOptions,
+    record: Option<&mut Recorder<dyn Write + '_>>,
+) -> Result<Outcome, TtyError> {
     let tty = Tty::open()?;
     let signals = Signals::install(&HANDLED).map_err(io_err("installing signal handlers"))?;
     // Dropped before `signals`: the terminal is restored while the
@@ -361,6 +369,8 @@ pub fn run(player: &mut Player, opts: &LiveOptions) -> Result<Outcome, TtyError>
         written: 0,
         messages: Vec::new(),
         last_input: Instant::now(),
+        record,
+        start: Instant::now(),
     };
     let exit = live.run().map_err(io_err("writing frames"))?;
     let messages = std::mem::take(&mut live.messages);
@@ -369,7 +379,7 @@ pub fn run(player: &mut Player, opts: &LiveOptions) -> Result<Outcome, TtyError>
 }
 
 /// The loop's state.
-struct Live<'a> {
+struct Live<'a, 'b> {
     screen: Screen,
     signals: Signals,
     player: &'a mut Player,
@@ -381,9 +391,12 @@ struct Live<'a> {
     written: usize,
     messages: Vec<String>,
     last_input: Instant,
+    /// Where frames are recorded, and the time they count from.
+    record: Option<&'a mut Recorder<dyn Write + 'b>>,
+    start: Instant,
 }
 
-impl Live<'_> {
+impl Live<'_, '_> {
     /// Runs the loop; before returning, collects the answers still due.
     fn run(&mut self) -> std::io::Result<Exit> {
         let mut link = None;
@@ -444,6 +457,7 @@ impl Live<'_> {
         ));
         let fps = self.opts.fps.max(1) as f64;
         let start = Instant::now();
+        self.start = start;
         let mut shown: Option<u64> = None;
         let mut dirty = true;
         let mut measured = fps as f32;
@@ -475,7 +489,7 @@ impl Live<'_> {
                 let (cols, rows) = ws.cells();
                 let o = self.player.options();
                 if (o.cols, o.rows) != (cols, rows) {
-                    self.player.apply(Command::Resize { cols, rows });
+                    self.resize(cols, rows)?;
                     dirty = true;
                 }
             }
@@ -559,6 +573,9 @@ impl Live<'_> {
                 let bytes = self.player.prepare(status);
                 self.out.clear();
                 self.out.extend_from_slice(bytes);
+                if let Some(r) = self.record.as_deref_mut() {
+                    r.output(now - start, &self.out)?;
+                }
                 self.written = 0;
                 if !self.out.is_empty() {
                     if link.wants_acks() && self.opts.full_screen {
@@ -630,6 +647,15 @@ impl Live<'_> {
         }
     }
 
+    /// Resizes the player, and records the resize when recording.
+    fn resize(&mut self, cols: u16, rows: u16) -> std::io::Result<()> {
+        self.player.apply(Command::Resize { cols, rows });
+        match self.record.as_deref_mut() {
+            Some(r) => r.resize(self.start.elapsed(), cols, rows),
+            None => Ok(()),
+        }
+    }
+
     /// Drops the rest of a frame cut short (the terminal is restored with
     /// CAN first, which ends any sequence it left open).
     fn abandon_frame(&mut self, link: &mut Link) {
@@ -652,7 +678,7 @@ impl Live<'_> {
         self.player.apply(Command::Redraw);
         if let Some(ws) = self.screen.tty().size() {
             let (cols, rows) = ws.cells();
-            self.player.apply(Command::Resize { cols, rows });
+            self.resize(cols, rows)?;
         }
         Ok(())
     }

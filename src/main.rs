@@ -3,8 +3,11 @@
 
 mod cli;
 
+use std::fs::File;
 use std::io::{self, Write};
+use std::path::Path;
 use std::process::ExitCode;
+use std::time::Duration;
 
 use clap::Parser as _;
 
@@ -12,9 +15,11 @@ use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
 use rastty::Pipeline;
 use rastty::animate;
 use rastty::animate::{Player, Spin};
+use rastty::cast::{self, Recorder};
 use rastty::encode::Encoder;
 use rastty::live;
 use rastty::live::{Exit, LiveOptions};
+use rastty::picture::{self, Format, Theme};
 use rastty::terminal;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, encode};
 
@@ -136,26 +141,64 @@ fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
 }
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
+    let format = args.output.as_deref().map(Format::of).transpose()?;
     let scene = scene(&args.input)?;
-    let opts = options(&args.view, 1);
+    let mut opts = options(&args.view, 1);
+    if let Some(format) = format {
+        // A file is not the terminal: sizes and colours are its own.
+        opts.color = args.view.color.depth().unwrap_or(if format.has_color() {
+            ColorDepth::TrueColor
+        } else {
+            ColorDepth::None
+        });
+        if matches!(format, Format::Png | Format::Svg) && args.view.cell_aspect.is_none() {
+            opts.cell_aspect = args.cell_px.aspect();
+        }
+    }
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
-    let mut stdout = io::stdout().lock();
-    let mut buf = Vec::new();
-    let start = std::time::Instant::now();
     let palette = rastty::color::Palette {
         depth: opts.color,
         dither: args.view.dither,
         ..Default::default()
     };
-    encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
-        .and_then(|()| stdout.flush())
-        .map_err(stdout_error)?;
+    let start = std::time::Instant::now();
+    let mut buf = Vec::new();
+    match (&args.output, format) {
+        (Some(path), Some(format)) => {
+            picture::save(frame, path, format, palette, Theme::default(), args.cell_px)?;
+        }
+        _ => {
+            let mut stdout = io::stdout().lock();
+            encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
+                .and_then(|()| stdout.flush())
+                .map_err(stdout_error)?;
+        }
+    }
+    if let Some(path) = &args.record {
+        let file = create(path)?;
+        let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
+        let mut rec = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
+            .and_then(|mut rec| {
+                encoder.prepare(frame);
+                rec.output(Duration::ZERO, encoder.last_bytes())?;
+                Ok(rec)
+            })
+            .map_err(|e| rastty::Error::io(path, e))?;
+        rec.flush().map_err(|e| rastty::Error::io(path, e))?;
+    }
     if args.explain {
         let encode = start.elapsed();
         eprint!("{}", renderer.explain(&scene, &opts, encode, buf.len()));
     }
     Ok(())
+}
+
+/// A file to write, buffered.
+fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
+    File::create(path)
+        .map(io::BufWriter::new)
+        .map_err(|e| rastty::Error::io(path, e))
 }
 
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
@@ -180,6 +223,27 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
                 "spin: stdout is not a terminal; give --frames N to write N frames, or use `rastty render`".into(),
             ));
         };
+        if let Some(path) = &args.record {
+            // A recording moves the cursor whatever TERM says (its player
+            // does) and, as a file for any terminal, has colour unless told.
+            let opts = RenderOptions {
+                color: args.view.color.depth().unwrap_or(ColorDepth::TrueColor),
+                ..opts
+            };
+            let encoder = Encoder::new(opts.color).with_dither(args.view.dither);
+            return Recorder::new(
+                create(path)?,
+                opts.cols,
+                opts.rows,
+                &cast::Terminal::from_env(),
+            )
+            .and_then(|mut rec| {
+                cast::play(&scene, &opts, spin, frames, args.fps, encoder, &mut rec)?;
+                rec.flush()
+            })
+            .map(|()| ExitCode::SUCCESS)
+            .map_err(|e| rastty::Error::io(path, e));
+        }
         let mut out = io::stdout().lock();
         animate::play(&scene, &opts, spin, frames, encoder, &mut out, |_| {})
             .map_err(stdout_error)?;
@@ -196,8 +260,21 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         full_screen: !dumb,
         max_depth,
     };
-    let outcome = live::run(&mut player, &live_opts)
+    let mut rec = match &args.record {
+        Some(path) => {
+            let o = player.options();
+            let rec = Recorder::new(create(path)?, o.cols, o.rows, &cast::Terminal::from_env())
+                .map_err(|e| rastty::Error::io(path, e))?;
+            Some((rec, path))
+        }
+        None => None,
+    };
+    let record = rec.as_mut().map(|(r, _)| r as &mut Recorder<dyn Write>);
+    let outcome = live::run(&mut player, &live_opts, record)
         .map_err(|e| rastty::Error::Invalid(format!("spin: {e}")))?;
+    if let Some((rec, path)) = &mut rec {
+        rec.flush().map_err(|e| rastty::Error::io(path, e))?;
+    }
     for m in &outcome.messages {
         eprintln!("note: {m}");
     }

@@ -8,7 +8,7 @@ use std::io::{Read, Write};
 use std::process::Command;
 use std::time::Duration;
 
-use common::{as_displayed, terminal};
+use common::{as_displayed, cells, terminal};
 use expectrl::Expect;
 use expectrl::session::OsSession as Session;
 
@@ -26,29 +26,6 @@ fn run(args: &[&str]) -> Vec<u8> {
         String::from_utf8_lossy(&out.stderr)
     );
     out.stdout
-}
-
-/// The cells of a screen as text, foreground and background.
-fn cells(screen: &vt100::Screen) -> Vec<(String, vt100::Color, vt100::Color)> {
-    let (rows, cols) = screen.size();
-    let mut v = Vec::new();
-    for r in 0..rows.get() {
-        for c in 0..cols.get() {
-            let cell = screen.cell(r, c).unwrap();
-            let text = if cell.contents().is_empty() {
-                " ".to_string()
-            } else {
-                cell.contents().to_string()
-            };
-            let fg = if text == " " {
-                vt100::Color::Default
-            } else {
-                cell.fgcolor()
-            };
-            v.push((text, fg, cell.bgcolor()));
-        }
-    }
-    v
 }
 
 #[test]
@@ -161,6 +138,64 @@ fn spin_for_twenty_frames_in_a_terminal_exits_and_restores_it() {
     let out = drain(&mut s, Vec::new());
     assert_eq!(exit_code(&s), 0);
     assert_restored(&out);
+}
+
+#[test]
+fn a_recording_in_a_terminal_replays_to_the_render_at_the_last_angle() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("live-cast");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cast = dir.join("live.cast");
+    let _ = std::fs::remove_file(&cast);
+    let view = ["--color", "truecolor", "--glyphs", "half", "--step", "7.5"];
+    let mut s = spawn(
+        &[
+            &["--frames", "16", "--fps", "60", "--no-probe", "--record"][..],
+            &[cast.to_str().unwrap()],
+            &view,
+        ]
+        .concat(),
+    );
+    drain(&mut s, Vec::new());
+    assert_eq!(exit_code(&s), 0);
+
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let mut lines = text.lines();
+    let header: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    assert_eq!(
+        (
+            header["version"].as_u64(),
+            header["width"].as_u64(),
+            header["height"].as_u64()
+        ),
+        (Some(2), Some(60), Some(20))
+    );
+    let mut vt = terminal(20, 60);
+    let mut last = 0.0;
+    for line in lines {
+        let (t, code, data): (f64, String, String) = serde_json::from_str(line).unwrap();
+        assert_eq!(code, "o");
+        assert!(t >= last, "times go forward: {last} then {t}");
+        last = t;
+        vt.process(data.as_bytes());
+    }
+    // Frames the loop was late for may be missing, the last never is: it
+    // is turned by 15 · 7.5 = 112.5 degrees.
+    let lines = run(&[
+        "render",
+        "--yaw",
+        "112.5",
+        "--cols",
+        "60",
+        "--rows",
+        "20",
+        "--color",
+        "truecolor",
+        "--glyphs",
+        "half",
+    ]);
+    let mut rendered = terminal(20, 60);
+    rendered.process(&as_displayed(&lines));
+    assert_eq!(cells(vt.screen()), cells(rendered.screen()));
 }
 
 #[test]

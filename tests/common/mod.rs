@@ -28,3 +28,26 @@ pub fn as_displayed(lines: &[u8]) -> Vec<u8> {
     }
     out
 }
+
+/// The cells of a screen as text, foreground and background.
+pub fn cells(screen: &vt100::Screen) -> Vec<(String, vt100::Color, vt100::Color)> {
+    let (rows, cols) = screen.size();
+    let mut v = Vec::new();
+    for r in 0..rows.get() {
+        for c in 0..cols.get() {
+            let cell = screen.cell(r, c).unwrap();
+            let text = if cell.contents().is_empty() {
+                " ".to_string()
+            } else {
+                cell.contents().to_string()
+            };
+            let fg = if text == " " {
+                vt100::Color::Default
+            } else {
+                cell.fgcolor()
+            };
+            v.push((text, fg, cell.bgcolor()));
+        }
+    }
+    v
+}

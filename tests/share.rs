@@ -1,0 +1,428 @@
+//! Sharing frames: `spin --record` and `render --record` write asciicast v2
+//! files that replay to what `render` shows; `render --output` writes PNG
+//! and SVG pictures whose pixels follow each cell's colours and glyph, and
+//! ANSI or plain text.
+//!
+//! Recordings are read back as JSON by serde_json and replayed through the
+//! `vt100` emulator; PNG files are decoded by the `png` crate; the SVG is
+//! parsed by `roxmltree`. What a cell should look like comes from the same
+//! frame written as ANSI and read back through `vt100`.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::{as_displayed, cells, terminal};
+use rastty::GlyphMode;
+use serde_json::Value;
+
+const BIN: &str = env!("CARGO_BIN_EXE_rastty");
+const FOX: &str = "tests/models/fox.obj";
+
+/// Runs rastty with a fixed environment; returns stdout, or panics with
+/// stderr.
+fn run(args: &[&str]) -> Vec<u8> {
+    let out = rastty(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+fn rastty(args: &[&str]) -> Command {
+    let mut cmd = Command::new(BIN);
+    cmd.args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("TERM", "xterm-256color")
+        .env("SHELL", "/bin/zsh")
+        .env("SOURCE_DATE_EPOCH", "1700000000");
+    cmd
+}
+
+/// A fresh directory for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A recording's header and its events, each line parsed as JSON.
+fn read_cast(path: &Path) -> (Value, Vec<(f64, String, String)>) {
+    // Reading it as a String checks that it is UTF-8.
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    let events = lines
+        .map(|l| {
+            let v: Value = serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}"));
+            let a = v.as_array().expect("an event is an array");
+            assert_eq!(a.len(), 3, "{l}");
+            (
+                a[0].as_f64().unwrap(),
+                a[1].as_str().unwrap().to_string(),
+                a[2].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    (header, events)
+}
+
+/// The screen a recording leaves, replayed through vt100.
+fn replay(header: &Value, events: &[(f64, String, String)]) -> vt100::Parser {
+    let size = |k: &str| header[k].as_u64().unwrap() as u16;
+    let mut vt = terminal(size("height"), size("width"));
+    for (_, code, data) in events {
+        assert_eq!(code, "o");
+        vt.process(data.as_bytes());
+    }
+    vt
+}
+
+/// What `render ARGS` shows on a terminal of `rows × cols`.
+fn rendered(args: &[&str], rows: u16, cols: u16) -> vt100::Parser {
+    let mut vt = terminal(rows, cols);
+    vt.process(&as_displayed(&run(&[&["render"][..], args].concat())));
+    vt
+}
+
+#[test]
+fn a_spin_recording_is_asciicast_v2_and_replays_to_the_render_at_the_last_angle() {
+    let dir = scratch("spin-cast");
+    let cast = dir.join("fox.cast");
+    let view = ["--cols", "48", "--rows", "14", "--glyphs", "quadrant"];
+    let out = run(&[
+        &[
+            "spin", FOX, "--frames", "10", "--fps", "8", "--step", "9", "--record",
+        ][..],
+        &[cast.to_str().unwrap()],
+        &view,
+    ]
+    .concat());
+    assert!(out.is_empty(), "the frames go to the file, not stdout");
+
+    let (header, events) = read_cast(&cast);
+    assert_eq!(
+        header,
+        serde_json::json!({
+            "version": 2, "width": 48, "height": 14, "timestamp": 1700000000u64,
+            "env": {"TERM": "xterm-256color", "SHELL": "/bin/zsh"}
+        })
+    );
+    // Every frame turns the fox, so each is an event, frame k at k/8 s.
+    let times: Vec<f64> = events.iter().map(|e| e.0).collect();
+    assert_eq!(times, (0..10).map(|k| k as f64 / 8.0).collect::<Vec<_>>());
+    assert!(events[0].2.starts_with("\x1b[?25l"), "the cursor is hidden");
+
+    // Frame 9 is turned by 81 degrees; with no terminal, --color auto is
+    // truecolor in a recording.
+    let replayed = replay(&header, &events);
+    let expected = rendered(
+        &[&[FOX, "--yaw", "81", "--color", "truecolor"][..], &view].concat(),
+        14,
+        48,
+    );
+    assert_eq!(cells(replayed.screen()), cells(expected.screen()));
+
+    // The same file every time.
+    let again = dir.join("again.cast");
+    run(&[
+        &[
+            "spin", FOX, "--frames", "10", "--fps", "8", "--step", "9", "--record",
+        ][..],
+        &[again.to_str().unwrap()],
+        &view,
+    ]
+    .concat());
+    assert_eq!(
+        std::fs::read(&cast).unwrap(),
+        std::fs::read(&again).unwrap()
+    );
+}
+
+#[test]
+fn a_render_recording_is_one_frame_at_time_zero() {
+    let dir = scratch("render-cast");
+    let cast = dir.join("one.cast");
+    let view = ["--cols", "30", "--rows", "10", "--color", "256"];
+    let stdout = run(&[
+        &["render", FOX, "--record", cast.to_str().unwrap()][..],
+        &view,
+    ]
+    .concat());
+    let (header, events) = read_cast(&cast);
+    assert_eq!(
+        (header["width"].as_u64(), header["height"].as_u64()),
+        (Some(30), Some(10))
+    );
+    assert_eq!(events.len(), 1);
+    assert_eq!(events[0].0, 0.0);
+    // The frame is still printed, and the recording shows the same.
+    let mut printed = terminal(10, 30);
+    printed.process(&as_displayed(&stdout));
+    assert_eq!(
+        cells(replay(&header, &events).screen()),
+        cells(printed.screen())
+    );
+}
+
+/// A decoded PNG: width, height, RGB bytes.
+fn decode_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// A vt100 colour as RGB: the picture's default theme is xterm's light grey
+/// on black.
+fn rgb(c: vt100::Color, foreground: bool) -> [u8; 3] {
+    match c {
+        vt100::Color::Rgb(r, g, b) => [r, g, b],
+        vt100::Color::Default if foreground => [229, 229, 229],
+        vt100::Color::Default => [0, 0, 0],
+        vt100::Color::Idx(i) => panic!("an indexed colour {i} in a truecolor frame"),
+    }
+}
+
+/// Part edges of a cell: `⌊i·px/n⌋`, as the picture module documents.
+fn edge(i: u32, px: u32, n: u32) -> u32 {
+    i * px / n
+}
+
+/// Checks every pixel of a picture of `mode` against the cells `render`
+/// prints for the same arguments: each sub-cell's pixels are the
+/// foreground where the glyph covers it, the background elsewhere; a
+/// braille cell's dot centres are the foreground where a dot is raised and
+/// its corners the background.
+fn check_png(mode: GlyphMode, cell: (u32, u32)) {
+    let dir = scratch(&format!("png-{}-{}x{}", mode.name(), cell.0, cell.1));
+    let path = dir.join("fox.png");
+    let (cols, rows) = (40u32, 12u32);
+    let px = format!("{}x{}", cell.0, cell.1);
+    let view = [
+        FOX,
+        "--cols",
+        "40",
+        "--rows",
+        "12",
+        "--glyphs",
+        mode.name(),
+        "--color",
+        "truecolor",
+        // The frame the picture is painted from is drawn for its cell
+        // shape; the printed one is told the same.
+        "--cell-aspect",
+        &format!("{}", cell.0 as f32 / cell.1 as f32),
+    ];
+    run(&[
+        &["render"][..],
+        &view,
+        &["--cell-px", &px, "--output", path.to_str().unwrap()],
+    ]
+    .concat());
+    let (w, h, pixels) = decode_png(&path);
+    assert_eq!((w, h), (cols * cell.0, rows * cell.1));
+    let at = |x: u32, y: u32| -> [u8; 3] {
+        let i = ((y * w + x) * 3) as usize;
+        [pixels[i], pixels[i + 1], pixels[i + 2]]
+    };
+    let screen = rendered(&view, rows as u16, cols as u16);
+    let (sw, sh) = mode.cell_size();
+    let mut covered = 0;
+    for row in 0..rows {
+        for col in 0..cols {
+            let c = screen.screen().cell(row as u16, col as u16).unwrap();
+            let ch = c.contents().chars().next().unwrap_or(' ');
+            let (fg, bg) = (rgb(c.fgcolor(), true), rgb(c.bgcolor(), false));
+            let mask = if ch == ' ' {
+                0
+            } else {
+                mode.pattern(ch).expect("a glyph of the mode")
+            };
+            // Block mode paints cells with their background alone.
+            covered += (mask != 0 || bg != [0, 0, 0]) as u32;
+            let (x0, y0) = (col * cell.0, row * cell.1);
+            for r in 0..sh {
+                for k in 0..sw {
+                    let on = mask >> (r * sw + k) & 1 == 1;
+                    let (a, b) = (x0 + edge(k, cell.0, sw), x0 + edge(k + 1, cell.0, sw));
+                    let (t, u) = (y0 + edge(r, cell.1, sh), y0 + edge(r + 1, cell.1, sh));
+                    if mode == GlyphMode::Braille {
+                        // The dot's centre, and the sub-cell's top-left corner.
+                        let want = if on { fg } else { bg };
+                        assert_eq!(
+                            at((a + b) / 2, (t + u) / 2),
+                            want,
+                            "{ch} at {col},{row} dot {r},{k}"
+                        );
+                        assert_eq!(at(a, t), bg, "{ch} at {col},{row}: corner of dot {r},{k}");
+                        continue;
+                    }
+                    let want = if on { fg } else { bg };
+                    for y in t..u {
+                        for x in a..b {
+                            assert_eq!(at(x, y), want, "{ch:?} at cell {col},{row}, pixel {x},{y}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(covered > 40, "the fox is in the picture ({covered} cells)");
+}
+
+#[test]
+fn a_png_paints_each_sub_cell_in_the_colour_its_glyph_gives_it() {
+    for mode in [
+        GlyphMode::Block,
+        GlyphMode::Half,
+        GlyphMode::Quadrant,
+        GlyphMode::Sextant,
+        GlyphMode::Octant,
+    ] {
+        check_png(mode, (8, 16));
+    }
+    // Cells that do not divide evenly: sextant rows of 4, 5 and 5 pixels.
+    check_png(GlyphMode::Sextant, (7, 14));
+    check_png(GlyphMode::Octant, (5, 11));
+}
+
+#[test]
+fn a_png_draws_braille_as_dots() {
+    check_png(GlyphMode::Braille, (8, 16));
+    check_png(GlyphMode::Braille, (10, 20));
+}
+
+#[test]
+fn an_svg_parses_as_xml_at_the_picture_size_in_the_frame_colours() {
+    let dir = scratch("svg");
+    let path = dir.join("fox.svg");
+    let view = [
+        FOX, "--cols", "40", "--rows", "12", "--glyphs", "sextant", "--color", "256",
+    ];
+    run(&[
+        &["render"][..],
+        &view,
+        &["--output", path.to_str().unwrap(), "--cell-px", "6x12"],
+    ]
+    .concat());
+    let text = std::fs::read_to_string(&path).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let svg = doc.root_element();
+    assert_eq!(svg.tag_name().name(), "svg");
+    assert_eq!(
+        svg.tag_name().namespace(),
+        Some("http://www.w3.org/2000/svg")
+    );
+    assert_eq!(
+        (svg.attribute("width"), svg.attribute("height")),
+        (Some("240"), Some("144"))
+    );
+
+    // Every colour it paints is one the terminal is told (256 colours: an
+    // xterm palette entry), and every foreground of the frame is painted.
+    let screen = rendered(&[&view[..], &["--cell-aspect", "0.5"]].concat(), 12, 40);
+    let palette = |c: vt100::Color| match c {
+        vt100::Color::Idx(i) => Some(rastty::color::xterm256(i).to_string()),
+        _ => None,
+    };
+    let mut told = std::collections::BTreeSet::new();
+    let mut foregrounds = std::collections::BTreeSet::new();
+    for (text, fg, bg) in cells(screen.screen()) {
+        told.extend(palette(bg));
+        if text != " " {
+            told.extend(palette(fg));
+            foregrounds.extend(palette(fg));
+        }
+    }
+    let painted: std::collections::BTreeSet<String> = svg
+        .descendants()
+        .filter_map(|n| n.attribute("fill"))
+        .filter(|&f| f != "#000000")
+        .map(str::to_string)
+        .collect();
+    assert!(painted.is_subset(&told), "{painted:?} ⊄ {told:?}");
+    assert!(
+        foregrounds.is_subset(&painted),
+        "{foregrounds:?} ⊄ {painted:?}"
+    );
+}
+
+#[test]
+fn ans_and_txt_outputs_are_what_render_prints() {
+    let dir = scratch("ans-txt");
+    let view = [FOX, "--cols", "30", "--rows", "9", "--glyphs", "octant"];
+    let ans = dir.join("fox.ans");
+    let txt = dir.join("fox.TXT");
+    let out = run(&[
+        &["render"][..],
+        &view,
+        &["--color", "16", "-o", ans.to_str().unwrap()],
+    ]
+    .concat());
+    assert!(out.is_empty());
+    run(&[&["render"][..], &view, &["-o", txt.to_str().unwrap()]].concat());
+    assert_eq!(
+        std::fs::read(&ans).unwrap(),
+        run(&[&["render"][..], &view, &["--color", "16"]].concat())
+    );
+    assert_eq!(
+        std::fs::read(&txt).unwrap(),
+        run(&[&["render"][..], &view, &["--color", "none"]].concat())
+    );
+}
+
+#[test]
+fn bad_outputs_are_refused_with_one_line_and_no_file() {
+    let dir = scratch("bad-output");
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &["-o", "x.jpg"],
+            "x.jpg: the output format comes from the extension: .png, .svg, .ans or .txt\n",
+        ),
+        (
+            &["-o", "x.png", "--cell-px", "0x16"],
+            "'0' in '0x16' is not a whole number of pixels from 1 to 256",
+        ),
+        (
+            &[
+                "-o",
+                "x.png",
+                "--cols",
+                "1000",
+                "--rows",
+                "1000",
+                "--cell-px",
+                "16x32",
+            ],
+            "error: a picture of 1000×1000 cells at 16×32 pixels a cell would be 16000×32000 pixels, more than 67108864",
+        ),
+        (
+            &["-o", "no/such/dir/x.png"],
+            "error: no/such/dir/x.png: No such file or directory",
+        ),
+    ];
+    for (args, message) in cases {
+        let out = rastty(&[&["render"][..], args].concat())
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(err.contains(message), "{args:?}: {err}");
+        assert!(out.stdout.is_empty());
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "no file was made"
+    );
+}
