@@ -2,7 +2,7 @@
 //! split into a red and a blue triangle on a dark background
 //! (`examples/scenes/square.toml`) turning one full circle about the view
 //! axis in 60 frames, in every glyph mode, in truecolor. Prints the
-//! README's Markdown table.
+//! Markdown table in docs/usage.md.
 //!
 //! ```text
 //! cargo run --release --example bytes_per_frame

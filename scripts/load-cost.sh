@@ -2,7 +2,7 @@
 # What loading costs, whole process: `rastty render MODEL --cols 200
 # --rows 60 --color truecolor` (load, one frame, print) on Tux, the bunny
 # and generated tori of 10k to 4M triangles: instructions (callgrind),
-# peak memory (GNU time) and wall time (GNU time; noisy). README, "Loading".
+# peak memory (GNU time) and wall time (GNU time; noisy). docs/scenes.md, "Loading models".
 # Needs valgrind and /usr/bin/time; the 4M torus takes a few minutes under
 # callgrind.
 #

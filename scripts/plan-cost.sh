@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Instructions per frame, planned and full pipeline, for the planner's four
-# benchmark scenes (README, "Simulate only what the scene needs"). Counted
+# benchmark scenes (docs/planner.md). Counted
 # by callgrind, so the numbers repeat exactly on the same binary whatever
 # else the machine is doing. Needs valgrind.
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Instructions per frame, rastty against euc, drawing the bunny at 200×120
-# samples (README, "Against a peer"). Counted by callgrind: (instructions
+# samples (docs/accuracy.md, "Against a peer"). Counted by callgrind: (instructions
 # of 40 frames − of 10) / 30, leaving out loading. Needs valgrind.
 #
 #   scripts/vs-euc.sh

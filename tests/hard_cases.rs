@@ -1,6 +1,6 @@
 //! rastty's promises about hard cases, each with an exact expectation, in
 //! the spirit of the D3D rasterization rules and the dEQP/VK-GL-CTS
-//! fill-rule tests. The README lists them with the test behind each.
+//! fill-rule tests. docs/promises.md lists them with the test behind each.
 
 use std::collections::BTreeSet;
 

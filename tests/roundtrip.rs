@@ -184,7 +184,7 @@ proptest! {
     }
 }
 
-/// The README's byte table, half mode: the spinning square's later frames
+/// The byte table in docs/usage.md, half mode: the spinning square's later frames
 /// stay within the 1,400-byte budget (ratatui's Canvas sends about 2,830),
 /// and replaying every frame in the emulator ends on the last frame.
 #[test]

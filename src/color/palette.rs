@@ -20,7 +20,7 @@
 //! shimmer, and a colour that is a palette entry is never dithered.
 //! It costs bytes: neighbouring cells differ where they did not. `auto`,
 //! the default, dithers 16 colours, where matching alone loses most, and
-//! not 256 (see the README's measurements).
+//! not 256 (see the measurements in docs/accuracy.md).
 
 use std::sync::OnceLock;
 
@@ -165,7 +165,7 @@ pub const CHROMA_WEIGHT: f32 = 1.0;
 /// How much more a squared difference of hue counts than one of lightness,
 /// in [`Metric::Oklch`]; a grey has no hue, so a colour sent to one loses
 /// all of it (ΔH = C). Chosen by `rastty bench`'s measures (see the
-/// README): hues moved over 45° fall from 21.6 % (plain OKLab) to 6.1 % in
+/// docs/accuracy.md): hues moved over 45° fall from 21.6 % (plain OKLab) to 6.1 % in
 /// 16 colours and from 0.84 % to none in 256, for 7 % more mean distance.
 pub const HUE_WEIGHT: f32 = 4.0;
 
