@@ -13,7 +13,9 @@ use rastty::scene::Shape;
 use rastty::{ColorDepth, GlyphMode, Light, RenderOptions, Rgb, Scene, render};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let path = std::env::args().nth(1).unwrap_or_else(|| "torus.png".into());
+    let path = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "torus.png".into());
     let scene = Scene::builder()
         .look_at(Vec3::new(0.0, 2.0, 3.2), Vec3::ZERO)
         .background(Rgb::new(0x10, 0x14, 0x20))
