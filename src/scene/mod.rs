@@ -52,7 +52,11 @@
 mod builder;
 mod file;
 mod mesh;
+#[cfg(feature = "gltf")]
+pub mod gltf;
 pub mod obj;
+#[cfg(feature = "ply")]
+pub mod ply;
 mod polygon;
 mod shapes;
 pub mod stl;
@@ -584,14 +588,14 @@ impl Scene {
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         match ext.as_deref() {
-            Some("obj" | "stl") => Ok(Kind::Model),
+            Some(ext) if MODEL_EXTENSIONS.contains(&ext) => Ok(Kind::Model),
             Some("toml") => Ok(Kind::Scene),
             None if !path.exists() && path.to_str().and_then(Shape::from_name).is_some() => {
                 Ok(Kind::Model)
             }
             None => Ok(Kind::Scene),
             Some(other) => Err(Error::Invalid(format!(
-                "{}: rastty does not read .{other} files; it reads models (.obj with its .mtl, .stl), scenes (.toml) and the shapes cube, sphere and torus",
+                "{}: rastty does not read .{other} files; it reads models ({MODELS}), scenes (.toml) and the shapes cube, sphere and torus",
                 path.display()
             ))),
         }
@@ -916,6 +920,29 @@ fn chunks(src: &str, size: usize) -> Vec<(usize, usize)> {
     out
 }
 
+/// The model files read, by extension (lower case).
+pub const MODEL_EXTENSIONS: &[&str] = &[
+    "obj",
+    "stl",
+    #[cfg(feature = "gltf")]
+    "gltf",
+    #[cfg(feature = "gltf")]
+    "glb",
+    #[cfg(feature = "ply")]
+    "ply",
+];
+
+/// The model formats read, in words.
+const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) {
+    ".obj with its .mtl, .stl, .gltf, .glb, .ply"
+} else if cfg!(feature = "gltf") {
+    ".obj with its .mtl, .stl, .gltf, .glb"
+} else if cfg!(feature = "ply") {
+    ".obj with its .mtl, .stl, .ply"
+} else {
+    ".obj with its .mtl, .stl"
+};
+
 /// Loads a model file by its extension, or a built-in shape by its name:
 /// its geometry, and what the loader has to tell.
 pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry>, Vec<String>)> {
@@ -926,6 +953,10 @@ pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry
     let loaded = match ext.as_deref() {
         Some("obj") => obj::load(path, options)?,
         Some("stl") => stl::load(path, options)?,
+        #[cfg(feature = "gltf")]
+        Some("gltf" | "glb") => gltf::load(path, options)?,
+        #[cfg(feature = "ply")]
+        Some("ply") => ply::load(path, options)?,
         _ => match path.to_str().and_then(Shape::from_name) {
             Some(shape) if !path.exists() => {
                 let mut g = shape.geometry();
@@ -936,7 +967,7 @@ pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry
             }
             _ => {
                 return Err(Error::Invalid(format!(
-                    "{}: not a model: expected a .obj or .stl file, or one of cube, sphere, torus",
+                    "{}: not a model: expected a model file ({MODELS}), or one of cube, sphere, torus",
                     path.display()
                 )));
             }
