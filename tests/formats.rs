@@ -2,44 +2,16 @@
 //! transforms, strips and fans, vertex colours, the three PLY encodings,
 //! and bad files, each with an exact expectation.
 
-#![cfg(all(feature = "gltf", feature = "ply"))]
-
 use std::path::Path;
 
+mod common;
+
 use base64::Engine as _;
+use common::{f32s, glb, quad_ply};
 use rastty::color::Lin;
 use rastty::glam::Vec3;
 use rastty::scene::LoadOptions;
 use rastty::scene::{gltf, ply};
-
-/// Little-endian bytes of floats.
-fn f32s(v: &[f32]) -> Vec<u8> {
-    v.iter().flat_map(|x| x.to_le_bytes()).collect()
-}
-
-/// A GLB file of `json` and the binary chunk `bin`.
-fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
-    let mut j = json.as_bytes().to_vec();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let total = 12 + 8 + j.len() + 8 + b.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&j);
-    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b);
-    out
-}
 
 /// A one-triangle-list file: positions (and an optional second accessor),
 /// `nodes` and `extra` JSON spliced in.
@@ -215,44 +187,6 @@ fn bad_gltf_files_get_one_error_naming_what_is_wrong() {
         assert!(err.starts_with(want), "{err}");
         assert!(!err.contains('\n'), "{err}");
     }
-}
-
-/// A unit quad with a colour at each corner, in one PLY encoding.
-fn quad_ply(format: &str) -> Vec<u8> {
-    let mut out = format!(
-        "ply\nformat {format} 1.0\ncomment made by rastty's tests\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-    )
-    .into_bytes();
-    let v = [
-        ([0.0f32, 0.0, 0.0], [255u8, 0, 0]),
-        ([1.0, 0.0, 0.0], [0, 255, 0]),
-        ([1.0, 1.0, 0.0], [0, 0, 255]),
-        ([0.0, 1.0, 0.0], [255, 255, 255]),
-    ];
-    match format {
-        "ascii" => {
-            for (p, c) in v {
-                out.extend(
-                    format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], c[0], c[1], c[2]).bytes(),
-                );
-            }
-            out.extend(b"4 0 1 2 3\n");
-        }
-        _ => {
-            let be = format == "binary_big_endian";
-            for (p, c) in v {
-                for x in p {
-                    out.extend(if be { x.to_be_bytes() } else { x.to_le_bytes() });
-                }
-                out.extend(c);
-            }
-            out.push(4);
-            for i in 0i32..4 {
-                out.extend(if be { i.to_be_bytes() } else { i.to_le_bytes() });
-            }
-        }
-    }
-    out
 }
 
 #[test]
