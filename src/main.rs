@@ -164,17 +164,18 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     };
     let start = std::time::Instant::now();
     let mut buf = Vec::new();
-    match (&args.output, format) {
+    let written = match (&args.output, format) {
         (Some(path), Some(format)) => {
-            picture::save(frame, path, format, palette, Theme::default(), args.cell_px)?;
+            picture::save(frame, path, format, palette, Theme::default(), args.cell_px)?
         }
         _ => {
             let mut stdout = io::stdout().lock();
             encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
                 .and_then(|()| stdout.flush())
                 .map_err(stdout_error)?;
+            buf.len()
         }
-    }
+    };
     if let Some(path) = &args.record {
         let file = create(path)?;
         let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
@@ -189,7 +190,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     }
     if args.explain {
         let encode = start.elapsed();
-        eprint!("{}", renderer.explain(&scene, &opts, encode, buf.len()));
+        eprint!("{}", renderer.explain(&scene, &opts, encode, written));
     }
     Ok(())
 }

@@ -564,7 +564,8 @@ impl Format {
 }
 
 /// Writes `frame` to `path` in `format`: pictures at `cell` pixels a cell
-/// in `theme`'s default colours, colours as `palette` sends them.
+/// in `theme`'s default colours, colours as `palette` sends them. Returns
+/// the bytes written.
 pub fn save(
     frame: &Frame,
     path: &Path,
@@ -572,7 +573,7 @@ pub fn save(
     palette: Palette,
     theme: Theme,
     cell: CellPx,
-) -> Result<()> {
+) -> Result<usize> {
     // Made in memory first: a refusal leaves no file behind.
     let mut body = Vec::new();
     match format {
@@ -585,7 +586,8 @@ pub fn save(
         Format::Txt => write!(body, "{frame}"),
     }
     .map_err(|e| Error::io(path, e))?;
-    std::fs::write(path, body).map_err(|e| Error::io(path, e))
+    std::fs::write(path, &body).map_err(|e| Error::io(path, e))?;
+    Ok(body.len())
 }
 
 #[cfg(test)]
