@@ -548,14 +548,14 @@ fn a_vertex_that_is_not_a_number_drops_its_faces_and_says_so() {
 #[test]
 fn an_extension_rastty_does_not_read_is_an_error_listing_those_it_does() {
     let dir = scratch("ext");
-    for ext in ["ply", "gltf", "fbx"] {
+    for ext in ["3ds", "dae", "fbx"] {
         let path = dir.join(format!("model.{ext}"));
         std::fs::write(&path, "ply\nformat ascii 1.0\n").unwrap();
         let p = path.to_str().unwrap();
         assert_eq!(
             fails(&["render", p]),
             format!(
-                "error: {p}: rastty does not read .{ext} files; it reads models (.obj with its .mtl, .stl), scenes (.toml) and the shapes cube, sphere and torus"
+                "error: {p}: rastty does not read .{ext} files; it reads models (.obj with its .mtl, .stl, .gltf, .glb, .ply), scenes (.toml) and the shapes cube, sphere and torus"
             )
         );
     }
