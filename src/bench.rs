@@ -12,6 +12,7 @@
 //! | precision | unsnapped f32 and f64 edge functions, the exact i64 fixed point | cracks and double hits on random tilings of the screen |
 //! | traversal | scan, bounding box, incremental | samples that differ from incremental (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
+//! | texture filtering | nearest, bilinear, trilinear | largest and mean colour error (0–255) against an f64 reference supersampled 16×16 per sample, on a textured floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
 //! | palette matching | 256 and 16 colours, nearest in RGB, OKLab or OKLCh | mean OKLab distance to the colour sent; greys sent to a colour; hues moved over 45° |
 //! | dithering | 256 and 16 colours, none or ordered | OKLab error of 2×2-cell areas against truecolor; bytes of a first and a next frame |
@@ -31,6 +32,7 @@ use crate::options::{Aa, Interpolation, RenderOptions};
 use crate::raster::{Precision, Traversal};
 use crate::render::Renderer;
 use crate::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
+use crate::texture::FilterMode;
 use crate::transform::Grid;
 
 /// A scene to time, and whether it turns from frame to frame.
@@ -73,6 +75,10 @@ pub fn workloads(models: &Path) -> Vec<Workload> {
             name: "tiles (2D)".into(),
             scene: Scene::parse(include_str!("../examples/scenes/tiles.toml"), "tiles.toml")
                 .expect("tiles parse"),
+        },
+        Workload {
+            name: "textured floor".into(),
+            scene: textured_floor(),
         },
     ];
     for file in [
@@ -229,7 +235,21 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         });
     }
 
-    // 5. Two-colour cells.
+    // 5. Texture filtering.
+    for filter in FilterMode::ALL {
+        let (max, mean) = filter_error(filter);
+        rows.push(Row {
+            knob: "texture filtering",
+            setting: filter.name().into(),
+            times: time_all(&RenderOptions {
+                filter: Some(filter),
+                ..base()
+            }),
+            errors: vec![("max colour error", max), ("mean colour error", mean)],
+        });
+    }
+
+    // 6. Two-colour cells.
     for split in [Split::WidestChannel, Split::Exhaustive] {
         rows.push(Row {
             knob: "two-colour cells",
@@ -243,7 +263,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         });
     }
 
-    // 6. Palette matching.
+    // 7. Palette matching.
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
         for metric in Metric::ALL {
             let q = matching_error(depth, metric);
@@ -265,7 +285,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         }
     }
 
-    // 7. Dithering.
+    // 8. Dithering.
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
         for dither in [Dither::None, Dither::Ordered] {
             let palette = Palette {
@@ -646,6 +666,139 @@ pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
     (max, sum / n.max(1) as f64)
 }
 
+/// The textured floor's checkerboard: 32×32 texels, squares of 8, light
+/// grey and blue; texel `(i, j)`'s linear colour.
+fn checker(i: u32, j: u32) -> [f32; 3] {
+    let light = (i / 8 + j / 8).is_multiple_of(2);
+    let c = if light {
+        [230, 230, 230]
+    } else {
+        [40, 70, 160]
+    };
+    Lin::from_srgb(Rgb(c)).to_f32().map(|v| v / 65535.0)
+}
+
+/// The textured floor's extent in x and z, and its texture coordinates
+/// there (8 repeats across, 40 deep: squares half a unit on a side).
+const FLOOR_X: f64 = 8.0;
+const FLOOR_Z: [f64; 2] = [-1.0, -81.0];
+fn floor_uv(x: f64, z: f64) -> [f64; 2] {
+    [(x + FLOOR_X) / 2.0, (FLOOR_Z[0] - z) / 2.0]
+}
+
+/// A checkerboard floor at y = −1 from 1 to 81 units in front of the eye,
+/// seen from the origin with the horizon in view: near the eye a texel
+/// covers several samples, far off a sample covers many texels.
+pub fn textured_floor() -> Scene {
+    use crate::scene::{Geometry, MaterialRun, Mesh};
+    use crate::texture::{Sampler, Texture};
+    use std::sync::Arc;
+    let corners = [
+        (-FLOOR_X, FLOOR_Z[0]),
+        (FLOOR_X, FLOOR_Z[0]),
+        (FLOOR_X, FLOOR_Z[1]),
+        (-FLOOR_X, FLOOR_Z[1]),
+    ];
+    let positions = corners
+        .iter()
+        .map(|&(x, z)| Vec3::new(x as f32, -1.0, z as f32))
+        .collect();
+    let mut g = Geometry::new("textured floor", positions, vec![[0, 1, 2], [0, 2, 3]]);
+    g.uvs = Some(
+        corners
+            .iter()
+            .map(|&(x, z)| glam::Vec2::from(floor_uv(x, z).map(|t| t as f32)))
+            .collect(),
+    );
+    let texels = (0..32 * 32).map(|k| checker(k % 32, k / 32)).collect();
+    g.textures = vec![Arc::new(Texture::from_linear(
+        "checkerboard",
+        32,
+        32,
+        texels,
+        Sampler::default(),
+    ))];
+    g.materials = vec![MaterialRun {
+        first: 0,
+        color: None,
+        texture: Some(0),
+    }];
+    Scene {
+        camera: Camera {
+            projection: Projection::Perspective {
+                fov_y: 60.0,
+                near: 0.5,
+                far: 200.0,
+            },
+            eye: Vec3::ZERO,
+            target: Vec3::new(0.0, -0.3, -1.0),
+            up: Vec3::Y,
+            fit: None,
+        },
+        meshes: vec![Mesh::of(Arc::new(g), Rgb::WHITE)],
+        ..Scene::default()
+    }
+}
+
+/// The textured floor drawn with `filter` on a 64×32 grid, each sample
+/// against the mean of 16×16 rays cast through its square in f64, each
+/// reading the texel it hits: the largest and mean colour error (0–255,
+/// linear light) over the samples whose square lies wholly on the floor.
+pub fn filter_error(filter: FilterMode) -> (f64, f64) {
+    const SUB: u32 = 16;
+    let scene = textured_floor();
+    let opts = RenderOptions {
+        cols: 64,
+        rows: 32,
+        glyphs: GlyphMode::Block,
+        cell_aspect: 1.0,
+        filter: Some(filter),
+        ..RenderOptions::default()
+    };
+    let mut renderer = Renderer::new();
+    renderer.render(&scene, &opts);
+    let fb = renderer.framebuffer();
+    let grid = fb.grid();
+    let inv = scene.camera.view_projection64(opts.aspect()).inverse();
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0);
+    for y in 0..grid.height {
+        'sample: for x in 0..grid.width {
+            let Some(c) = fb.get(x, y) else { continue };
+            let mut want = [0.0f64; 3];
+            for k in 0..SUB * SUB {
+                let ndc = |v: f64, n: u32| v / n as f64 * 2.0 - 1.0;
+                let sx = x as f64 + ((k % SUB) as f64 + 0.5) / SUB as f64;
+                let sy = y as f64 + ((k / SUB) as f64 + 0.5) / SUB as f64;
+                let (nx, ny) = (ndc(sx, grid.width), ndc(sy, grid.height));
+                let p0 = inv.project_point3(glam::DVec3::new(nx, ny, -1.0));
+                let p1 = inv.project_point3(glam::DVec3::new(nx, ny, 1.0));
+                let t = (-1.0 - p0.y) / (p1.y - p0.y);
+                let hit = p0 + (p1 - p0) * t;
+                let inside = (0.0..=1.0).contains(&t)
+                    && hit.x.abs() <= FLOOR_X
+                    && (FLOOR_Z[1]..=FLOOR_Z[0]).contains(&hit.z);
+                if !inside {
+                    continue 'sample;
+                }
+                let [u, v] = floor_uv(hit.x, hit.z);
+                let texel = |t: f64| ((t.rem_euclid(1.0) * 32.0) as u32).min(31);
+                let c = checker(texel(u), texel(v));
+                for ch in 0..3 {
+                    want[ch] += c[ch] as f64 / (SUB * SUB) as f64;
+                }
+            }
+            let got = c.to_f32().map(|v| v as f64 / 257.0);
+            let e = (0..3)
+                .map(|k| (got[k] - want[k] * 255.0).abs())
+                .fold(0.0, f64::max);
+            max = max.max(e);
+            sum += e;
+            n += 1;
+        }
+    }
+    (max, sum / n.max(1) as f64)
+}
+
 /// Every workload rendered in octant mode and blitted with `split` (the
 /// blitter itself): for every cell whose samples hold more than two
 /// colours, the RMS distance (0–255) of each sample's colour to the colour
@@ -898,13 +1051,36 @@ impl Report {
     }
 
     /// An SVG plot: for each knob, its settings' first error measure
-    /// (relative to the knob's worst) against time per frame on the first
-    /// workload.
+    /// (relative to the knob's worst) against time per frame on the
+    /// workload where the knob's settings differ most in time (texture
+    /// filtering costs nothing on a scene without textures).
     pub fn svg(&self, path: &Path) -> Result<(), String> {
         use plotters::prelude::*;
         let root = SVGBackend::new(path, (960, 640)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let ms = |r: &Row| r.times.first().map_or(0.0, |t| t.as_secs_f64() * 1e3);
+        // Per knob, the workload whose times spread the most (relatively).
+        let mut on: std::collections::BTreeMap<&str, usize> = Default::default();
+        for knob in self.rows.iter().map(|r| r.knob) {
+            let rows = || self.rows.iter().filter(|r| r.knob == knob);
+            let spread = |w: usize| {
+                let t = || {
+                    rows()
+                        .filter_map(|r| r.times.get(w))
+                        .map(Duration::as_secs_f64)
+                };
+                let (lo, hi) = (t().fold(f64::INFINITY, f64::min), t().fold(0.0, f64::max));
+                if lo > 0.0 { hi / lo } else { 0.0 }
+            };
+            let best = (0..self.workloads.len())
+                .max_by(|&a, &b| spread(a).total_cmp(&spread(b)))
+                .unwrap_or(0);
+            on.insert(knob, best);
+        }
+        let ms = |r: &Row| {
+            r.times
+                .get(on.get(r.knob).copied().unwrap_or(0))
+                .map_or(0.0, |t| t.as_secs_f64() * 1e3)
+        };
         let x_max = self.rows.iter().map(ms).fold(0.0, f64::max) * 2.0 + 1e-3;
         let x_min = self
             .rows
@@ -926,10 +1102,9 @@ impl Report {
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
-            .x_desc(format!(
-                "time per frame on {} (ms, log scale)",
-                self.workloads.first().map_or("", String::as_str)
-            ))
+            .x_desc(
+                "time per frame (ms, log scale) on the scene where the knob's settings differ most",
+            )
             .y_desc("error, relative to the knob's worst setting")
             .draw()
             .map_err(|e| e.to_string())?;
@@ -962,7 +1137,12 @@ impl Report {
             chart
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 5, color.filled())))
                 .map_err(|e| e.to_string())?
-                .label(*knob)
+                .label(format!(
+                    "{knob} ({})",
+                    self.workloads
+                        .get(on.get(knob).copied().unwrap_or(0))
+                        .map_or("", String::as_str)
+                ))
                 .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(1)))
@@ -1044,6 +1224,14 @@ mod tests {
         let (perspective, _) = interpolation_error(Interpolation::Perspective);
         assert!(perspective <= 2.0, "{perspective}");
         assert!(affine > 40.0, "{affine}");
+    }
+
+    #[test]
+    fn trilinear_filtering_errs_least_on_the_receding_floor() {
+        let [nearest, bilinear, trilinear] = FilterMode::ALL.map(filter_error);
+        eprintln!("{nearest:?} {bilinear:?} {trilinear:?}");
+        assert!(trilinear.1 < bilinear.1 && bilinear.1 < nearest.1);
+        assert!(trilinear.1 < nearest.1 / 2.0);
     }
 
     #[test]

@@ -17,6 +17,7 @@ use rastty::{ColorDepth, GlyphMode, Traversal};
 use rastty::{Cull, Precision};
 
 use rastty::MAX_CELLS;
+use rastty::texture::FilterMode;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -202,6 +203,10 @@ pub struct ViewArgs {
     /// not watertight: for comparison)
     #[arg(long, value_enum, default_value_t = Precision::Fixed)]
     pub precision: Precision,
+    /// Texture filtering for every texture (default: as each model's
+    /// sampler says; trilinear where it says nothing)
+    #[arg(long, value_enum)]
+    pub filter: Option<FilterMode>,
     /// Run every pipeline stage on every primitive, even those the scene
     /// does not need (the same picture, slower: for comparison)
     #[arg(long)]

@@ -54,7 +54,7 @@
 //! The result is a convex polygon of at most [`MAX_POLYGON`] vertices, in a
 //! fixed array (no allocation), fanned into triangles.
 
-use glam::{DMat4, DVec4, Vec3, Vec4};
+use glam::{DMat4, DVec4, Vec2, Vec3, Vec4};
 
 use crate::fixed::FixedPoint;
 use crate::scene::Projection;
@@ -72,8 +72,10 @@ pub const MAX_POLYGON: usize = 10;
 pub struct ClipVertex {
     /// Position in model space (`w = 1` for a vertex of a mesh).
     pub pos: DVec4,
-    /// Colour channels in [0, 255].
+    /// Colour channels, linear light in [0, 65535].
     pub color: Vec3,
+    /// Texture coordinates (zero when untextured).
+    pub uv: Vec2,
     /// Where the vertex stage put it, when it is inside every clip plane:
     /// kept as it is, so that neighbours that were not clipped meet it.
     pub snapped: Option<Snapped>,
@@ -105,6 +107,8 @@ pub struct ScreenVertex {
     pub inv_w: f32,
     /// Its colour, linear light in [0, 65535].
     pub color: Vec3,
+    /// Its texture coordinates.
+    pub uv: Vec2,
 }
 
 /// The outcome of clipping one triangle.
@@ -163,6 +167,7 @@ pub struct Clipper {
 struct V {
     pos: [f64; 4],
     color: Vec3,
+    uv: Vec2,
     snapped: Option<Snapped>,
 }
 
@@ -256,6 +261,7 @@ impl Clipper {
             *d = V {
                 pos: v.pos.to_array(),
                 color: v.color,
+                uv: v.uv,
                 snapped: v.snapped,
             };
         }
@@ -288,6 +294,7 @@ impl Clipper {
                     z: s.z,
                     inv_w: s.inv_w,
                     color: v.color,
+                    uv: v.uv,
                 },
                 None => {
                     // Clip space, at the point's own homogeneous scale.
@@ -308,6 +315,7 @@ impl Clipper {
                         z: (c[2] / c[3]) as f32,
                         inv_w: (v.pos[3] / c[3]) as f32,
                         color: v.color,
+                        uv: v.uv,
                     }
                 }
             };
@@ -384,6 +392,7 @@ fn cross(plane: &[f64; 4], a: &V, b: &V) -> V {
     V {
         pos,
         color: a.color + (b.color - a.color) * t,
+        uv: a.uv + (b.uv - a.uv) * t,
         snapped: None,
     }
 }
@@ -424,6 +433,7 @@ mod tests {
         ClipVertex {
             pos: DVec4::new(x, y, z, w),
             color: Vec3::ZERO,
+            uv: Vec2::ZERO,
             snapped: None,
         }
     }

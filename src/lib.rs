@@ -51,6 +51,9 @@
 //! | `cli` | yes | the `rastty` program, and the terminal it runs in (`terminal`, `live`) |
 //! | `bench` | yes | `bench`: every accuracy knob timed and measured, and its plot |
 //! | `share` | yes | `picture`: a frame as PNG or SVG; `cast`: frames as an asciicast v2 recording |
+//! | `gltf` | yes | `scene::gltf`: glTF 2.0 and GLB models, with their textures |
+//! | `ply` | yes | `scene::ply`: PLY models |
+//! | `textures` | yes | `scene::image`: PNG and JPEG images for OBJ `map_Kd` textures |
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
 //! With `default-features = false` the crate is the renderer alone (glam,
@@ -67,11 +70,13 @@
 // before it (tests/architecture.rs checks this): foundations, then the
 // stages in data-flow order, then what runs them, then where frames go.
 
-// Foundations: errors, colours, fixed point, matrices and the sample grid.
+// Foundations: errors, colours, fixed point, matrices and the sample grid,
+// textures.
 mod error;
 pub mod color;
 pub mod fixed;
 pub mod transform;
+pub mod texture;
 mod accuracy;
 
 // The stages, in data-flow order.

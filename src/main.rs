@@ -340,5 +340,6 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         interpolation: view.interpolation,
         split: view.split,
         precision: view.precision,
+        filter: view.filter,
     }
 }

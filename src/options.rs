@@ -11,6 +11,7 @@ use crate::color::ColorDepth;
 use crate::raster::{Precision, Traversal};
 use crate::scene::Cull;
 use crate::shade::Shading;
+use crate::texture::FilterMode;
 
 /// Largest frame side, in cells: a bigger terminal is drawn at this size
 /// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
@@ -51,6 +52,9 @@ pub struct RenderOptions {
     pub split: Split,
     /// How edge functions are evaluated.
     pub precision: Precision,
+    /// Texture filtering for every texture (`None`: as each file's sampler
+    /// says).
+    pub filter: Option<FilterMode>,
 }
 
 /// How attributes are interpolated across a triangle.
@@ -157,6 +161,7 @@ impl Default for RenderOptions {
             interpolation: Interpolation::default(),
             split: Split::default(),
             precision: Precision::default(),
+            filter: None,
         }
     }
 }

@@ -10,6 +10,7 @@
 //! | interpolation | an attribute varies over a triangle (per-vertex colours, smooth shading) | every triangle is one colour: written with no barycentrics |
 //! | perspective correction | perspective projection and something is interpolated | parallel views (`w = 1` exactly, so affine weights are the same numbers) or nothing interpolated |
 //! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
+//! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -28,6 +29,7 @@ use crate::clip::Clipper;
 use crate::options::{Interpolation, Pipeline, RenderOptions};
 use crate::scene::{Cull, Projection, Scene, TriangleColor};
 use crate::shade::Shading;
+use crate::texture::{FilterMode, Sampler, Texture};
 
 /// One stage's decision, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,6 +80,11 @@ pub struct Plan {
     /// The shading applied: the options' shading when the scene is lit,
     /// [`Shading::None`] otherwise.
     pub shading: Shading,
+    /// Whether any triangle reads a texture (see [`Plan::texture`] for
+    /// one run of faces).
+    pub texturing: Decision,
+    /// The filtering forced on every texture (`None`: each sampler's own).
+    pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
     pub full: bool,
     /// Per group (each mesh in order, then the loose triangles): whether
@@ -105,6 +112,8 @@ impl Plan {
             interpolation: Decision::run(FORCED),
             perspective: Decision::run(FORCED),
             lighting: Decision::run(FORCED),
+            texturing: Decision::run(FORCED),
+            filter: opts.filter,
             shading: opts.shading,
             full: true,
             clip_tests: Vec::new(),
@@ -137,8 +146,18 @@ impl Plan {
             .iter()
             .any(|t| matches!(t.color, TriangleColor::PerVertex(_)))
             || scene.meshes.iter().any(|m| m.colors.is_some());
+        let textured = scene.meshes.iter().any(|m| m.textured());
+        let texturing = if full {
+            Decision::run(FORCED)
+        } else if textured {
+            Decision::run("a material has a texture: its triangles read it")
+        } else {
+            Decision::skip("no triangle has a texture")
+        };
         let interpolation = if full {
             Decision::run(FORCED)
+        } else if textured {
+            Decision::run("texture coordinates vary over textured triangles")
         } else if shading == Shading::Smooth {
             Decision::run("smooth shading varies the light over each triangle")
         } else if vertex_colors {
@@ -185,6 +204,8 @@ impl Plan {
             interpolation,
             perspective,
             lighting,
+            texturing,
+            filter: opts.filter,
             shading,
             full,
             clip_tests: std::mem::take(&mut self.clip_tests),
@@ -195,6 +216,23 @@ impl Plan {
     /// mesh) has its vertices tested against the clip planes.
     pub fn clip_tests(&self, group: usize) -> bool {
         self.clip_tests.get(group).copied().unwrap_or(true)
+    }
+
+    /// The texture a run of faces reads, and how: its own (with `--filter`
+    /// applied), none where it has none, and in the full pipeline a white
+    /// texel (exactly 1.0) for faces without one, so that the property
+    /// test proves that skipping texturing there changes nothing.
+    pub fn texture<'a>(&self, own: Option<&'a Texture>) -> Option<(&'a Texture, Sampler)> {
+        let texture = match own {
+            Some(t) => t,
+            None if self.full => Texture::white(),
+            None => return None,
+        };
+        let sampler = match self.filter {
+            Some(f) => f.apply(texture.sampler),
+            None => texture.sampler,
+        };
+        Some((texture, sampler))
     }
 
     /// Whether a triangle whose vertices have these colours is
@@ -276,6 +314,7 @@ impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "clip           {}", self.clip)?;
         writeln!(f, "lighting       {}", self.lighting)?;
+        writeln!(f, "texturing      {}", self.texturing)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         write!(f, "perspective    {}", self.perspective)

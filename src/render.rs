@@ -25,12 +25,21 @@
 //! divided by each vertex's `w` and renormalised. A camera that frames a
 //! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
 //! interpolation.
+//!
+//! **Textures.** A triangle whose material has a texture (as the plan says:
+//! [`Plan::texture`]) multiplies its lit colour by the texture at each
+//! sample. Its texture coordinates over `w`, and `1/w`, are planes over the
+//! screen, set up once per triangle; at a sample their quotient is the
+//! perspective-correct coordinate and the quotient rule gives its exact
+//! steps to the next sample along x and y, from which the sampler picks
+//! its mipmap level ([`crate::texture`]). Clipping carries the coordinates
+//! along cut edges like colours.
 
 mod explain;
 
 use std::time::{Duration, Instant};
 
-use glam::{DMat4, Mat3, Mat4, Vec3};
+use glam::{DMat4, Mat3, Mat4, Vec2, Vec3};
 
 use crate::blit;
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
@@ -43,6 +52,7 @@ use crate::plan::Plan;
 use crate::raster::{Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal};
 use crate::scene::{Cull, Projection, Scene};
 use crate::shade::{Lights, Shading};
+use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
 
 /// What one frame cost.
@@ -62,6 +72,8 @@ pub struct FrameStats {
     pub depth_tests: u64,
     /// Samples whose colour was interpolated (not a flat write).
     pub interpolated_samples: u64,
+    /// Samples that read a texture.
+    pub textured_samples: u64,
     /// Of those, samples interpolated through `1/w`.
     pub perspective_samples: u64,
     /// Vertices tested against the clip planes.
@@ -142,12 +154,21 @@ const F64_PATH: u8 = 1 << 7;
 const PLANES: u8 = F64_PATH - 1;
 
 /// A triangle after the divide: screen positions in samples, depth, `1/w`,
-/// colours.
+/// colours, texture coordinates.
 struct ScreenTriangle {
     xy: [[f64; 2]; 3],
     z: [f32; 3],
     inv_w: [f32; 3],
     color: [Vec3; 3],
+    uv: [Vec2; 3],
+}
+
+/// A triangle's texture, how to read it, and its vertices' coordinates.
+#[derive(Clone, Copy)]
+struct Tex<'a> {
+    texture: &'a Texture,
+    sampler: Sampler,
+    uv: [Vec2; 3],
 }
 
 /// Per-frame constants of the vertex and triangle stages.
@@ -368,15 +389,24 @@ impl Renderer {
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
-            for (run, color) in mesh.runs(Lin::from_srgb(mesh.color)) {
-                for face in &mesh.faces[run] {
+            for run in mesh.runs(Lin::from_srgb(mesh.color)) {
+                let texture = p.texture(run.texture);
+                for face in &mesh.faces[run.faces] {
                     let v = face.map(|i| &verts[i as usize]);
                     let base = match &mesh.colors {
                         Some(c) => face.map(|i| c[i as usize]),
-                        None => [color; 3],
+                        None => [run.color; 3],
                     };
+                    let tex = texture.map(|(texture, sampler)| Tex {
+                        texture,
+                        sampler,
+                        uv: match &mesh.uvs {
+                            Some(uv) => face.map(|i| uv[i as usize]),
+                            None => [Vec2::ZERO; 3],
+                        },
+                    });
                     let model = face.map(|i| mesh.positions[i as usize]);
-                    self.triangle(stage, v, base, cull, (model, &transforms.mvp64));
+                    self.triangle(stage, v, base, cull, (model, &transforms.mvp64), tex);
                 }
             }
             self.verts = verts;
@@ -396,6 +426,11 @@ impl Renderer {
                 tri.color.at_vertices().map(Lin::from_srgb),
                 cull,
                 (tri.vertices, &loose.mvp64),
+                p.texture(None).map(|(texture, sampler)| Tex {
+                    texture,
+                    sampler,
+                    uv: [Vec2::ZERO; 3],
+                }),
             );
             self.verts = verts;
         }
@@ -496,8 +531,13 @@ impl Renderer {
         base: [Lin; 3],
         cull: Cull,
         model: ([Vec3; 3], &DMat4),
+        tex: Option<Tex<'_>>,
     ) {
         self.stats.triangles_in += 1;
+        let (texture, uv) = match tex {
+            Some(t) => (Some((t.texture, t.sampler)), t.uv),
+            None => (None, [Vec2::ZERO; 3]),
+        };
         if v.iter().any(|v| v.bad_normal) {
             self.stats.dropped_non_finite_normals += 1;
             return;
@@ -521,27 +561,28 @@ impl Renderer {
                 z: v.map(|v| v.z),
                 inv_w: v.map(|v| v.inv_w),
                 color,
+                uv,
             };
             let grid = self.fb.grid();
             match stage.precision {
                 Precision::Fixed => {
                     if let Some(s) = self.setup(Setup::from_fixed(fixed, grid, cull), stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
-                        self.fill(&s, &screen(c), stage);
+                        self.fill(&s, &screen(c), stage, texture);
                     }
                 }
                 Precision::F64 => {
                     let setup = FloatSetup::<f64>::new(xy, grid, cull);
                     if let Some(s) = self.setup(setup, stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(&s, &screen(c), stage);
+                        self.fill(&s, &screen(c), stage, texture);
                     }
                 }
                 Precision::F32 => {
                     let setup = FloatSetup::<f32>::new(xy, grid, cull);
                     if let Some(s) = self.setup(setup, stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(&s, &screen(c), stage);
+                        self.fill(&s, &screen(c), stage, texture);
                     }
                 }
             }
@@ -556,6 +597,7 @@ impl Renderer {
         let verts = [0, 1, 2].map(|i| ClipVertex {
             pos: positions[i].as_dvec3().extend(1.0),
             color: color[i],
+            uv: uv[i],
             snapped: (v[i].code == 0).then_some(Snapped {
                 fixed: v[i].fixed,
                 xy: v[i].xy,
@@ -574,25 +616,26 @@ impl Renderer {
                         z: tri.map(|v| v.z),
                         inv_w: tri.map(|v| v.inv_w),
                         color: tri.map(|v| v.color),
+                        uv: tri.map(|v| v.uv),
                     };
                     let grid = self.fb.grid();
                     match stage.precision {
                         Precision::Fixed => {
                             let setup = Setup::from_fixed(tri.map(|v| v.fixed), grid, cull);
                             if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage);
+                                self.fill(&s, &screen, stage, texture);
                             }
                         }
                         Precision::F64 => {
                             let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
                             if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage);
+                                self.fill(&s, &screen, stage, texture);
                             }
                         }
                         Precision::F32 => {
                             let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
                             if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage);
+                                self.fill(&s, &screen, stage, texture);
                             }
                         }
                     }
@@ -651,10 +694,17 @@ impl Renderer {
 
     /// Walks a set-up triangle and writes its samples: depth-tested, or
     /// (when the plan skips depth) only where still empty; one colour, or
-    /// interpolated, through `1/w` where the plan asks for it.
-    fn fill<C: Coverage>(&mut self, setup: &C, t: &ScreenTriangle, stage: &Stage) {
+    /// interpolated, through `1/w` where the plan asks for it; times its
+    /// texture, where it has one.
+    fn fill<C: Coverage>(
+        &mut self,
+        setup: &C,
+        t: &ScreenTriangle,
+        stage: &Stage,
+        texture: Option<(&Texture, Sampler)>,
+    ) {
         if stage.exact {
-            self.accumulate_exact(t);
+            self.accumulate_exact(t, texture);
             return;
         }
         let grid = self.fb.grid();
@@ -667,11 +717,15 @@ impl Renderer {
         // triangle was given in).
         let o = setup.order();
         let [z0, z1, z2] = o.map(|i| t.z[i]);
+        // Texture coordinates are planes over the screen, found from the
+        // triangle as given (their order does not matter).
+        let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
         let t = &ScreenTriangle {
             xy: o.map(|i| t.xy[i]),
             z: [z0, z1, z2],
             inv_w: o.map(|i| t.inv_w[i]),
             color: o.map(|i| t.color[i]),
+            uv: [Vec2::ZERO; 3],
         };
         let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
         let use_depth = stage.plan.depth.run;
@@ -695,6 +749,36 @@ impl Renderer {
         };
         let one = Lin::from_f32(ca.to_array());
         let tr = stage.traversal;
+        if let (Some((texture, sampler)), Some(planes)) = (texture, planes) {
+            // The lit colour (one, or interpolated) times the texel.
+            let shade = move |x: u32, y: u32, e: C::Weights| {
+                let lit = if flat {
+                    ca
+                } else {
+                    let e = C::f32(e);
+                    let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
+                    (ca * wa + cb * wb + cc * wc) / (wa + wb + wc)
+                };
+                let (uv, dx, dy) = planes.at(x, y);
+                let texel = texture.sample(&sampler, uv, dx, dy);
+                Lin::from_f32((lit * texel).to_array())
+            };
+            let tested = if use_depth {
+                setup.walk_samples(grid, tr, |x, y, e| {
+                    covered += 1;
+                    fb.set_if_nearer(x, y, depth(e), shade(x, y, e));
+                })
+            } else {
+                setup.walk_samples(grid, tr, |x, y, e| {
+                    covered += 1;
+                    fb.set_if_empty(x, y, shade(x, y, e));
+                })
+            };
+            stats.textured_samples += covered;
+            // Texture coordinates are interpolated, whatever the colour.
+            self.count_fill(stage, false, covered, tested);
+            return;
+        }
         // One tight loop per combination, so that each inlines.
         let tested = match (flat, use_depth) {
             (true, false) => setup.walk_samples(grid, tr, |x, y, _| {
@@ -714,7 +798,14 @@ impl Renderer {
                 fb.set_if_nearer(x, y, depth(e), interpolate(e));
             }),
         };
-        if use_depth {
+        self.count_fill(stage, flat, covered, tested);
+    }
+
+    /// Counts what one fill did.
+    #[inline(always)]
+    fn count_fill(&mut self, stage: &Stage, flat: bool, covered: u64, tested: u64) {
+        let stats = &mut self.stats;
+        if stage.plan.depth.run {
             stats.depth_tests += covered;
         }
         if !flat {
@@ -730,11 +821,18 @@ impl Renderer {
     /// Adds the triangle's exact area in each sample's square, times its
     /// mean colour, to the accumulator (`--aa exact`). Depth plays no part:
     /// exact for scenes whose visible triangles do not overlap; where they
-    /// do, their areas add up (and the coverage is capped at 1).
-    fn accumulate_exact(&mut self, t: &ScreenTriangle) {
+    /// do, their areas add up (and the coverage is capped at 1). A texture
+    /// is read once, at the triangle's centroid, filtered over the whole
+    /// triangle.
+    fn accumulate_exact(&mut self, t: &ScreenTriangle, texture: Option<(&Texture, Sampler)>) {
         let grid = self.fb.grid();
         let tri = t.xy;
-        let color = (t.color[0] + t.color[1] + t.color[2]) / 3.0;
+        let mut color = (t.color[0] + t.color[1] + t.color[2]) / 3.0;
+        if let Some((texture, sampler)) = texture {
+            let [a, b, c] = t.uv;
+            color *= texture.sample(&sampler, (a + b + c) / 3.0, b - a, c - a);
+            self.stats.textured_samples += 1;
+        }
         let lo = |k: usize| {
             tri.iter()
                 .map(|p| p[k])
@@ -820,6 +918,67 @@ impl Renderer {
     /// Where the last frame's time went.
     pub fn times(&self) -> &FrameTimes {
         &self.times
+    }
+}
+
+/// A triangle's texture coordinates as functions of the sample position:
+/// `u/w`, `v/w` and `1/w` are linear in screen space (`u`, `v` themselves
+/// for affine interpolation), so each is a plane, found once per triangle
+/// relative to its first vertex. At a sample, `u = (u/w)/(1/w)`, and the
+/// derivatives the sampler needs follow exactly from the quotient rule:
+/// `∂u/∂x = (∂(u/w)/∂x − u·∂(1/w)/∂x)/(1/w)`.
+struct UvPlanes {
+    origin: [f64; 2],
+    /// Value at the origin, and slopes along x and y: `u/w`, `v/w`, `1/w`.
+    u: [f32; 3],
+    v: [f32; 3],
+    q: [f32; 3],
+}
+
+impl UvPlanes {
+    fn new(t: &ScreenTriangle, perspective: bool) -> UvPlanes {
+        let [p0, p1, p2] = t.xy;
+        let (d1, d2) = (
+            [p1[0] - p0[0], p1[1] - p0[1]],
+            [p2[0] - p0[0], p2[1] - p0[1]],
+        );
+        let det = d1[0] * d2[1] - d2[0] * d1[1];
+        let plane = |f: [f64; 3]| {
+            let (f1, f2) = (f[1] - f[0], f[2] - f[0]);
+            [
+                f[0] as f32,
+                ((f1 * d2[1] - f2 * d1[1]) / det) as f32,
+                ((f2 * d1[0] - f1 * d2[0]) / det) as f32,
+            ]
+        };
+        // 1/w scaled by a power of two (exact, and the same u).
+        let q = if perspective {
+            unit_scale(t.inv_w).map(f64::from)
+        } else {
+            [1.0; 3]
+        };
+        UvPlanes {
+            origin: p0,
+            u: plane([0, 1, 2].map(|i| f64::from(t.uv[i].x) * q[i])),
+            v: plane([0, 1, 2].map(|i| f64::from(t.uv[i].y) * q[i])),
+            q: plane(q),
+        }
+    }
+
+    /// The coordinates at sample `(x, y)`'s centre, and their steps to the
+    /// next sample along x and y.
+    #[inline]
+    fn at(&self, x: u32, y: u32) -> (Vec2, Vec2, Vec2) {
+        let dx = (f64::from(x) + 0.5 - self.origin[0]) as f32;
+        let dy = (f64::from(y) + 0.5 - self.origin[1]) as f32;
+        let at = |p: [f32; 3]| p[0] + p[1] * dx + p[2] * dy;
+        let q = at(self.q);
+        let (u, v) = (at(self.u) / q, at(self.v) / q);
+        (
+            Vec2::new(u, v),
+            Vec2::new(self.u[1] - u * self.q[1], self.v[1] - v * self.q[1]) / q,
+            Vec2::new(self.u[2] - u * self.q[2], self.v[2] - v * self.q[2]) / q,
+        )
     }
 }
 

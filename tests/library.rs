@@ -43,15 +43,38 @@ fn allocations(f: impl FnOnce()) -> u64 {
     ALLOCATIONS.with(Cell::get) - before
 }
 
-/// A shaded torus, a cube cut by the near plane (the clip path) and a
-/// triangle with a colour at each vertex.
+/// A cube with a 4×4 texture, its coordinates the positions' x and y.
+fn textured_cube() -> rastty::scene::Mesh {
+    use rastty::texture::{Sampler, Texture};
+    let mut g = Shape::Cube.mesh(Rgb::WHITE).geometry.as_ref().clone();
+    g.uvs = Some(g.positions.iter().map(|p| p.truncate() * 2.0).collect());
+    let texels = (0..16).map(|i| [(i % 4) as f32 / 3.0, 0.5, (i / 4) as f32 / 3.0]);
+    g.textures = vec![std::sync::Arc::new(Texture::from_linear(
+        "t",
+        4,
+        4,
+        texels.collect(),
+        Sampler::default(),
+    ))];
+    g.materials = vec![rastty::scene::MaterialRun {
+        first: 0,
+        color: None,
+        texture: Some(0),
+    }];
+    rastty::scene::Mesh::of(std::sync::Arc::new(g), Rgb::new(0x40, 0x90, 0xff))
+}
+
+/// A shaded torus, a textured cube cut by the near plane (the clip path)
+/// and a triangle with a colour at each vertex.
 fn scene() -> Scene {
     Scene::builder()
         .look_at(Vec3::new(0.0, 0.5, 3.0), Vec3::ZERO)
         .mesh(Shape::Torus.mesh(Rgb::new(0xff, 0x90, 0x40)))
-        .mesh(Shape::Cube.mesh(Rgb::new(0x40, 0x90, 0xff)).with_model(
-            rastty::glam::Mat4::from_translation(Vec3::new(0.6, 0.0, 2.6)),
-        ))
+        .mesh(
+            textured_cube().with_model(rastty::glam::Mat4::from_translation(Vec3::new(
+                0.6, 0.0, 2.6,
+            ))),
+        )
         .triangle_colors(
             [
                 Vec3::new(-2.0, -1.0, -1.0),
@@ -92,7 +115,7 @@ fn render_into_allocates_nothing_once_warmed() {
         };
         let (mut renderer, mut frame) = (Renderer::new(), Frame::default());
         renderer.render_into(&scene, &opts, &mut frame);
-        let mut clipped = 0;
+        let (mut clipped, mut textured) = (0, 0);
         let n = allocations(|| {
             for k in 1..=8 {
                 let opts = RenderOptions {
@@ -101,11 +124,12 @@ fn render_into_allocates_nothing_once_warmed() {
                 };
                 renderer.render_into(&scene, &opts, &mut frame);
                 clipped += renderer.stats().clipped;
+                textured += renderer.stats().textured_samples;
             }
         });
         assert_eq!(n, 0, "{glyphs:?} {shading:?} {aa:?}");
-        // The frames went through the clip path too.
-        assert!(clipped > 0, "{glyphs:?}");
+        // The frames went through the clip path and read the texture too.
+        assert!(clipped > 0 && textured > 0, "{glyphs:?}");
     }
 }
 

@@ -87,7 +87,7 @@ proptest! {
 
     #[test]
     fn damaged_files_never_panic(
-        which in 0usize..7,
+        which in 0usize..8,
         edits in prop::collection::vec((any::<usize>(), any::<u8>()), 0..8),
         cut in any::<usize>(),
     ) {
@@ -98,6 +98,7 @@ proptest! {
             3 => common::quad_ply("ascii"),
             4 => common::quad_ply("binary_big_endian"),
             5 => triangle_glb(),
+            6 => common::crate_glb(),
             _ => std::fs::read(format!("{}/examples/scenes/overlap.toml", env!("CARGO_MANIFEST_DIR"))).unwrap(),
         };
         all_loaders(&mutate(base, &edits, cut));

@@ -20,7 +20,7 @@
 //! matching in OKLCh and ordered dithering.
 
 pub(crate) mod palette;
-mod srgb;
+pub(crate) mod srgb;
 
 pub use palette::{ANSI16, Dither, Metric, Palette, Quantizer, nearest, oklab_distance, xterm256};
 

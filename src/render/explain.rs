@@ -74,6 +74,16 @@ impl Renderer {
                 plan.perspective,
                 format!("{} samples through 1/w", s.perspective_samples),
             ),
+            (
+                "texturing",
+                plan.texturing,
+                format!(
+                    "{} samples read a texture ({})",
+                    s.textured_samples,
+                    plan.filter
+                        .map_or("each texture's own filter", |f| f.name())
+                ),
+            ),
         ];
         for (name, d, work) in &rows {
             let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");

@@ -8,15 +8,19 @@
 //! whose transform mirrors (negative determinant) has its triangles
 //! rewound, so that counter-clockwise is the front everywhere, as the
 //! format says. Read: `POSITION`, `NORMAL` (when every primitive has them;
-//! otherwise normals are computed as for OBJ), `COLOR_0`, and the
-//! material's `baseColorFactor` (glTF colours are linear light already).
-//! Buffers come from the GLB's binary chunk, data URIs, or files beside the
-//! `.gltf`.
+//! otherwise normals are computed as for OBJ), `COLOR_0`, `TEXCOORD_0`,
+//! and the material's `baseColorFactor` (glTF colours are linear light
+//! already) and `baseColorTexture` with its sampler (filters and wrap
+//! modes; an unset filter is trilinear). Buffers and images come from the
+//! GLB's binary chunk, data URIs, or files beside the `.gltf`; images are
+//! PNG or JPEG, sRGB-encoded, decoded once each however many materials
+//! use them (see [`crate::texture`]).
 //!
-//! Not read, and said in one note: points and lines, textures, skins,
-//! morph targets, animations, cameras, and extensions. An extension the file
-//! marks as required is an error, since the model cannot be drawn right
-//! without it.
+//! Not read, and said in one note: points and lines, textures read through
+//! a second texture coordinate set, the other material textures (normal,
+//! occlusion, emissive, metallic-roughness), skins, morph targets,
+//! animations, cameras, and extensions. An extension the file marks as
+//! required is an error, since the model cannot be drawn right without it.
 //!
 //! Trade-offs: the crate parses and validates the JSON and resolves
 //! buffers; the byte ranges of the accessors used are checked here before
@@ -26,12 +30,15 @@
 use std::collections::BTreeMap;
 use std::io::Read as _;
 use std::path::Path;
+use std::sync::Arc;
 
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::buffer::Data;
 use ::gltf::mesh::Mode;
+use ::gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use ::gltf::{Accessor, Gltf, Semantic};
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
 use super::file;
@@ -39,6 +46,7 @@ use super::mesh::{Geometry, MaterialRun};
 use super::obj::Loaded;
 use crate::color::Lin;
 use crate::error::{Error, Result};
+use crate::texture::{Filter, Mipmap, Sampler, Texture, Wrap};
 
 /// The deepest node hierarchy walked (the format has no cycles; a broken
 /// file might).
@@ -90,7 +98,13 @@ pub fn parse(
     let buffers = ::gltf::import_buffers(&document, base, blob).map_err(|e| bad(describe(&e)))?;
 
     let mut ignored: BTreeMap<&str, usize> = BTreeMap::new();
-    let mut out = Parts::default();
+    let mut out = Parts {
+        images: Images {
+            base,
+            decoded: FxHashMap::default(),
+        },
+        ..Parts::default()
+    };
     let scene = document
         .default_scene()
         .or_else(|| document.scenes().next())
@@ -156,9 +170,22 @@ fn describe(e: &::gltf::Error) -> String {
     }
 }
 
+/// The images of a document, decoded when a material first uses them.
+#[derive(Default)]
+struct Images<'a> {
+    base: Option<&'a Path>,
+    /// The texture made of each glTF texture, as an index into `textures`.
+    decoded: FxHashMap<usize, u32>,
+}
+
 /// The primitives gathered so far, in world space.
 #[derive(Default)]
-struct Parts {
+struct Parts<'a> {
+    images: Images<'a>,
+    textures: Vec<Arc<Texture>>,
+    /// Texture coordinates, once a primitive has them (earlier vertices
+    /// get zeros: they are not textured).
+    uvs: Option<Vec<Vec2>>,
     positions: Vec<Vec3>,
     /// Normals, while every primitive so far has them.
     normals: Vec<Vec3>,
@@ -173,7 +200,7 @@ struct Parts {
     materials: Vec<MaterialRun>,
 }
 
-impl Parts {
+impl Parts<'_> {
     fn primitive(
         &mut self,
         prim: &::gltf::Primitive,
@@ -193,13 +220,52 @@ impl Parts {
             *ignored.entry("morph targets").or_default() += 1;
         }
         let material = prim.material();
-        if material
-            .pbr_metallic_roughness()
-            .base_color_texture()
-            .is_some()
-        {
-            *ignored.entry("textures").or_default() += 1;
+        let others = [
+            material.normal_texture().is_some(),
+            material.occlusion_texture().is_some(),
+            material.emissive_texture().is_some(),
+            material
+                .pbr_metallic_roughness()
+                .metallic_roughness_texture()
+                .is_some(),
+        ];
+        let n_others = others.iter().filter(|&&t| t).count();
+        if n_others > 0 {
+            *ignored
+                .entry("normal, occlusion, emissive or metallic-roughness textures")
+                .or_default() += n_others;
         }
+        let texture = match material.pbr_metallic_roughness().base_color_texture() {
+            Some(info) if info.tex_coord() == 0 => Some(self.texture(&info.texture(), buffers)?),
+            Some(_) => {
+                *ignored
+                    .entry("textures on a second coordinate set")
+                    .or_default() += 1;
+                None
+            }
+            None => None,
+        };
+        let tex_coords = prim.get(&Semantic::TexCoords(0));
+        if let Some(t) = &tex_coords {
+            check(
+                t,
+                buffers,
+                &[DataType::F32, DataType::U8, DataType::U16],
+                &[Dimensions::Vec2],
+                "TEXCOORD_0",
+            )?;
+            if t.count() != positions_count(prim) {
+                return Err(format!(
+                    "TEXCOORD_0 has {} entries for {} positions",
+                    t.count(),
+                    positions_count(prim)
+                ));
+            }
+        }
+        let texture = match (texture, &tex_coords) {
+            (Some(_), None) => return Err("it has a texture but no TEXCOORD_0".into()),
+            (t, _) => t,
+        };
         let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
         check(
             &positions,
@@ -286,6 +352,18 @@ impl Parts {
             all.extend_from_slice(&self.base[start..]);
         }
 
+        match reader.read_tex_coords(0) {
+            Some(ts) => {
+                let all = self.uvs.get_or_insert_with(|| vec![Vec2::ZERO; start]);
+                all.extend(ts.into_f32().map(Vec2::from));
+            }
+            None => {
+                if let Some(all) = &mut self.uvs {
+                    all.resize(start + n, Vec2::ZERO);
+                }
+            }
+        }
+
         let indices: Vec<u32> = match reader.read_indices() {
             Some(i) => i.into_u32().collect(),
             None => (0..n as u32).collect(),
@@ -325,21 +403,87 @@ impl Parts {
             }
         }
         if self.faces.len() > faces_before {
-            let color = own.then_some(base);
-            if self.materials.last().map(|m| m.color) != Some(color) {
-                self.materials.push(MaterialRun {
-                    first: faces_before as u32,
-                    color,
-                });
+            let run = MaterialRun {
+                first: faces_before as u32,
+                color: own.then_some(base),
+                texture,
+            };
+            if self
+                .materials
+                .last()
+                .is_none_or(|m| (m.color, m.texture) != (run.color, run.texture))
+            {
+                self.materials.push(run);
             }
         }
         Ok(())
     }
 
+    /// The texture made of glTF texture `t` (decoded the first time), as
+    /// an index into `self.textures`.
+    fn texture(
+        &mut self,
+        t: &::gltf::Texture,
+        buffers: &[Data],
+    ) -> std::result::Result<u32, String> {
+        if let Some(&id) = self.images.decoded.get(&t.index()) {
+            return Ok(id);
+        }
+        let image = t.source();
+        let what = match image.source() {
+            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                format!("image {} ({uri})", image.index())
+            }
+            _ => format!("image {}", image.index()),
+        };
+        let bad = |e: String| format!("texture {}: {what}: {e}", t.index());
+        match image.source() {
+            ::gltf::image::Source::View { view, .. } => {
+                let len = buffers.get(view.buffer().index()).map_or(0, |b| b.len());
+                if view
+                    .offset()
+                    .checked_add(view.length())
+                    .is_none_or(|end| end > len)
+                {
+                    return Err(bad(format!(
+                        "buffer view {} ({} bytes at offset {}) is out of range of its {len}-byte buffer",
+                        view.index(),
+                        view.length(),
+                        view.offset()
+                    )));
+                }
+            }
+            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                let file = self.images.base.unwrap_or(Path::new(".")).join(uri);
+                if let Err(e) = std::fs::metadata(&file) {
+                    return Err(bad(format!("{}: {e}", file.display())));
+                }
+            }
+            ::gltf::image::Source::Uri { .. } => {}
+        }
+        // The crate reads files only with a base directory.
+        let base = self.images.base.unwrap_or(Path::new("."));
+        let data = ::gltf::image::Data::from_source(image.source(), Some(base), buffers)
+            .map_err(|e| bad(describe(&e)))?;
+        let texture = texture(data, &what, sampler(&t.sampler())).map_err(bad)?;
+        let id = self.textures.len() as u32;
+        self.textures.push(Arc::new(texture));
+        self.images.decoded.insert(t.index(), id);
+        Ok(id)
+    }
+
     fn geometry(self, name: &str, crease: f32) -> Geometry {
         let mut g = Geometry::new_raw(name, self.positions, self.faces);
-        // Runs that are all "the mesh's colour" say nothing.
-        if self.materials.iter().any(|m| m.color.is_some()) {
+        // Runs that are all "the mesh's colour", untextured, say nothing.
+        if self.materials.iter().any(|m| m.texture.is_some()) {
+            g.uvs = self.uvs;
+            g.textures = self.textures;
+        }
+        if self
+            .materials
+            .iter()
+            .any(|m| m.color.is_some() || m.texture.is_some())
+        {
             g.materials = self.materials;
         }
         g.colors = self.colors;
@@ -351,6 +495,71 @@ impl Parts {
         g.analyze();
         g
     }
+}
+
+/// How many positions a primitive has (0 without them).
+fn positions_count(prim: &::gltf::Primitive) -> usize {
+    prim.get(&Semantic::Positions).map_or(0, |a| a.count())
+}
+
+/// A glTF sampler as rastty's (an unset filter is the best there is).
+fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
+    let wrap = |w| match w {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::MirroredRepeat => Wrap::MirroredRepeat,
+        WrappingMode::ClampToEdge => Wrap::ClampToEdge,
+    };
+    let (min, mipmap) = match s.min_filter() {
+        Some(MinFilter::Nearest) => (Filter::Nearest, Mipmap::None),
+        Some(MinFilter::Linear) => (Filter::Linear, Mipmap::None),
+        Some(MinFilter::NearestMipmapNearest) => (Filter::Nearest, Mipmap::Nearest),
+        Some(MinFilter::LinearMipmapNearest) => (Filter::Linear, Mipmap::Nearest),
+        Some(MinFilter::NearestMipmapLinear) => (Filter::Nearest, Mipmap::Linear),
+        Some(MinFilter::LinearMipmapLinear) | None => (Filter::Linear, Mipmap::Linear),
+    };
+    Sampler {
+        wrap_u: wrap(s.wrap_s()),
+        wrap_v: wrap(s.wrap_t()),
+        mag: match s.mag_filter() {
+            Some(MagFilter::Nearest) => Filter::Nearest,
+            Some(MagFilter::Linear) | None => Filter::Linear,
+        },
+        min,
+        mipmap,
+    }
+}
+
+/// Decoded image data as a texture (8-bit sRGB; 16-bit images are
+/// rounded to 8 bits).
+fn texture(
+    data: ::gltf::image::Data,
+    name: &str,
+    sampler: Sampler,
+) -> std::result::Result<Texture, String> {
+    use ::gltf::image::Format;
+    let (channels, wide) = match data.format {
+        Format::R8 => (1, false),
+        Format::R8G8 => (2, false),
+        Format::R8G8B8 => (3, false),
+        Format::R8G8B8A8 => (4, false),
+        Format::R16 => (1, true),
+        Format::R16G16 => (2, true),
+        Format::R16G16B16 => (3, true),
+        Format::R16G16B16A16 => (4, true),
+        other => return Err(format!("{other:?} pixels, which rastty does not read")),
+    };
+    let narrow: Vec<u8>;
+    let pixels = if wide {
+        narrow = data
+            .pixels
+            .chunks_exact(2)
+            .map(|b| ((u32::from(u16::from_ne_bytes([b[0], b[1]])) + 128) / 257) as u8)
+            .collect();
+        &narrow
+    } else {
+        &data.pixels
+    };
+    Texture::from_srgb8(name, data.width, data.height, channels, pixels, sampler)
 }
 
 /// Checks that `acc` has a type the reader expects and that every byte

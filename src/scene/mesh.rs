@@ -10,7 +10,8 @@
 //! |---|---:|---|
 //! | positions | 12 a vertex | f32 x, y, z |
 //! | normals | 12 a vertex | f32, unit length |
-//! | vertex colours | 3 a vertex | only when the file has them |
+//! | vertex colours | 6 a vertex | only when the file has them |
+//! | texture coordinates | 8 a vertex | only when a material has a texture |
 //! | faces | 12 a triangle | u32 vertex indices |
 //! | materials | 8 a run | consecutive faces of one colour share a run |
 //!
@@ -49,16 +50,17 @@
 
 use std::sync::{Arc, OnceLock};
 
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DVec3, Mat4, Vec2, Vec3};
 use rustc_hash::FxHashMap;
 
 use crate::color::{Lin, Rgb};
+use crate::texture::Texture;
 
 /// The crease angle: faces meeting at a sharper angle than this keep their
 /// own normals at the edge between them.
 pub const DEFAULT_CREASE: f32 = 60.0;
 
-/// Faces of one colour, from `first` to the next run's first.
+/// Faces of one material, from `first` to the next run's first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MaterialRun {
     /// The first face of the run.
@@ -66,6 +68,21 @@ pub struct MaterialRun {
     /// The material's colour, in linear light; `None`: the mesh's own
     /// colour.
     pub color: Option<Lin>,
+    /// The material's texture, an index into [`Geometry::textures`], which
+    /// multiplies the colour (the faces' vertices then have UVs).
+    pub texture: Option<u32>,
+}
+
+/// One run of faces as the renderer draws it: the faces, their colour and
+/// their texture.
+#[derive(Clone, Debug)]
+pub struct Run<'a> {
+    /// The faces, as a range of [`Geometry::faces`].
+    pub faces: std::ops::Range<usize>,
+    /// Their colour (the material's, or the mesh's).
+    pub color: Lin,
+    /// Their texture, if the material has one.
+    pub texture: Option<&'a Texture>,
 }
 
 /// A mesh's shape, in model coordinates: what is shared between meshes.
@@ -80,6 +97,11 @@ pub struct Geometry {
     /// One colour per position, when the source has them; they override
     /// the face colours.
     pub colors: Option<Vec<Lin>>,
+    /// One texture coordinate per position, when the source has them
+    /// (`u` right, `v` down the image, as glTF has them).
+    pub uvs: Option<Vec<Vec2>>,
+    /// The textures the material runs name.
+    pub textures: Vec<Arc<Texture>>,
     /// Triangles, as indices into `positions` (and `normals`, `colors`).
     pub faces: Vec<[u32; 3]>,
     /// The faces' colours, as runs in face order; empty: every face in the
@@ -103,6 +125,8 @@ impl Clone for Geometry {
             positions: self.positions.clone(),
             normals: self.normals.clone(),
             colors: self.colors.clone(),
+            uvs: self.uvs.clone(),
+            textures: self.textures.clone(),
             faces: self.faces.clone(),
             materials: self.materials.clone(),
             bounds: self.bounds,
@@ -118,6 +142,8 @@ impl PartialEq for Geometry {
         self.positions == o.positions
             && self.normals == o.normals
             && self.colors == o.colors
+            && self.uvs == o.uvs
+            && self.textures == o.textures
             && self.faces == o.faces
             && self.materials == o.materials
     }
@@ -144,6 +170,8 @@ impl Geometry {
             positions,
             normals: Vec::new(),
             colors: None,
+            uvs: None,
+            textures: Vec::new(),
             faces,
             materials: Vec::new(),
             bounds: None,
@@ -168,16 +196,21 @@ impl Geometry {
         self.convex = OnceLock::new();
     }
 
-    /// The faces in runs of one colour, in order, for a mesh coloured
-    /// `color`: `(faces, colour)`.
-    pub fn runs(&self, color: Lin) -> impl Iterator<Item = (std::ops::Range<usize>, Lin)> + '_ {
+    /// The faces in runs of one material, in order, for a mesh coloured
+    /// `color`. A texture is given only where the faces have UVs to read
+    /// it with.
+    pub fn runs(&self, color: Lin) -> impl Iterator<Item = Run<'_>> + '_ {
         let n = self.faces.len();
         let first = self
             .materials
             .first()
             .map_or(n, |r| r.first as usize)
             .min(n);
-        let head = (first > 0).then_some((0..first, color));
+        let head = (first > 0).then_some(Run {
+            faces: 0..first,
+            color,
+            texture: None,
+        });
         head.into_iter()
             .chain(self.materials.iter().enumerate().map(move |(k, r)| {
                 let end = self
@@ -185,8 +218,25 @@ impl Geometry {
                     .get(k + 1)
                     .map_or(n, |s| s.first as usize)
                     .min(n);
-                ((r.first as usize).min(end)..end, r.color.unwrap_or(color))
+                Run {
+                    faces: (r.first as usize).min(end)..end,
+                    color: r.color.unwrap_or(color),
+                    texture: self.texture(r.texture),
+                }
             }))
+    }
+
+    /// Texture `index`, when it exists and the vertices have UVs.
+    fn texture(&self, index: Option<u32>) -> Option<&Texture> {
+        self.uvs.as_ref()?;
+        self.textures.get(index? as usize).map(|t| &**t)
+    }
+
+    /// Whether any face is drawn with a texture.
+    pub fn textured(&self) -> bool {
+        self.materials
+            .iter()
+            .any(|r| self.texture(r.texture).is_some())
     }
 
     /// The colour of face `f` in a mesh coloured `color`.
@@ -237,6 +287,9 @@ impl Geometry {
                 self.positions.push(self.positions[v as usize]);
                 if let Some(c) = &mut self.colors {
                     c.push(c[v as usize]);
+                }
+                if let Some(t) = &mut self.uvs {
+                    t.push(t[v as usize]);
                 }
                 self.normals.push(normal);
             }

@@ -54,6 +54,8 @@ mod file;
 mod mesh;
 #[cfg(feature = "gltf")]
 pub mod gltf;
+#[cfg(feature = "textures")]
+pub mod image;
 pub mod obj;
 #[cfg(feature = "ply")]
 pub mod ply;
@@ -71,7 +73,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 pub use builder::SceneBuilder;
-pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh};
+pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh, Run};
 pub use shapes::Shape;
 pub use transform::Axis;
 

@@ -1,4 +1,5 @@
-//! Wavefront OBJ, with the diffuse colours (`Kd`) of the MTL files it names.
+//! Wavefront OBJ, with the diffuse colours (`Kd`) and textures (`map_Kd`)
+//! of the MTL files it names.
 //!
 //! Read in one pass over the bytes, a line at a time through a buffer
 //! (never the whole file in memory); each line is scanned once by a
@@ -10,9 +11,14 @@
 //! the whole load (normals, connectivity) is 97M.
 //!
 //! What is read: `v` (with an optional `w`, and vertex colours `v x y z r g
-//! b`), `vn`, `vt` (checked; textures are not drawn), `f` (any number of
-//! corners, `v`, `v/vt`, `v//vn` or `v/vt/vn`, indices from 1 or negative
-//! from the end), `usemtl`, `mtllib` (one or more files). `l` and `p`
+//! b`), `vn`, `vt`, `f` (any number of corners, `v`, `v/vt`, `v//vn` or
+//! `v/vt/vn`, indices from 1 or negative from the end), `usemtl`, `mtllib`
+//! (one or more files; of each material its `Kd` and its `map_Kd` image,
+//! PNG or JPEG, with the `-clamp` option; other options are skipped). A
+//! material's image is decoded when a `usemtl` first selects it (with the
+//! `textures` feature; without it, the loader says the textures were not
+//! read); only faces of a textured material keep their `vt`, so a vertex
+//! is split only where its texture coordinates differ. `l` and `p`
 //! (lines and points) are not faces: they are skipped and counted, and a
 //! file of nothing else has no faces. Other statements (`o`, `g`, `s`, …)
 //! are ignored. Polygons are cut into triangles by the polygon triangulator (`polygon.rs`).
@@ -24,7 +30,10 @@
 
 use std::path::Path;
 
-use glam::Vec3;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
 use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
@@ -33,6 +42,7 @@ use super::mesh::{Geometry, MaterialRun};
 use super::polygon::{self, Point, Triangulator};
 use crate::color::{ColorSpace, Lin};
 use crate::error::{Error, Result};
+use crate::texture::{Sampler, Texture, Wrap};
 
 /// A model read from a file, and what the reader has to tell.
 #[derive(Debug)]
@@ -70,13 +80,40 @@ const MADE: u32 = 1 << 31;
 const EXTRA: u32 = 1 << 30;
 /// The most `v` a file may have: their indices stay clear of the bits.
 const MAX_VERTICES: usize = EXTRA as usize;
+/// No corner has used the `v` yet.
+const UNSET: u64 = u64::MAX;
+
+/// A corner's texture coordinate and normal, as one key.
+fn attrs(vt: u32, vn: u32) -> u64 {
+    u64::from(vt) << 32 | u64::from(vn)
+}
+
+/// A material of an MTL file.
+#[derive(Clone, Debug, Default)]
+struct Material {
+    /// Its `Kd`.
+    color: Option<Lin>,
+    /// Its `map_Kd`.
+    map: Option<Map>,
+}
+
+/// A `map_Kd`: the image, and where the MTL file names it.
+#[derive(Clone, Debug)]
+struct Map {
+    path: PathBuf,
+    sampler: Sampler,
+    mtl: String,
+    line: usize,
+    column: usize,
+}
 
 /// Everything gathered while reading.
 struct Reader<'a> {
     name: &'a str,
     dir: &'a Path,
     options: &'a LoadOptions,
-    /// The file's `v`, `vn` and vertex colours, and how many `vt`.
+    /// The file's `v`, `vn`, `vt` (`v` flipped to run down the image) and
+    /// vertex colours.
     pos: Vec<Vec3>,
     /// Where each non-finite `v` is (line), counted.
     bad_pos: Vec<u32>,
@@ -85,26 +122,35 @@ struct Reader<'a> {
     any_bad: bool,
     colors: Vec<Lin>,
     vn: Vec<Vec3>,
-    vt: usize,
-    /// For each `v`, the normal the first corner to use it named (`NONE`:
-    /// none yet): that corner's vertex is the `v` itself. Empty until a
-    /// corner names a normal.
-    normal_of: Vec<u32>,
-    /// Vertices of a `v` with a second (third, …) normal: `(v, vn)`, and
-    /// where each pair is in the list.
-    extra: Vec<(u32, u32)>,
-    extra_ids: FxHashMap<u64, u32>,
-    /// Vertices made between corners: position, colour, normal.
-    made: Vec<(Vec3, Lin, Vec3)>,
+    vt: Vec<Vec2>,
+    /// For each `v`, the texture coordinate and normal the first corner to
+    /// use it named (`attrs(vt, vn)`; `UNSET`: none yet): that corner's
+    /// vertex is the `v` itself. Empty until a corner names one.
+    attr_of: Vec<u64>,
+    /// Vertices of a `v` with a second (third, …) texture coordinate and
+    /// normal: `(v, attrs)`, and where each pair is in the list.
+    extra: Vec<(u32, u64)>,
+    extra_ids: FxHashMap<(u32, u64), u32>,
+    /// Vertices made between corners: position, colour, normal, UV.
+    made: Vec<(Vec3, Lin, Vec3, Vec2)>,
     triangles: Vec<[u32; 3]>,
     materials: Vec<MaterialRun>,
-    library: FxHashMap<Vec<u8>, Option<Lin>>,
+    library: FxHashMap<Vec<u8>, Material>,
+    /// The images decoded so far, and which file each came from.
+    textures: Vec<Arc<Texture>>,
+    texture_ids: FxHashMap<PathBuf, u32>,
+    /// Whether the faces now being read are textured (then their corners
+    /// keep their `vt`).
+    textured: bool,
+    /// Materials whose textures were not read (built without them).
+    unread_textures: usize,
     /// Whether every corner so far named a normal.
     all_normals: bool,
     lines_and_points: usize,
     dropped_faces: usize,
     cutter: Triangulator,
-    corners: Vec<(u32, u32)>,
+    /// The corners of the face being read: `v`, `vt`, `vn`.
+    corners: Vec<[u32; 3]>,
     ids: Vec<u32>,
     corner_pos: Vec<Vec3>,
     cut: Vec<[Point; 3]>,
@@ -120,14 +166,18 @@ fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) 
         any_bad: false,
         colors: Vec::new(),
         vn: Vec::new(),
-        vt: 0,
-        normal_of: Vec::new(),
+        vt: Vec::new(),
+        attr_of: Vec::new(),
         extra: Vec::new(),
         extra_ids: FxHashMap::default(),
         made: Vec::new(),
         triangles: Vec::new(),
         materials: Vec::new(),
         library: FxHashMap::default(),
+        textures: Vec::new(),
+        texture_ids: FxHashMap::default(),
+        textured: false,
+        unread_textures: 0,
         all_normals: true,
         lines_and_points: 0,
         dropped_faces: 0,
@@ -242,21 +292,32 @@ impl Reader<'_> {
                 self.vn.push(normal);
             }
             b"vt" => {
-                let (_, k) = self.numbers::<3>(&mut c, n, "vt")?;
+                let (t, k) = self.numbers::<3>(&mut c, n, "vt")?;
                 if k == 0 {
                     return Err(self.at(n, 1, "`vt` needs at least 1 number"));
                 }
-                self.vt += 1;
+                if self.vt.len() == MAX_VERTICES {
+                    return Err(self.at(n, 1, format!("more than {MAX_VERTICES} `vt`")));
+                }
+                self.vt.push(Vec2::new(t[0], 1.0 - t[1]));
             }
             b"f" => self.face(c, n)?,
             b"l" | b"p" => self.lines_and_points += 1,
             b"usemtl" => {
-                let color = self.library.get(c.rest()).copied().flatten();
-                let first = self.triangles.len() as u32;
-                if let Some(last) = self.materials.last_mut().filter(|r| r.first == first) {
-                    last.color = color;
-                } else {
-                    self.materials.push(MaterialRun { first, color });
+                let material = self.library.get(c.rest()).cloned().unwrap_or_default();
+                let texture = match material.map {
+                    Some(map) => self.texture(map)?,
+                    None => None,
+                };
+                self.textured = texture.is_some();
+                let run = MaterialRun {
+                    first: self.triangles.len() as u32,
+                    color: material.color,
+                    texture,
+                };
+                match self.materials.last_mut() {
+                    Some(last) if last.first == run.first => *last = run,
+                    _ => self.materials.push(run),
                 }
             }
             b"mtllib" => self.mtllib(c, n)?,
@@ -270,7 +331,7 @@ impl Reader<'_> {
         let line = c.line();
         self.corners.clear();
         let mut dropped = false;
-        let counts = [self.pos.len(), self.vt, self.vn.len()];
+        let counts = [self.pos.len(), self.vt.len(), self.vn.len()];
         while let Some(corner) = c.corner() {
             let (parts, col) = match corner {
                 Ok(parts) => (parts, 0),
@@ -294,12 +355,14 @@ impl Reader<'_> {
                 }
                 idx[k] = resolved as u32;
             }
-            let (v, vn) = (idx[0], idx[2]);
+            let [v, vt, vn] = idx;
             if self.any_bad {
                 dropped |= !self.pos[v as usize].is_finite()
                     || (vn != NONE && !self.vn[vn as usize].is_finite());
             }
-            self.corners.push((v, vn));
+            // Texture coordinates matter only where a texture is read.
+            let vt = if self.textured { vt } else { NONE };
+            self.corners.push([v, vt, vn]);
         }
         if self.corners.len() < 3 {
             return Err(self.at(
@@ -318,12 +381,12 @@ impl Reader<'_> {
         let corners = std::mem::take(&mut self.corners);
         let mut ids = std::mem::take(&mut self.ids);
         ids.clear();
-        for &(v, vn) in &corners {
+        for &[v, vt, vn] in &corners {
             self.all_normals &= vn != NONE;
-            ids.push(self.vertex(v, vn));
+            ids.push(self.vertex(v, vt, vn));
         }
         let quad = match corners[..] {
-            [a, b, c, d] => polygon::quad([a, b, c, d].map(|(v, _)| self.pos[v as usize])),
+            [a, b, c, d] => polygon::quad([a, b, c, d].map(|[v, ..]| self.pos[v as usize])),
             _ => None,
         };
         if corners.len() == 3 {
@@ -335,7 +398,7 @@ impl Reader<'_> {
         } else {
             self.corner_pos.clear();
             self.corner_pos
-                .extend(corners.iter().map(|&(v, _)| self.pos[v as usize]));
+                .extend(corners.iter().map(|&[v, ..]| self.pos[v as usize]));
             self.cut.clear();
             self.cutter.triangulate(&self.corner_pos, &mut self.cut);
             for tri in std::mem::take(&mut self.cut) {
@@ -363,36 +426,63 @@ impl Reader<'_> {
     }
 
     /// The output vertex of a corner: the `v` itself, unless the `v` was
-    /// first used with another normal.
+    /// first used with another texture coordinate or normal.
     #[inline]
-    fn vertex(&mut self, v: u32, vn: u32) -> u32 {
-        if vn == NONE {
+    fn vertex(&mut self, v: u32, vt: u32, vn: u32) -> u32 {
+        if vt == NONE && vn == NONE {
             return v;
         }
-        if self.normal_of.len() <= v as usize {
-            self.normal_of.resize(self.pos.len(), NONE);
+        let attr = attrs(vt, vn);
+        if self.attr_of.len() <= v as usize {
+            self.attr_of.resize(self.pos.len(), UNSET);
         }
-        let first = &mut self.normal_of[v as usize];
-        if *first == NONE {
-            *first = vn;
+        let first = &mut self.attr_of[v as usize];
+        if *first == UNSET {
+            *first = attr;
         }
-        if *first == vn {
+        if *first == attr {
             return v;
         }
         let next = self.extra.len() as u32;
-        let id = *self
-            .extra_ids
-            .entry(v as u64 | (vn as u64) << 32)
-            .or_insert(next);
+        let id = *self.extra_ids.entry((v, attr)).or_insert(next);
         if id == next {
-            self.extra.push((v, vn));
+            self.extra.push((v, attr));
         }
         EXTRA | id
     }
 
+    /// The texture a material's `map_Kd` names, decoded the first time a
+    /// `usemtl` selects it; an image that cannot be read is an error at
+    /// the MTL line that names it.
+    fn texture(&mut self, map: Map) -> Result<Option<u32>> {
+        if let Some(&id) = self.texture_ids.get(&map.path) {
+            return Ok(Some(id));
+        }
+        #[cfg(feature = "textures")]
+        {
+            let texture = super::image::load(&map.path, map.sampler, self.options.max_bytes)
+                .map_err(|message| Error::Parse {
+                    path: map.mtl.clone(),
+                    line: map.line,
+                    column: map.column,
+                    message,
+                })?;
+            let id = self.textures.len() as u32;
+            self.textures.push(Arc::new(texture));
+            self.texture_ids.insert(map.path, id);
+            Ok(Some(id))
+        }
+        #[cfg(not(feature = "textures"))]
+        {
+            let _ = (&map.sampler, &map.mtl, map.line, map.column);
+            self.unread_textures += 1;
+            Ok(None)
+        }
+    }
+
     /// A vertex made on the edge between corners `a` and `b`.
-    fn between(&mut self, corners: &[(u32, u32)], a: usize, b: usize, t: f32) -> u32 {
-        let ((va, na), (vb, nb)) = (corners[a], corners[b]);
+    fn between(&mut self, corners: &[[u32; 3]], a: usize, b: usize, t: f32) -> u32 {
+        let ([va, ta, na], [vb, tb, nb]) = (corners[a], corners[b]);
         let p = self.pos[va as usize].lerp(self.pos[vb as usize], t);
         let color = if self.colors.is_empty() {
             Lin::WHITE
@@ -408,7 +498,12 @@ impl Reader<'_> {
         } else {
             Vec3::Z
         };
-        self.made.push((p, color, normal));
+        let uv = if ta != NONE && tb != NONE {
+            self.vt[ta as usize].lerp(self.vt[tb as usize], t)
+        } else {
+            Vec2::ZERO
+        };
+        self.made.push((p, color, normal, uv));
         MADE | (self.made.len() as u32 - 1)
     }
 
@@ -459,6 +554,12 @@ impl Reader<'_> {
                 self.name, self.dropped_faces
             ));
         }
+        if self.unread_textures > 0 {
+            notes.push(format!(
+                "{}: {} textures not read (rastty was built without the `textures` feature)",
+                self.name, self.unread_textures
+            ));
+        }
         if self.lines_and_points > 0 {
             notes.push(format!(
                 "{}: {} line and point elements (`l`, `p`) are not faces and are not drawn",
@@ -483,17 +584,27 @@ impl Reader<'_> {
         let colored = !self.colors.is_empty();
         let keep_normals = self.all_normals;
         let vn = std::mem::take(&mut self.vn);
-        let normal = |i: u32| vn.get(i as usize).copied().unwrap_or(Vec3::Z);
+        // An attribute key's normal and texture coordinate.
+        let normal = |a: u64| vn.get(a as u32 as usize).copied().unwrap_or(Vec3::Z);
+        let vt = std::mem::take(&mut self.vt);
+        let uv = |a: u64| vt.get((a >> 32) as usize).copied().unwrap_or(Vec2::ZERO);
+        self.attr_of.resize(self.pos.len(), UNSET);
         let mut normals = Vec::new();
         if keep_normals {
-            self.normal_of.resize(self.pos.len(), NONE);
             normals.reserve_exact(self.pos.len() + self.extra.len() + self.made.len());
-            normals.extend(self.normal_of.iter().map(|&i| normal(i)));
-            normals.extend(self.extra.iter().map(|&(_, i)| normal(i)));
+            normals.extend(self.attr_of.iter().map(|&a| normal(a)));
+            normals.extend(self.extra.iter().map(|&(_, a)| normal(a)));
             normals.extend(self.made.iter().map(|m| m.2));
         }
-        drop(vn);
-        self.normal_of = Vec::new();
+        let uvs = (!self.textures.is_empty()).then(|| {
+            let mut uvs = Vec::with_capacity(self.pos.len() + self.extra.len() + self.made.len());
+            uvs.extend(self.attr_of.iter().map(|&a| uv(a)));
+            uvs.extend(self.extra.iter().map(|&(_, a)| uv(a)));
+            uvs.extend(self.made.iter().map(|m| m.3));
+            uvs
+        });
+        drop((vn, vt));
+        self.attr_of = Vec::new();
         let mut positions = std::mem::take(&mut self.pos);
         let extra_base = positions.len() as u32;
         let made_base = extra_base + self.extra.len() as u32;
@@ -523,6 +634,8 @@ impl Reader<'_> {
         (self.extra, self.extra_ids, self.made) = Default::default();
         let mut g = Geometry::new_raw(self.name, positions, std::mem::take(&mut self.triangles));
         g.colors = colors;
+        g.uvs = uvs;
+        g.textures = self.textures;
         g.materials = self.materials;
         if keep_normals {
             g.normals = normals
@@ -548,9 +661,8 @@ fn corner_offset(line: &[u8], k: usize) -> usize {
     c.word().map_or(0, |(_, at)| at)
 }
 
-/// A material library: each material's diffuse colour (`None`: it has no
-/// `Kd`).
-fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Option<Lin>>> {
+/// A material library: each material's diffuse colour and texture.
+fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Material>> {
     let (file, _) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let at = |line: usize, column: usize, message: String| Error::Parse {
@@ -575,8 +687,55 @@ fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Option<L
         match c.word() {
             Some((b"newmtl", _)) => {
                 let m = c.rest().to_vec();
-                out.insert(m.clone(), None);
+                out.insert(m.clone(), Material::default());
                 current = Some(m);
+            }
+            Some((b"map_Kd", kcol)) => {
+                let mut sampler = Sampler::default();
+                // Options first (`-clamp on` is read; others are skipped
+                // with their arguments), then the file name, spaces and all.
+                let mut rest = c;
+                loop {
+                    // Looked at on a copy, taken only if it is an option.
+                    let mut next = rest;
+                    let Some((w, _)) = next.word().filter(|(w, _)| w.starts_with(b"-")) else {
+                        break;
+                    };
+                    rest = next;
+                    let args = match w {
+                        b"-o" | b"-s" | b"-t" => 3,
+                        b"-mm" => 2,
+                        _ => 1,
+                    };
+                    for _ in 0..args {
+                        let arg = rest.word();
+                        if w == b"-clamp" && arg.is_some_and(|(a, _)| a == b"on") {
+                            sampler.wrap_u = Wrap::ClampToEdge;
+                            sampler.wrap_v = Wrap::ClampToEdge;
+                        }
+                    }
+                }
+                let file = rest.rest();
+                if file.is_empty() {
+                    return Err(at_byte(line, n, kcol, "`map_Kd` names no file".into()));
+                }
+                let Some(m) = &current else {
+                    return Err(at_byte(
+                        line,
+                        n,
+                        kcol,
+                        "`map_Kd` before any `newmtl`".into(),
+                    ));
+                };
+                let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
+                let map = Map {
+                    path: path.parent().unwrap_or(Path::new(".")).join(lossy(file)),
+                    sampler,
+                    mtl: name.clone(),
+                    line: n,
+                    column,
+                };
+                out.entry(m.clone()).or_default().map = Some(map);
             }
             Some((b"Kd", kcol)) => {
                 let mut v = [0.0f32; 3];
@@ -608,7 +767,7 @@ fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Option<L
                 let Some(m) = &current else {
                     return Err(at_byte(line, n, kcol, "`Kd` before any `newmtl`".into()));
                 };
-                out.insert(m.clone(), Some(options.mtl_colors.decode(v)));
+                out.entry(m.clone()).or_default().color = Some(options.mtl_colors.decode(v));
             }
             _ => {}
         }

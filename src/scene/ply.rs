@@ -121,13 +121,16 @@ fn read(mut r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
                 "face {f} names a vertex out of range (there are {n} vertices)"
             )));
         }
-        match corners[..] {
-            [] | [_] | [_, _] => return Err(bad(format!("face {f} has fewer than 3 vertices"))),
-            [a, b, c] => triangles.push([a, b, c]),
-            [a, b, c, d]
-                if polygon::quad([a, b, c, d].map(|i| positions[i as usize])).is_some() =>
-            {
-                let k = polygon::quad([a, b, c, d].map(|i| positions[i as usize])).unwrap_or(0);
+        let quad = match corners[..] {
+            [a, b, c, d] => polygon::quad([a, b, c, d].map(|i| positions[i as usize])),
+            _ => None,
+        };
+        match (&corners[..], quad) {
+            ([] | [_] | [_, _], _) => {
+                return Err(bad(format!("face {f} has fewer than 3 vertices")));
+            }
+            (&[a, b, c], _) => triangles.push([a, b, c]),
+            (&[a, b, c, d], Some(k)) => {
                 let q = [a, b, c, d];
                 let [a, b, c, e] = [k, k + 1, k + 2, (k + 3) % 4].map(|j| q[j]);
                 triangles.push([a, b, c]);

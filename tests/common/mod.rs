@@ -118,3 +118,167 @@ pub fn quad_ply(format: &str) -> Vec<u8> {
     }
     out
 }
+
+/// An 8-bit RGB PNG of `w × h` pixels, row by row from the top.
+pub fn png_rgb(w: u32, h: u32, pixels: &[[u8; 3]]) -> Vec<u8> {
+    assert_eq!(pixels.len(), (w * h) as usize);
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, w, h);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().unwrap();
+    writer
+        .write_image_data(&pixels.iter().flatten().copied().collect::<Vec<u8>>())
+        .unwrap();
+    writer.finish().unwrap();
+    out
+}
+
+/// A textured mesh as glTF parts: positions, texture coordinates,
+/// triangle indices, the image (PNG bytes, or `image_uri` naming it) and
+/// the sampler's JSON (`{}` for the defaults).
+pub struct TexturedMesh<'a> {
+    pub positions: &'a [[f32; 3]],
+    pub uvs: &'a [[f32; 2]],
+    pub indices: &'a [u32],
+    pub png: &'a [u8],
+    pub sampler: &'a str,
+    pub base_color: [f32; 4],
+}
+
+impl TexturedMesh<'_> {
+    /// The GLB file: positions, UVs, indices and the image in its binary
+    /// chunk.
+    pub fn glb(&self) -> Vec<u8> {
+        let (json, bin) = self.parts(None);
+        glb(&json, &bin)
+    }
+
+    /// The JSON (with the image in the buffer unless `image_uri` names a
+    /// file) and the binary buffer.
+    pub fn parts(&self, image_uri: Option<&str>) -> (String, Vec<u8>) {
+        let mut bin = f32s(&self.positions.concat());
+        let uv_at = bin.len();
+        bin.extend(f32s(&self.uvs.concat()));
+        let idx_at = bin.len();
+        bin.extend(self.indices.iter().flat_map(|i| i.to_le_bytes()));
+        let png_at = bin.len();
+        if image_uri.is_none() {
+            bin.extend_from_slice(self.png);
+        }
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let (lo, hi) = self.positions.iter().fold(
+            ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                    [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+                )
+            },
+        );
+        let n = self.positions.len();
+        let image = match image_uri {
+            Some(uri) => format!(r#"{{"uri":"{uri}"}}"#),
+            None => r#"{"bufferView":3,"mimeType":"image/png"}"#.to_string(),
+        };
+        let png_view = match image_uri {
+            Some(_) => String::new(),
+            None => format!(
+                r#",{{"buffer":0,"byteOffset":{png_at},"byteLength":{}}}"#,
+                self.png.len()
+            ),
+        };
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+            "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"indices":2,"material":0}}]}}],
+            "materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":{:?},"baseColorTexture":{{"index":0}}}}}}],
+            "textures":[{{"source":0,"sampler":0}}],
+            "samplers":[{}],
+            "images":[{image}],
+            "buffers":[{{"byteLength":{}}}],
+            "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{uv_at}}},
+                           {{"buffer":0,"byteOffset":{uv_at},"byteLength":{}}},
+                           {{"buffer":0,"byteOffset":{idx_at},"byteLength":{}}}{png_view}],
+            "accessors":[{{"bufferView":0,"componentType":5126,"count":{n},"type":"VEC3","min":{lo:?},"max":{hi:?}}},
+                         {{"bufferView":1,"componentType":5126,"count":{n},"type":"VEC2"}},
+                         {{"bufferView":2,"componentType":5125,"count":{},"type":"SCALAR"}}]}}"#,
+            self.base_color,
+            self.sampler,
+            bin.len(),
+            idx_at - uv_at,
+            self.indices.len() * 4,
+            self.indices.len(),
+        );
+        (json, bin)
+    }
+}
+
+/// The example model `examples/models/crate.glb`: a cube two units on a
+/// side, each face carrying the whole of a 64×64 crate texture (planks, a
+/// frame and a diagonal brace, made here), nearest-magnified so that its
+/// texels stay crisp up close and trilinear when minified.
+pub fn crate_glb() -> Vec<u8> {
+    // Each face: its normal, and the directions of the texture's right and
+    // up on it (right × up = normal, so the corners run counter-clockwise).
+    let faces: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
+        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
+        ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+        ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+        ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ];
+    let mut positions = Vec::new();
+    let mut uvs = Vec::new();
+    let mut indices = Vec::new();
+    for (n, r, u) in faces {
+        let base = positions.len() as u32;
+        for (sr, su, uv) in [
+            (-1.0, -1.0, [0.0, 1.0]),
+            (1.0, -1.0, [1.0, 1.0]),
+            (1.0, 1.0, [1.0, 0.0]),
+            (-1.0, 1.0, [0.0, 0.0]),
+        ] {
+            positions.push(std::array::from_fn(|k| n[k] + sr * r[k] + su * u[k]));
+            uvs.push(uv);
+        }
+        indices.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
+    }
+    let texels: Vec<[u8; 3]> = (0..64 * 64u32)
+        .map(|k| {
+            let (x, y) = (k % 64, k / 64);
+            // A little grain: a hash of the texel, ±8.
+            let h = (x.wrapping_mul(374_761_393) ^ y.wrapping_mul(668_265_263))
+                .wrapping_mul(2_246_822_519);
+            let grain = (h >> 28) as i32 - 8;
+            let shade = |c: [i32; 3], d: i32| c.map(|v| (v + d).clamp(0, 255) as u8);
+            let frame = !(6..58).contains(&x) || !(6..58).contains(&y);
+            let brace = (x as i32 - y as i32).abs() < 5;
+            if frame || brace {
+                let edge =
+                    x == 6 || x == 57 || y == 6 || y == 57 || (x as i32 - y as i32).abs() == 4;
+                shade([122, 78, 38], grain - if edge { 40 } else { 0 })
+            } else {
+                let plank = y / 9;
+                let seam = y % 9 == 0;
+                let tone = if plank % 2 == 0 {
+                    [176, 124, 66]
+                } else {
+                    [160, 110, 56]
+                };
+                shade(tone, grain - if seam { 60 } else { 0 })
+            }
+        })
+        .collect();
+    TexturedMesh {
+        positions: &positions,
+        uvs: &uvs,
+        indices: &indices,
+        png: &png_rgb(64, 64, &texels),
+        sampler: r#"{"magFilter":9728,"minFilter":9987}"#,
+        base_color: [1.0; 4],
+    }
+    .glb()
+}

@@ -1,0 +1,55 @@
+//! Image files for textures (an OBJ material's `map_Kd`): PNG and JPEG,
+//! decoded by the `image` crate (feature `textures`) and turned into a
+//! [`Texture`] (linear texels and mipmaps).
+//!
+//! The format is told by the bytes, not the name. The decoder is held to
+//! [`MAX_IMAGE_SIDE`] pixels a side and [`MAX_DECODE_BYTES`] of memory, so
+//! a header that claims a huge image is refused before anything that size
+//! is allocated; an image that fits but is larger than
+//! [`crate::texture::MAX_SIDE`] is then reduced at load.
+
+use std::io::{Cursor, Read as _};
+use std::path::Path;
+
+use image::{ImageFormat, ImageReader, Limits};
+
+use super::file;
+use crate::texture::{Sampler, Texture};
+
+/// The widest and tallest image decoded.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// The most memory the decoder may take for one image.
+pub const MAX_DECODE_BYTES: u64 = 512 << 20;
+
+/// Reads and decodes the image at `path`; the error says what is wrong,
+/// naming the file.
+pub fn load(path: &Path, sampler: Sampler, max_bytes: u64) -> Result<Texture, String> {
+    let name = path.display().to_string();
+    let (mut f, size) = file::open(path, max_bytes).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::with_capacity(size as usize);
+    f.read_to_end(&mut bytes)
+        .map_err(|e| format!("{name}: {e}"))?;
+    decode(&bytes, &name, sampler).map_err(|e| format!("{name}: {e}"))
+}
+
+/// Decodes PNG or JPEG bytes into a texture named `name`.
+pub fn decode(bytes: &[u8], name: &str, sampler: Sampler) -> Result<Texture, String> {
+    let format = match image::guess_format(bytes) {
+        Ok(f @ (ImageFormat::Png | ImageFormat::Jpeg)) => f,
+        Ok(other) => {
+            return Err(format!(
+                "a {other:?} image, which rastty does not read (PNG or JPEG)"
+            ));
+        }
+        Err(_) => return Err("not a PNG or JPEG image".into()),
+    };
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(MAX_DECODE_BYTES);
+    reader.limits(limits);
+    let image = reader.decode().map_err(|e| e.to_string())?;
+    let rgb = image.into_rgb8();
+    Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
+}
