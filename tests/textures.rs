@@ -577,3 +577,94 @@ fn the_example_crate_in_ascii_shows_its_planks_and_brace() {
     };
     insta::assert_snapshot!(rastty::render(&scene, &o).to_string());
 }
+
+#[test]
+fn a_gltf_with_its_buffer_and_image_as_data_uris_reads_the_same_texture() {
+    use base64::Engine as _;
+    let b64 = |b: &[u8]| base64::engine::general_purpose::STANDARD.encode(b);
+    let png = checker_png();
+    let (json, bin) = TexturedMesh {
+        positions: &FLOOR,
+        uvs: &FLOOR_UV,
+        indices: &[0, 1, 2, 0, 2, 3],
+        png: &png,
+        sampler: "{}",
+        base_color: [1.0; 4],
+    }
+    .parts(Some(&format!("data:image/png;base64,{}", b64(&png))));
+    let json = json.replacen(
+        r#""buffers":[{"#,
+        &format!(
+            r#""buffers":[{{"uri":"data:application/octet-stream;base64,{}","#,
+            b64(&bin)
+        ),
+        1,
+    );
+    let from_uris = gltf::parse(
+        json.as_bytes(),
+        Some(Path::new(".")),
+        "f.gltf",
+        &LoadOptions::default(),
+    )
+    .unwrap()
+    .geometry;
+    let from_glb = gltf::parse(&floor_glb("{}"), None, "f.glb", &LoadOptions::default())
+        .unwrap()
+        .geometry;
+    assert_eq!(from_uris.textures, from_glb.textures);
+    assert_eq!(from_uris.uvs, from_glb.uvs);
+    assert_eq!(from_uris.textures[0].texel(0, 0, 0), Vec3::ONE);
+    assert_eq!(from_uris.textures[0].texel(0, 1, 0), Vec3::ZERO);
+}
+
+#[test]
+fn a_jpeg_texture_is_read() {
+    // A flat colour survives JPEG at full quality to within a few steps.
+    let mut jpeg = Vec::new();
+    let pixels: Vec<u8> = [200u8, 120, 40].repeat(16 * 16);
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 100)
+        .encode(&pixels, 16, 16, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    let dir = dir_with(
+        "obj-jpeg",
+        &[
+            ("q.obj", OBJ_QUAD.as_bytes()),
+            ("q.mtl", b"newmtl tex\nmap_Kd wood.jpg\n"),
+            ("wood.jpg", &jpeg),
+        ],
+    );
+    let g = obj::load(&dir.join("q.obj"), &LoadOptions::default())
+        .unwrap()
+        .geometry;
+    let t = &g.textures[0];
+    assert_eq!(t.size(), (16, 16));
+    let want = Lin::from_srgb(Rgb::new(200, 120, 40))
+        .to_f32()
+        .map(|v| v / 65535.0);
+    let got = t.texel(0, 8, 8).to_array();
+    for k in 0..3 {
+        assert!((got[k] - want[k]).abs() < 0.02, "{got:?} {want:?}");
+    }
+}
+
+#[test]
+fn a_scene_file_places_a_textured_gltf_as_the_library_does() {
+    // `[[mesh]] path = "floor.glb"` with the floor's camera: the same
+    // samples as the scene built in code above.
+    let dir = dir_with("scene-floor", &[("floor.glb", &floor_glb("{}"))]);
+    let toml = "[camera]\nprojection = \"perspective\"\nfov_y = 60.0\nnear = 0.1\nfar = 100.0\n\
+                eye = [0.3, 1.0, 1.0]\ntarget = [0.0, 0.0, -6.0]\n[[mesh]]\npath = \"floor.glb\"\n";
+    std::fs::write(dir.join("floor.toml"), toml).unwrap();
+    let from_file = Scene::load(&dir.join("floor.toml")).unwrap();
+    let loaded = gltf::parse(&floor_glb("{}"), None, "floor.glb", &LoadOptions::default()).unwrap();
+    let in_code = Scene {
+        lights: from_file.lights.clone(),
+        ..scene_of(loaded, floor_camera())
+    };
+    let o = opts(None);
+    let (mut a, mut b) = (Renderer::new(), Renderer::new());
+    a.render(&from_file, &o);
+    b.render(&in_code, &o);
+    assert_eq!(a.framebuffer().samples(), b.framebuffer().samples());
+    assert!(a.stats().textured_samples > 1000);
+}
