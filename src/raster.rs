@@ -126,6 +126,18 @@ struct Edge {
 }
 
 impl Edge {
+    /// An edge that accepts nothing, for a set-up triangle whose bounding
+    /// box holds no sample centre (its edges are never evaluated).
+    const NONE: Edge = Edge {
+        from: FixedPoint {
+            x: Fixed(0),
+            y: Fixed(0),
+        },
+        dx: 0,
+        dy: 0,
+        min: 1,
+    };
+
     fn new(from: FixedPoint, to: FixedPoint) -> Edge {
         let dx = to.x.0 - from.x.0;
         let dy = to.y.0 - from.y.0;
@@ -155,6 +167,19 @@ impl Edge {
     fn step_y(&self) -> i64 {
         self.dx * ONE
     }
+}
+
+/// The first sample whose centre `i·256 + 128` is at or right of (above)
+/// `lo`, in fixed point: a bounding box's first candidate.
+#[inline(always)]
+fn first_sample(lo: i64) -> i64 {
+    (lo - ONE / 2 + ONE - 1).div_euclid(ONE)
+}
+
+/// The last sample whose centre is at or left of (below) `hi`.
+#[inline(always)]
+fn last_sample(hi: i64) -> i64 {
+    (hi - ONE / 2).div_euclid(ONE)
 }
 
 /// A triangle set up for rasterization: snapped, oriented, bounded.
@@ -203,7 +228,10 @@ impl Setup {
         Setup::from_fixed(p, grid, cull)
     }
 
-    /// Sets up a triangle already snapped.
+    /// Sets up a triangle already snapped. One whose bounding box holds no
+    /// sample centre (most triangles of a detailed model seen small) is
+    /// set up without its edges: nothing will evaluate them.
+    #[inline]
     pub fn from_fixed(p: [FixedPoint; 3], grid: Grid, cull: Cull) -> Result<Setup, Rejected> {
         let limit = (MAX_COORD as i64) * ONE;
         if p.iter().any(|q| q.x.0.abs() > limit || q.y.0.abs() > limit) {
@@ -223,6 +251,28 @@ impl Setup {
             (Cull::Back, false) | (Cull::Front, true) => return Err(Rejected::Culled),
             _ => {}
         }
+        let (min_x, max_x) = min_max(p.map(|q| q.x.0));
+        let (min_y, max_y) = min_max(p.map(|q| q.y.0));
+        let (x0, x1) = (
+            first_sample(min_x).max(0),
+            last_sample(max_x).min(grid.width as i64 - 1),
+        );
+        let (y0, y1) = (
+            first_sample(min_y).max(0),
+            last_sample(max_y).min(grid.height as i64 - 1),
+        );
+        if x0 > x1 || y0 > y1 {
+            return Ok(Setup {
+                edges: [Edge::NONE; 3],
+                order: [0, 1, 2],
+                area2: area2.abs(),
+                ccw,
+                x0,
+                x1,
+                y0,
+                y1,
+            });
+        }
         let key = |q: &FixedPoint| (q.y, q.x);
         let r = (0..3).min_by_key(|&i| key(&p[i])).unwrap_or(0);
         let order = [r, (r + 1) % 3, (r + 2) % 3];
@@ -238,22 +288,15 @@ impl Setup {
             }
         };
         let edges = [edge(0), edge(1), edge(2)];
-
-        // Bounding box in samples: sample i is a candidate when its centre
-        // i·256 + 128 lies within [min, max].
-        let (min_x, max_x) = min_max(p.map(|q| q.x.0));
-        let (min_y, max_y) = min_max(p.map(|q| q.y.0));
-        let first = |lo: i64| (lo - ONE / 2 + ONE - 1).div_euclid(ONE);
-        let last = |hi: i64| (hi - ONE / 2).div_euclid(ONE);
         Ok(Setup {
             edges,
             order,
             area2: area2.abs(),
             ccw,
-            x0: first(min_x).max(0),
-            x1: last(max_x).min(grid.width as i64 - 1),
-            y0: first(min_y).max(0),
-            y1: last(max_y).min(grid.height as i64 - 1),
+            x0,
+            x1,
+            y0,
+            y1,
         })
     }
 

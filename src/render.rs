@@ -566,23 +566,24 @@ impl Renderer {
             let grid = self.fb.grid();
             match stage.precision {
                 Precision::Fixed => {
-                    if let Some(s) = self.setup(Setup::from_fixed(fixed, grid, cull), stage.exact) {
+                    let setup = Setup::from_fixed(fixed, grid, cull);
+                    if let Some(s) = self.setup(&setup, stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
-                        self.fill(&s, &screen(c), stage, texture);
+                        self.fill(s, &screen(c), stage, texture);
                     }
                 }
                 Precision::F64 => {
                     let setup = FloatSetup::<f64>::new(xy, grid, cull);
-                    if let Some(s) = self.setup(setup, stage.exact) {
+                    if let Some(s) = self.setup(&setup, stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(&s, &screen(c), stage, texture);
+                        self.fill(s, &screen(c), stage, texture);
                     }
                 }
                 Precision::F32 => {
                     let setup = FloatSetup::<f32>::new(xy, grid, cull);
-                    if let Some(s) = self.setup(setup, stage.exact) {
+                    if let Some(s) = self.setup(&setup, stage.exact) {
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(&s, &screen(c), stage, texture);
+                        self.fill(s, &screen(c), stage, texture);
                     }
                 }
             }
@@ -622,20 +623,20 @@ impl Renderer {
                     match stage.precision {
                         Precision::Fixed => {
                             let setup = Setup::from_fixed(tri.map(|v| v.fixed), grid, cull);
-                            if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage, texture);
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
                             }
                         }
                         Precision::F64 => {
                             let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
-                            if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage, texture);
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
                             }
                         }
                         Precision::F32 => {
                             let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
-                            if let Some(s) = self.setup(setup, stage.exact) {
-                                self.fill(&s, &screen, stage, texture);
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
                             }
                         }
                     }
@@ -677,7 +678,13 @@ impl Renderer {
 
     /// A set-up screen triangle, counted; `None` when it was rejected or
     /// covers no sample.
-    fn setup<C: Coverage>(&mut self, setup: Result<C, Rejected>, exact: bool) -> Option<C> {
+    /// Borrowed, not moved: a set-up triangle is a few hundred bytes.
+    #[inline(always)]
+    fn setup<'s, C: Coverage>(
+        &mut self,
+        setup: &'s Result<C, Rejected>,
+        exact: bool,
+    ) -> Option<&'s C> {
         match setup {
             Ok(s) => {
                 self.stats.raster.triangles_drawn += 1;
@@ -686,7 +693,7 @@ impl Renderer {
                 (s.bbox_samples() > 0 || exact).then_some(s)
             }
             Err(r) => {
-                self.stats.raster.count_rejected(r);
+                self.stats.raster.count_rejected(*r);
                 None
             }
         }
