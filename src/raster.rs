@@ -273,8 +273,11 @@ impl Setup {
                 y1,
             });
         }
-        let key = |q: &FixedPoint| (q.y, q.x);
-        let r = (0..3).min_by_key(|&i| key(&p[i])).unwrap_or(0);
+        // The first of the lowest (then leftmost), as `min_by_key` would
+        // find it, in two comparisons.
+        let below = |a: usize, b: usize| (p[a].y.0, p[a].x.0) < (p[b].y.0, p[b].x.0);
+        let r = if below(1, 0) { 1 } else { 0 };
+        let r = if below(2, r) { 2 } else { r };
         let order = [r, (r + 1) % 3, (r + 2) % 3];
         let p = order.map(|i| p[i]);
         // Edge opposite vertex i runs from i+1 to i+2 when counter-clockwise;
@@ -390,6 +393,11 @@ impl Setup {
     }
 }
 
+/// The largest bounding box (in samples) [`Coverage::covers_any`] tests
+/// sample by sample: most triangles of a detailed model seen small have a
+/// box of one to four samples and cover none of them.
+pub const SMALL_BOX: u64 = 8;
+
 fn min_max(v: [i64; 3]) -> (i64, i64) {
     (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]))
 }
@@ -440,6 +448,12 @@ pub trait Coverage {
     fn ccw(&self) -> bool;
     /// Samples in the clamped bounding box.
     fn bbox_samples(&self) -> u64;
+    /// Whether any sample may be covered: `false` only when it is certain
+    /// that none is (cheap to tell for a small box; a large box says
+    /// `true`).
+    fn covers_any(&self) -> bool {
+        true
+    }
     /// The weights as f32.
     fn f32(w: Self::Weights) -> [f32; 3];
     /// Calls `hit` for each covered sample; returns the samples tested.
@@ -468,6 +482,17 @@ impl Coverage for Setup {
 
     fn bbox_samples(&self) -> u64 {
         Setup::bbox_samples(self)
+    }
+
+    /// Each sample of a box of at most [`SMALL_BOX`] samples tested
+    /// directly, stopping at the first inside.
+    #[inline(always)]
+    fn covers_any(&self) -> bool {
+        if self.bbox_samples() > SMALL_BOX {
+            return true;
+        }
+        (self.y0..=self.y1)
+            .any(|y| (self.x0..=self.x1).any(|x| self.inside(x as u32, y as u32).is_some()))
     }
 
     #[inline(always)]
@@ -685,6 +710,24 @@ impl RasterStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// `covers_any` says no only of triangles the walk finds no sample
+        /// of, and says so of every small one that covers none.
+        #[test]
+        fn covers_any_is_false_exactly_for_small_triangles_covering_nothing(
+            c in proptest::array::uniform6(-300i64..1800),
+        ) {
+            let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
+            let grid = Grid::new(6, 5);
+            if let Ok(s) = Setup::from_fixed(p, grid, Cull::None) {
+                let mut hits = 0;
+                s.walk(grid, Traversal::Incremental, |_, _, _| hits += 1);
+                let small = s.bbox_samples() <= SMALL_BOX;
+                proptest::prop_assert_eq!(s.covers_any(), hits > 0 || !small);
+            }
+        }
+    }
 
     fn coverage(v: [[f32; 2]; 3], grid: Grid, t: Traversal) -> Vec<u8> {
         let mut out = vec![0u8; grid.len()];

@@ -568,6 +568,17 @@ impl Renderer {
                 Precision::Fixed => {
                     let setup = Setup::from_fixed(fixed, grid, cull);
                     if let Some(s) = self.setup(&setup, stage.exact) {
+                        // A small triangle between sample centres is not lit
+                        // or filled (the full pipeline fills it anyway: the
+                        // same nothing). Counted as its walk would count it.
+                        if early.is_none()
+                            && !stage.exact
+                            && stage.traversal != Traversal::Scan
+                            && !s.covers_any()
+                        {
+                            self.stats.raster.samples_tested += s.bbox_samples();
+                            return;
+                        }
                         let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
                         self.fill(s, &screen(c), stage, texture);
                     }
