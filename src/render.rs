@@ -163,6 +163,15 @@ struct ScreenTriangle {
     uv: [Vec2; 3],
 }
 
+/// Where a triangle's model-space vertices are, and the matrix taking them
+/// to clip space: read only if it must be clipped.
+#[derive(Clone, Copy)]
+struct Model<'a> {
+    positions: &'a [Vec3],
+    face: [u32; 3],
+    mvp: &'a DMat4,
+}
+
 /// A triangle's texture, how to read it, and its vertices' coordinates.
 #[derive(Clone, Copy)]
 struct Tex<'a> {
@@ -405,8 +414,12 @@ impl Renderer {
                             None => [Vec2::ZERO; 3],
                         },
                     });
-                    let model = face.map(|i| mesh.positions[i as usize]);
-                    self.triangle(stage, v, base, cull, (model, &transforms.mvp64), tex);
+                    let model = Model {
+                        positions: &mesh.positions,
+                        face: *face,
+                        mvp: &transforms.mvp64,
+                    };
+                    self.triangle(stage, v, base, cull, model, tex);
                 }
             }
             self.verts = verts;
@@ -425,7 +438,11 @@ impl Renderer {
                 [&verts[0], &verts[1], &verts[2]],
                 tri.color.at_vertices().map(Lin::from_srgb),
                 cull,
-                (tri.vertices, &loose.mvp64),
+                Model {
+                    positions: &tri.vertices,
+                    face: [0, 1, 2],
+                    mvp: &loose.mvp64,
+                },
                 p.texture(None).map(|(texture, sampler)| Tex {
                     texture,
                     sampler,
@@ -530,7 +547,7 @@ impl Renderer {
         v: [&Vert; 3],
         base: [Lin; 3],
         cull: Cull,
-        model: ([Vec3; 3], &DMat4),
+        model: Model<'_>,
         tex: Option<Tex<'_>>,
     ) {
         self.stats.triangles_in += 1;
@@ -605,9 +622,13 @@ impl Renderer {
         let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
         let back = face.dot(transform::direction(stage.eye.to_eye(v[0].world))) < 0.0;
         let color = self.shade(stage, v, base, back);
-        let (positions, mvp) = model;
+        let Model {
+            positions,
+            face,
+            mvp,
+        } = model;
         let verts = [0, 1, 2].map(|i| ClipVertex {
-            pos: positions[i].as_dvec3().extend(1.0),
+            pos: positions[face[i] as usize].as_dvec3().extend(1.0),
             color: color[i],
             uv: uv[i],
             snapped: (v[i].code == 0).then_some(Snapped {
