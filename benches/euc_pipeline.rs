@@ -64,7 +64,10 @@ pub fn setup<'a>(
 ) -> (Lit<'a>, Vec<u32>, Buffer2d<u32>, Buffer2d<f32>) {
     let mesh = &scene.meshes[0];
     let model = rastty::transform::rotation(opts.turn) * mesh.model;
-    let mvp = scene.camera.view_projection(opts.aspect()) * model;
+    // The camera as rastty places it for this view (a framing camera's
+    // distance depends on the aspect).
+    let camera = scene.camera.resolved(opts.aspect());
+    let mvp = camera.view_projection(opts.aspect()) * model;
     let indices: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
     let pipeline = Lit {
         mvp,
