@@ -144,6 +144,30 @@ fn digits(n: u32) -> usize {
     }
 }
 
+/// The decimal digits of every byte value, and how many there are: a
+/// colour channel is written by a table lookup, not by dividing.
+static BYTE_DIGITS: [([u8; 3], u8); 256] = {
+    let mut t = [([0u8; 3], 0u8); 256];
+    let mut n = 0;
+    while n < 256 {
+        let (h, te, o) = ((n / 100) as u8, (n / 10 % 10) as u8, (n % 10) as u8);
+        t[n] = match n {
+            0..=9 => ([b'0' + o, 0, 0], 1),
+            10..=99 => ([b'0' + te, b'0' + o, 0], 2),
+            _ => ([b'0' + h, b'0' + te, b'0' + o], 3),
+        };
+        n += 1;
+    }
+    t
+};
+
+/// Appends the decimal digits of a byte.
+#[inline(always)]
+fn push_byte(buf: &mut Vec<u8>, v: u8) {
+    let (d, n) = &BYTE_DIGITS[v as usize];
+    buf.extend_from_slice(&d[..*n as usize]);
+}
+
 /// Appends the SGR parameters of one plane: `base` is 30 for the
 /// foreground, 40 for the background.
 fn push_ink(buf: &mut Vec<u8>, base: u32, ink: Ink) {
@@ -154,16 +178,16 @@ fn push_ink(buf: &mut Vec<u8>, base: u32, ink: Ink) {
         Ink::Indexed(i) => {
             push_num(buf, base + 8);
             buf.extend_from_slice(b";5;");
-            push_num(buf, i as u32);
+            push_byte(buf, i);
         }
         Ink::Rgb(Rgb([r, g, b])) => {
             push_num(buf, base + 8);
             buf.extend_from_slice(b";2;");
-            push_num(buf, r as u32);
+            push_byte(buf, r);
             buf.push(b';');
-            push_num(buf, g as u32);
+            push_byte(buf, g);
             buf.push(b';');
-            push_num(buf, b as u32);
+            push_byte(buf, b);
         }
     }
 }
@@ -682,6 +706,15 @@ mod tests {
         let mut b = Vec::new();
         push_sgr(&mut b, from, to);
         String::from_utf8(b).unwrap()
+    }
+
+    #[test]
+    fn byte_digits_are_the_decimal_numbers() {
+        for v in 0..=255u8 {
+            let mut buf = Vec::new();
+            push_byte(&mut buf, v);
+            assert_eq!(buf, v.to_string().as_bytes());
+        }
     }
 
     #[test]
