@@ -262,6 +262,9 @@ impl Setup {
             last_sample(max_y).min(grid.height as i64 - 1),
         );
         if x0 > x1 || y0 > y1 {
+            // A return of its own rather than one `Ok(Setup { .. })` below
+            // with the edges chosen by an `if`: 3 % fewer instructions on a
+            // Tux frame (callgrind).
             return Ok(Setup {
                 edges: [Edge::NONE; 3],
                 order: [0, 1, 2],
