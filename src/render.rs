@@ -128,8 +128,11 @@ impl Transforms {
 /// A vertex after the vertex stage.
 #[derive(Clone, Copy, Debug, Default)]
 struct Vert {
-    /// Position and unit normal in the turned world (where lights live).
+    /// Position in the turned world, where lights live (flat shading only:
+    /// zero otherwise).
     world: Vec3,
+    /// Unit normal in the turned world (smooth shading only: zero
+    /// otherwise).
     normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     light: Vec3,
@@ -170,6 +173,8 @@ struct Model<'a> {
     positions: &'a [Vec3],
     face: [u32; 3],
     mvp: &'a DMat4,
+    /// Model to the turned world, where facing is told.
+    world: &'a Mat4,
 }
 
 /// A triangle's texture, how to read it, and its vertices' coordinates.
@@ -418,6 +423,7 @@ impl Renderer {
                         positions: &mesh.positions,
                         face: *face,
                         mvp: &transforms.mvp64,
+                        world: &transforms.model,
                     };
                     self.triangle(stage, v, base, cull, model, tex);
                 }
@@ -442,6 +448,7 @@ impl Renderer {
                     positions: &tri.vertices,
                     face: [0, 1, 2],
                     mvp: &loose.mvp64,
+                    world: &loose.model,
                 },
                 p.texture(None).map(|(texture, sampler)| Tex {
                     texture,
@@ -493,6 +500,9 @@ impl Renderer {
             ..
         } = *t;
         let smooth = stage.plan.shading == Shading::Smooth;
+        // World positions serve flat shading only (the clip path finds its
+        // own from the model).
+        let flat = stage.plan.shading == Shading::Flat;
         self.verts.clear();
         self.stats.vertices += positions.len() as u64;
         if smooth {
@@ -512,9 +522,18 @@ impl Renderer {
                 } else {
                     0
                 };
-                let normal = transform::direction(normal_matrix * n);
+                // Only smooth shading reads vertex normals.
+                let normal = if smooth {
+                    transform::direction(normal_matrix * n)
+                } else {
+                    Vec3::ZERO
+                };
                 let mut v = Vert {
-                    world: model.transform_point3(p),
+                    world: if flat {
+                        model.transform_point3(p)
+                    } else {
+                        Vec3::ZERO
+                    },
                     normal,
                     bad_normal: !n.is_finite(),
                     code,
@@ -619,14 +638,16 @@ impl Renderer {
         }
         // Clipped: lit before clipping (colours are interpolated along the
         // cut edges), facing told in the world.
-        let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
-        let back = face.dot(transform::direction(stage.eye.to_eye(v[0].world))) < 0.0;
-        let color = self.shade(stage, v, base, back);
         let Model {
             positions,
             face,
             mvp,
+            world,
         } = model;
+        let w = face.map(|i| world.transform_point3(positions[i as usize]));
+        let normal = transform::face_normal(w[0], w[1], w[2]);
+        let back = normal.dot(transform::direction(stage.eye.to_eye(w[0]))) < 0.0;
+        let color = self.shade(stage, v, base, back);
         let verts = [0, 1, 2].map(|i| ClipVertex {
             pos: positions[face[i] as usize].as_dvec3().extend(1.0),
             color: color[i],
