@@ -1229,7 +1229,6 @@ mod tests {
     #[test]
     fn trilinear_filtering_errs_least_on_the_receding_floor() {
         let [nearest, bilinear, trilinear] = FilterMode::ALL.map(filter_error);
-        eprintln!("{nearest:?} {bilinear:?} {trilinear:?}");
         assert!(trilinear.1 < bilinear.1 && bilinear.1 < nearest.1);
         assert!(trilinear.1 < nearest.1 / 2.0);
     }

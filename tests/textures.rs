@@ -269,7 +269,7 @@ fn minified_nearest_aliases_and_trilinear_averages() {
 }
 
 #[test]
-fn affine_interpolation_bends_the_floor_and_perspective_does_not() {
+fn affine_interpolation_puts_the_floors_squares_in_the_wrong_places() {
     let camera = floor_camera();
     let loaded = gltf::parse(&floor_glb("{}"), None, "floor.glb", &LoadOptions::default()).unwrap();
     let scene = scene_of(loaded, camera);
