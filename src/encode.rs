@@ -9,7 +9,19 @@
 //!
 //! * **SGR only where a colour changes**, foreground and background in one
 //!   sequence, and `CSI m` (3 bytes) to go back to the defaults. A blank cell
-//!   shows only its background, so its foreground never forces an SGR.
+//!   shows only its background and `█` only its foreground, so the other
+//!   plane never forces an SGR.
+//! * **Cells drawn the way round that keeps the pen**: a block element of
+//!   the two-colour modes shows the same picture as its complement with the
+//!   colours swapped (`▀` red on blue is `▄` blue on red; a blank in red is
+//!   `█` in red), so each changed cell is written in whichever form costs
+//!   fewer bytes from the current pen, counted over the run of copies of it
+//!   that follow. The choice is greedy, cell by cell: it never looks further
+//!   ahead. On the turning square this alone took half mode's later frames
+//!   from 1,328 bytes to 966 and octant's from 2,089 to 1,478. Neither colour
+//!   may be the terminal's default, which differs as a foreground and as a
+//!   background; braille and the ramps have no complement. Frames are
+//!   compared by picture, so a cell the blitter turned round is no change.
 //! * **The cheapest cursor move**: of CUP, CHA, CUF, CUB, CUD, CUU, VPA, CR
 //!   and CR LF (and their combinations), the shortest that reaches the next
 //!   cell to write; nothing at all when it is the adjacent one. A short gap
@@ -93,17 +105,136 @@ impl TermCell {
     }
 
     /// The pen this cell needs, given the current one: a blank keeps the
-    /// current foreground.
+    /// current foreground, a full block the current background.
     fn pen(&self, current: Pen) -> Pen {
-        Pen {
-            fg: if self.ch == ' ' { current.fg } else { self.fg },
-            bg: self.bg,
+        match self.ch {
+            ' ' => Pen {
+                fg: current.fg,
+                bg: self.bg,
+            },
+            FULL => Pen {
+                fg: self.fg,
+                bg: current.bg,
+            },
+            _ => Pen {
+                fg: self.fg,
+                bg: self.bg,
+            },
         }
     }
 
     /// Whether the cell can be written with `pen` as it is.
     fn fits(&self, pen: Pen) -> bool {
-        self.bg == pen.bg && (self.ch == ' ' || self.fg == pen.fg)
+        match self.ch {
+            ' ' => self.bg == pen.bg,
+            FULL => self.fg == pen.fg,
+            _ => self.bg == pen.bg && self.fg == pen.fg,
+        }
+    }
+
+    /// The cell with the colours a blank or a full block does not show set
+    /// to the default, so that equal pictures compare equal.
+    fn normalized(self) -> TermCell {
+        match self.ch {
+            ' ' => TermCell {
+                fg: Ink::Default,
+                ..self
+            },
+            FULL => TermCell {
+                bg: Ink::Default,
+                ..self
+            },
+            _ => self,
+        }
+    }
+
+    /// The same picture drawn the other way round, when there is one: the
+    /// complementary block element with foreground and background swapped
+    /// (`▀` on blue in red is `▄` on red in blue; a blank in red is `█` in
+    /// red). Neither colour may be the terminal's default, which is a
+    /// different colour as a foreground than as a background; braille and
+    /// the ramps have no complement.
+    fn flipped(&self) -> Option<TermCell> {
+        let shown_default = match self.ch {
+            ' ' => self.bg == Ink::Default,
+            FULL => self.fg == Ink::Default,
+            _ => self.fg == Ink::Default || self.bg == Ink::Default,
+        };
+        if shown_default {
+            return None;
+        }
+        let ch = complement(self.ch)?;
+        let (fg, bg) = match self.ch {
+            ' ' => (self.bg, Ink::Default),
+            FULL => (Ink::Default, self.fg),
+            _ => (self.bg, self.fg),
+        };
+        Some(TermCell { ch, fg, bg }.normalized())
+    }
+
+    /// Whether the terminal shows the same picture for both cells, in
+    /// either orientation.
+    pub fn same_picture(&self, other: &TermCell) -> bool {
+        self == other || {
+            let other = other.normalized();
+            self.normalized() == other || self.flipped() == Some(other)
+        }
+    }
+
+    /// The form of this cell (itself or [`TermCell::flipped`]) that costs the
+    /// fewest bytes written `count` times from `pen`: the SGR and the
+    /// characters (a space is one byte, a block element three).
+    fn cheapest_from(&self, pen: Pen, count: usize) -> TermCell {
+        if self.fits(pen) && self.ch.len_utf8() == 1 {
+            return *self;
+        }
+        let Some(f) = self.flipped() else {
+            return *self;
+        };
+        let cost = |c: &TermCell| sgr_cost(pen, c.pen(pen)) + count * c.ch.len_utf8();
+        if cost(&f) < cost(self) { f } else { *self }
+    }
+
+    /// The form of this cell that can be written with `pen` as it is, if
+    /// either can.
+    fn fitting(&self, pen: Pen) -> Option<TermCell> {
+        if self.fits(pen) {
+            return Some(*self);
+        }
+        self.flipped().filter(|f| f.fits(pen))
+    }
+}
+
+/// The full block, which shows only its foreground.
+const FULL: char = '█';
+
+/// The block element that draws the samples `ch` leaves out, for the glyphs
+/// of the two-colour modes (half, quadrant, sextant, octant; the space and
+/// `█` are each other's); `None` for any other character.
+pub fn complement(ch: char) -> Option<char> {
+    use crate::blit::glyphs::{OCTANT_ELSEWHERE, octant, sextant};
+    match ch {
+        ' ' => Some(FULL),
+        FULL => Some(' '),
+        '\u{1FB00}'..='\u{1FB3B}' => {
+            // The sextants skip the masks of the left and right halves.
+            let mut mask = ch as u32 - 0x1FB00 + 1;
+            mask += (mask >= 0x15) as u32;
+            mask += (mask >= 0x2a) as u32;
+            Some(sextant(!(mask as u8) & 0x3f))
+        }
+        '\u{1CD00}'..='\u{1CDE5}' => {
+            // The octants skip the masks drawn by older characters.
+            let mut mask = ch as u32 - 0x1CD00;
+            for &(m, _) in &OCTANT_ELSEWHERE {
+                mask += (m as u32 <= mask) as u32;
+            }
+            Some(octant(!(mask as u8)))
+        }
+        _ => OCTANT_ELSEWHERE
+            .iter()
+            .find(|&&(_, c)| c == ch)
+            .map(|&(m, _)| octant(!m)),
     }
 }
 
@@ -190,6 +321,34 @@ fn push_ink(buf: &mut Vec<u8>, base: u32, ink: Ink) {
             push_byte(buf, b);
         }
     }
+}
+
+/// The length of [`push_ink`]'s parameters.
+fn ink_cost(base: u32, ink: Ink) -> usize {
+    match ink {
+        Ink::Default | Ink::Indexed(0..=7) => 2,
+        Ink::Indexed(8..=15) => digits(base + 60),
+        Ink::Indexed(i) => 5 + BYTE_DIGITS[i as usize].1 as usize,
+        Ink::Rgb(Rgb([r, g, b])) => {
+            7 + [r, g, b]
+                .iter()
+                .map(|&v| BYTE_DIGITS[v as usize].1 as usize)
+                .sum::<usize>()
+        }
+    }
+}
+
+/// The length of what [`push_sgr`] appends.
+fn sgr_cost(from: Pen, to: Pen) -> usize {
+    if from == to {
+        return 0;
+    }
+    if to == Pen::default() {
+        return 3;
+    }
+    let fg = (from.fg != to.fg).then(|| ink_cost(30, to.fg));
+    let bg = (from.bg != to.bg).then(|| ink_cost(40, to.bg));
+    3 + fg.unwrap_or(0) + bg.unwrap_or(0) + (fg.is_some() && bg.is_some()) as usize
 }
 
 /// Appends the shortest SGR taking the terminal from `from` to `to`;
@@ -432,8 +591,9 @@ fn push_move(buf: &mut Vec<u8>, plan: Option<(Vertical, Horizontal)>, to: Cursor
     }
 }
 
-/// The cells of `next` that differ from `prev`, as `(index, cell)`, in
-/// order. Allocates nothing.
+/// The cells of `next` whose picture differs from `prev`'s (see
+/// [`TermCell::same_picture`]), as `(index, cell)`, in order. Allocates
+/// nothing.
 pub fn diff<'a>(
     prev: &'a [TermCell],
     next: &'a [TermCell],
@@ -441,7 +601,7 @@ pub fn diff<'a>(
     prev.iter()
         .zip(next)
         .enumerate()
-        .filter(|(_, (p, n))| p != n)
+        .filter(|(_, (p, n))| !p.same_picture(n))
         .map(|(i, (_, n))| (i, n))
 }
 
@@ -663,12 +823,16 @@ impl Encoder {
                 Some(c) if c.row == to.row && c.col < to.col && move_cost > 0 => {
                     let cells = &next[i - (to.col - c.col) as usize..i];
                     let cost: usize = cells.iter().map(|c| c.ch.len_utf8()).sum();
-                    (cost < move_cost && cells.iter().all(|c| c.fits(pen))).then_some(cells)
+                    (cost < move_cost && cells.iter().all(|c| c.fitting(pen).is_some()))
+                        .then_some(cells)
                 }
                 _ => None,
             };
             match gap {
-                Some(cells) => cells.iter().for_each(|c| push_char(buf, c.ch)),
+                Some(cells) => cells
+                    .iter()
+                    .filter_map(|c| c.fitting(pen))
+                    .for_each(|c| push_char(buf, c.ch)),
                 None => push_move(buf, plan, to),
             }
             // With REP, identical cells that follow on the row are sent as
@@ -681,12 +845,20 @@ impl Encoder {
                     .count();
                 1 + (0..same)
                     .rev()
-                    .find(|&k| shown[i + 1 + k] != next[i + 1 + k])
+                    .find(|&k| !shown[i + 1 + k].same_picture(&next[i + 1 + k]))
                     .map_or(0, |k| k + 1)
             } else {
                 1
             };
-            pen = push_run(buf, pen, cell, run, self.rep, true);
+            // Of the cell and its flip, the one that costs least over the
+            // changed copies of it that follow.
+            let row_end = (to.row as usize + 1) * cols;
+            let copies = 1
+                + (i + 1..row_end)
+                    .take_while(|&k| next[k] == *cell && !shown[k].same_picture(&next[k]))
+                    .count();
+            let form = cell.cheapest_from(pen, copies);
+            pen = push_run(buf, pen, &form, run, self.rep, true);
             done = i + run;
             cursor = Some(Cursor {
                 row: to.row,
@@ -883,5 +1055,100 @@ mod tests {
         let f = Frame::new(5, 2);
         e.encode(&f, &mut Vec::new()).unwrap();
         assert!(e.last_bytes().windows(4).any(|w| w == b"\x1b[2J"));
+    }
+
+    #[test]
+    fn complements_draw_the_other_samples_in_every_two_colour_mode() {
+        use crate::blit::GlyphMode;
+        for mode in [
+            GlyphMode::Half,
+            GlyphMode::Quadrant,
+            GlyphMode::Sextant,
+            GlyphMode::Octant,
+        ] {
+            let all = ((1u16 << mode.samples()) - 1) as u8;
+            for mask in 0..=all {
+                let ch = mode.glyph(mask);
+                assert_eq!(
+                    complement(ch),
+                    Some(mode.glyph(!mask & all)),
+                    "{mode:?} {mask:#x}"
+                );
+            }
+        }
+        for ch in [
+            'a',
+            '@',
+            '░',
+            '\u{2800}',
+            '\u{28FF}',
+            '\u{1FB3C}',
+            '\u{1CDE6}',
+        ] {
+            assert_eq!(complement(ch), None, "{ch:?}");
+        }
+    }
+
+    #[test]
+    fn sgr_cost_is_the_length_of_the_sgr() {
+        let inks = [
+            Ink::Default,
+            Ink::Indexed(0),
+            Ink::Indexed(7),
+            Ink::Indexed(8),
+            Ink::Indexed(15),
+            Ink::Indexed(16),
+            Ink::Indexed(99),
+            Ink::Indexed(255),
+            Ink::Rgb(Rgb::new(0, 9, 10)),
+            Ink::Rgb(Rgb::new(99, 100, 255)),
+        ];
+        let pens: Vec<Pen> = inks
+            .iter()
+            .flat_map(|&fg| inks.iter().map(move |&bg| Pen { fg, bg }))
+            .collect();
+        for &from in &pens {
+            for &to in &pens {
+                assert_eq!(sgr_cost(from, to), sgr(from, to).len(), "{from:?} → {to:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_cell_is_drawn_the_other_way_round_when_that_keeps_the_pen() {
+        let red = Some(Rgb::new(255, 0, 0));
+        let blue = Some(Rgb::new(0, 0, 255));
+        let cell = |ch, fg, bg| Cell { ch, fg, bg };
+        let mut f = Frame::new(4, 1);
+        f.set(0, 0, cell('▀', red, blue));
+        f.set(1, 0, cell('▀', blue, red));
+        f.set(2, 0, cell(' ', None, red));
+        f.set(3, 0, cell('▘', blue, red));
+        let mut e = Encoder::new(ColorDepth::TrueColor).with_sync(false);
+        e.prepare(&f);
+        // One SGR for the row: `▀` blue on red is `▄` red on blue, a blank in
+        // red is `█` in red, `▘` blue on red is `▟` red on blue.
+        assert_eq!(
+            String::from_utf8(e.last_bytes().to_vec()).unwrap(),
+            "\x1b[H\x1b[m\x1b[2J\x1b[38;2;255;0;0;48;2;0;0;255m▀▄█▟\x1b[m"
+        );
+        // The same picture drawn the other way round is no change.
+        let mut g = Frame::new(4, 1);
+        g.set(0, 0, cell('▄', blue, red));
+        g.set(1, 0, cell('▄', red, blue));
+        g.set(2, 0, cell('█', red, None));
+        g.set(3, 0, cell('▟', red, blue));
+        e.prepare(&g);
+        assert_eq!(e.last_bytes(), b"");
+        // A default colour is not the same as a foreground and as a
+        // background: such a cell is never flipped.
+        let mut h = Frame::new(2, 1);
+        h.set(0, 0, cell('▀', red, blue));
+        h.set(1, 0, cell('▀', blue, None));
+        e.prepare(&h);
+        assert!(
+            e.last_bytes()
+                .ends_with("\x1b[38;2;0;0;255;49m▀\x1b[m".as_bytes())
+        );
     }
 }

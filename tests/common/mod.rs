@@ -29,24 +29,30 @@ pub fn as_displayed(lines: &[u8]) -> Vec<u8> {
     out
 }
 
-/// The cells of a screen as text, foreground and background.
+/// The cells of a screen as text, foreground and background, each in one
+/// form of the picture it shows: a blank's foreground and a full block's
+/// background are not shown; a full block is a blank in its colour, and a
+/// block element with its complement drawn the other way round (which the
+/// encoder may send to keep its pen) is the one with the smaller character.
 pub fn cells(screen: &vt100::Screen) -> Vec<(String, vt100::Color, vt100::Color)> {
+    use vt100::Color::Default;
     let (rows, cols) = screen.size();
     let mut v = Vec::new();
     for r in 0..rows.get() {
         for c in 0..cols.get() {
             let cell = screen.cell(r, c).unwrap();
-            let text = if cell.contents().is_empty() {
-                " ".to_string()
-            } else {
-                cell.contents().to_string()
+            let ch = cell.contents().chars().next().unwrap_or(' ');
+            let (fg, bg) = (cell.fgcolor(), cell.bgcolor());
+            let (ch, fg, bg) = match (ch, rastty::encode::complement(ch)) {
+                (' ', _) => (' ', Default, bg),
+                ('█', _) if fg != Default => (' ', Default, fg),
+                ('█', _) => ('█', fg, Default),
+                (ch, Some(other)) if other < ch && fg != Default && bg != Default => {
+                    (other, bg, fg)
+                }
+                (ch, _) => (ch, fg, bg),
             };
-            let fg = if text == " " {
-                vt100::Color::Default
-            } else {
-                cell.fgcolor()
-            };
-            v.push((text, fg, cell.bgcolor()));
+            v.push((ch.to_string(), fg, bg));
         }
     }
     v
