@@ -175,21 +175,44 @@ impl TermCell {
     /// Whether the terminal shows the same picture for both cells, in
     /// either orientation.
     pub fn same_picture(&self, other: &TermCell) -> bool {
-        self == other || {
-            let other = other.normalized();
-            self.normalized() == other || self.flipped() == Some(other)
+        if self == other {
+            return true;
+        }
+        match (self.ch, other.ch) {
+            (' ', ' ') => self.bg == other.bg,
+            (FULL, FULL) => self.fg == other.fg,
+            // The same glyph, not equal: a different picture.
+            (a, b) if a == b => false,
+            _ => self.flipped() == Some(other.normalized()),
         }
     }
 
     /// The form of this cell (itself or [`TermCell::flipped`]) that costs the
     /// fewest bytes written `count` times from `pen`: the SGR and the
     /// characters (a space is one byte, a block element three).
-    fn cheapest_from(&self, pen: Pen, count: usize) -> TermCell {
-        if self.fits(pen) && self.ch.len_utf8() == 1 {
+    /// `count` is asked for only when the choice is open.
+    fn cheapest_from(&self, pen: Pen, count: impl FnOnce() -> usize) -> TermCell {
+        // A cell that fits is cheapest, unless it is a full block whose
+        // blank (a third of its bytes) would pay for an SGR over a run.
+        if self.fits(pen) && self.ch != FULL {
             return *self;
         }
         let Some(f) = self.flipped() else {
             return *self;
+        };
+        // Glyphs of one length cost the same however many are written.
+        let count = if f.ch.len_utf8() == self.ch.len_utf8() {
+            // Two glyphs of two colours, neither keeping a colour of the
+            // pen: both forms set both colours (the same bytes, but for a
+            // bright palette colour's one digit as a background), so the
+            // cell stays as it is without counting.
+            let keeps = |c: &TermCell| c.fg == pen.fg || c.bg == pen.bg;
+            if ![' ', FULL].contains(&self.ch) && !keeps(self) && !keeps(&f) {
+                return *self;
+            }
+            1
+        } else {
+            count()
         };
         let cost = |c: &TermCell| sgr_cost(pen, c.pen(pen)) + count * c.ch.len_utf8();
         if cost(&f) < cost(self) { f } else { *self }
@@ -213,15 +236,30 @@ const FULL: char = '█';
 /// `█` are each other's); `None` for any other character.
 pub fn complement(ch: char) -> Option<char> {
     use crate::blit::glyphs::{OCTANT_ELSEWHERE, octant, sextant};
-    match ch {
-        ' ' => Some(FULL),
-        FULL => Some(' '),
+    Some(match ch {
+        ' ' => FULL,
+        FULL => ' ',
+        // Half blocks and quadrants, the most common, without a search.
+        '▀' => '▄',
+        '▄' => '▀',
+        '▌' => '▐',
+        '▐' => '▌',
+        '▖' => '▜',
+        '▜' => '▖',
+        '▗' => '▛',
+        '▛' => '▗',
+        '▘' => '▟',
+        '▟' => '▘',
+        '▝' => '▙',
+        '▙' => '▝',
+        '▚' => '▞',
+        '▞' => '▚',
         '\u{1FB00}'..='\u{1FB3B}' => {
             // The sextants skip the masks of the left and right halves.
             let mut mask = ch as u32 - 0x1FB00 + 1;
             mask += (mask >= 0x15) as u32;
             mask += (mask >= 0x2a) as u32;
-            Some(sextant(!(mask as u8) & 0x3f))
+            sextant(!(mask as u8) & 0x3f)
         }
         '\u{1CD00}'..='\u{1CDE5}' => {
             // The octants skip the masks drawn by older characters.
@@ -229,13 +267,13 @@ pub fn complement(ch: char) -> Option<char> {
             for &(m, _) in &OCTANT_ELSEWHERE {
                 mask += (m as u32 <= mask) as u32;
             }
-            Some(octant(!(mask as u8)))
+            octant(!(mask as u8))
         }
         _ => OCTANT_ELSEWHERE
             .iter()
             .find(|&&(_, c)| c == ch)
-            .map(|&(m, _)| octant(!m)),
-    }
+            .map(|&(m, _)| octant(!m))?,
+    })
 }
 
 /// Whether runs of identical cells may be sent with REP (`CSI n b`).
@@ -601,7 +639,7 @@ pub fn diff<'a>(
     prev.iter()
         .zip(next)
         .enumerate()
-        .filter(|(_, (p, n))| !p.same_picture(n))
+        .filter(|(_, (p, n))| p != n && !p.same_picture(n))
         .map(|(i, (_, n))| (i, n))
 }
 
@@ -852,11 +890,12 @@ impl Encoder {
             };
             // Of the cell and its flip, the one that costs least over the
             // changed copies of it that follow.
-            let row_end = (to.row as usize + 1) * cols;
-            let copies = 1
-                + (i + 1..row_end)
+            let copies = || {
+                let row_end = (to.row as usize + 1) * cols;
+                1 + (i + 1..row_end)
                     .take_while(|&k| next[k] == *cell && !shown[k].same_picture(&next[k]))
-                    .count();
+                    .count()
+            };
             let form = cell.cheapest_from(pen, copies);
             pen = push_run(buf, pen, &form, run, self.rep, true);
             done = i + run;
