@@ -333,8 +333,12 @@ static BYTE_DIGITS: [([u8; 3], u8); 256] = {
 /// Appends the decimal digits of a byte.
 #[inline(always)]
 fn push_byte(buf: &mut Vec<u8>, v: u8) {
-    let (d, n) = &BYTE_DIGITS[v as usize];
-    buf.extend_from_slice(&d[..*n as usize]);
+    // Slices of a constant length: stores, not a call to `memcpy`.
+    match BYTE_DIGITS[v as usize] {
+        (d, 3) => buf.extend_from_slice(&d),
+        (d, 2) => buf.extend_from_slice(&[d[0], d[1]]),
+        (d, _) => buf.push(d[0]),
+    }
 }
 
 /// Appends the SGR parameters of one plane: `base` is 30 for the
@@ -415,19 +419,30 @@ pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
 }
 
 /// Appends a character as UTF-8.
+#[inline]
 pub fn push_char(buf: &mut Vec<u8>, ch: char) {
     let mut utf8 = [0; 4];
-    buf.extend_from_slice(ch.encode_utf8(&mut utf8).as_bytes());
+    let n = ch.encode_utf8(&mut utf8).len();
+    // Slices of a constant length: stores, not a call to `memcpy`.
+    match n {
+        1 => buf.push(utf8[0]),
+        2 => buf.extend_from_slice(&[utf8[0], utf8[1]]),
+        3 => buf.extend_from_slice(&[utf8[0], utf8[1], utf8[2]]),
+        _ => buf.extend_from_slice(&utf8),
+    }
 }
 
 /// Maps a frame's cells to terminal cells for one depth, into `out`.
 fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
     out.clear();
     let cols = frame.cols().max(1) as usize;
-    out.extend(frame.cells().iter().enumerate().map(|(i, c)| {
-        let (x, y) = ((i % cols) as u16, (i / cols) as u16);
-        TermCell::of(c, q, x, y)
-    }));
+    for (y, row) in frame.cells().chunks(cols).enumerate() {
+        out.extend(
+            row.iter()
+                .enumerate()
+                .map(|(x, c)| TermCell::of(c, q, x as u16, y as u16)),
+        );
+    }
 }
 
 /// Appends `cell` written `count` times (at least once) from pen `pen`,

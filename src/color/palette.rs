@@ -420,41 +420,46 @@ impl Quantizer {
 
     /// The ink for a colour in the cell at column `x`, row `y` (where the
     /// dithering pattern is anchored).
-    #[inline]
+    #[inline(always)]
     pub fn ink_at(&mut self, c: Option<Rgb>, x: u16, y: u16) -> Ink {
         let Some(c) = c else { return Ink::Default };
         match self.depth {
             ColorDepth::None => Ink::Default,
             ColorDepth::TrueColor => Ink::Rgb(c),
-            depth => {
-                if self.cache.is_empty() {
-                    let empty = Mix {
-                        a: 0,
-                        b: 0,
-                        level: 0,
-                    };
-                    self.cache = vec![(0, empty); 1 << CACHE_BITS];
-                }
-                let [r, g, b] = c.0;
-                let key = (r as u32) << 16 | (g as u32) << 8 | b as u32;
-                let slot = (key.wrapping_mul(0x9E37_79B1) >> (32 - CACHE_BITS)) as usize;
-                let (k, cached) = self.cache[slot];
-                let m = if k == key | VALID {
-                    cached
-                } else {
-                    let m = if self.dither == Dither::Ordered {
-                        mix(depth, self.metric, c)
-                    } else {
-                        let a = nearest(depth, self.metric, c);
-                        Mix { a, b: a, level: 0 }
-                    };
-                    self.cache[slot] = (key | VALID, m);
-                    m
-                };
-                let second = m.level > BAYER[(y % 4) as usize][(x % 4) as usize];
-                Ink::Indexed(if second { m.b } else { m.a })
-            }
+            depth => self.palette_ink(depth, c, x, y),
         }
+    }
+
+    /// [`Quantizer::ink_at`] for a palette: out of line, so that the
+    /// truecolor case inlines to a copy.
+    #[inline(never)]
+    fn palette_ink(&mut self, depth: ColorDepth, c: Rgb, x: u16, y: u16) -> Ink {
+        if self.cache.is_empty() {
+            let empty = Mix {
+                a: 0,
+                b: 0,
+                level: 0,
+            };
+            self.cache = vec![(0, empty); 1 << CACHE_BITS];
+        }
+        let [r, g, b] = c.0;
+        let key = (r as u32) << 16 | (g as u32) << 8 | b as u32;
+        let slot = (key.wrapping_mul(0x9E37_79B1) >> (32 - CACHE_BITS)) as usize;
+        let (k, cached) = self.cache[slot];
+        let m = if k == key | VALID {
+            cached
+        } else {
+            let m = if self.dither == Dither::Ordered {
+                mix(depth, self.metric, c)
+            } else {
+                let a = nearest(depth, self.metric, c);
+                Mix { a, b: a, level: 0 }
+            };
+            self.cache[slot] = (key | VALID, m);
+            m
+        };
+        let second = m.level > BAYER[(y % 4) as usize][(x % 4) as usize];
+        Ink::Indexed(if second { m.b } else { m.a })
     }
 }
 
