@@ -20,13 +20,24 @@
 //! and what it does anywhere for primitives that never overlap.
 //!
 //! When unsure, the planner runs the stage.
+//!
+//! One decision is about speed alone, never about the picture: whether a
+//! mesh's triangles are tested for a bounding box without a sample centre
+//! before they are set up ([`Plan::pretests_boxes`]). That pays where most
+//! triangles are smaller than a sample (Tux at 200×120 samples: 7 % fewer
+//! instructions a frame) and costs where few are (the bunny at the same
+//! size: 4 % more when always on), so the plan turns it on for a mesh whose
+//! projected box has less than one sample per triangle. The triangles it
+//! finds are exactly those the set-up finds covering nothing, counted the
+//! same way (a test compares every count with the full pipeline's).
 
 use std::fmt;
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 
 use crate::clip::Clipper;
-use crate::options::{Interpolation, Pipeline, RenderOptions};
+use crate::options::{Aa, Interpolation, Pipeline, RenderOptions};
+use crate::raster::Precision;
 use crate::scene::{Cull, Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
@@ -90,7 +101,17 @@ pub struct Plan {
     /// Per group (each mesh in order, then the loose triangles): whether
     /// its vertices are tested against the clip planes.
     clip_tests: Vec<bool>,
+    /// Per mesh: whether its triangles are tested for an empty box before
+    /// set-up (see [`Plan::pretests_boxes`]).
+    box_pretests: Vec<bool>,
 }
+
+/// Screen area (in samples) per triangle of a mesh's projected bounding
+/// box below which most of its triangles' boxes hold no sample centre, and
+/// testing for that before set-up pays: about 50 instructions a triangle,
+/// against about 200 saved for each empty one (callgrind: Tux, 0.3 samples
+/// a triangle, −8 %; the bunny at 200×120, 2.4, +4 % when always on).
+const PRETEST_AREA: f32 = 1.0;
 
 const FORCED: &str = "forced on by the full pipeline";
 
@@ -117,6 +138,7 @@ impl Plan {
             shading: opts.shading,
             full: true,
             clip_tests: Vec::new(),
+            box_pretests: Vec::new(),
         };
         plan.replan(scene, opts, vp, turn, clipper);
         plan
@@ -191,6 +213,22 @@ impl Plan {
         self.clip_tests.extend(
             groups.map(|(model, bounds)| full || needs_clip_tests(clipper, vp * model, bounds)),
         );
+        self.box_pretests.clear();
+        let (w, h) = opts.glyphs.cell_size();
+        let samples = (opts.cols as u32 * w) as f32 * (opts.rows as u32 * h) as f32;
+        self.box_pretests
+            .extend(scene.meshes.iter().enumerate().map(|(i, m)| {
+                // Exact coverage needs every triangle's area, and only the
+                // fixed-point set-up has snapped vertices to test.
+                !full
+                    && !self.clip_tests[i]
+                    && opts.aa != Aa::Exact
+                    && opts.precision == Precision::Fixed
+                    && {
+                        let area = screen_share(vp * turn * m.model, m.bounds) * samples;
+                        area < PRETEST_AREA * m.faces.len() as f32
+                    }
+            }));
         let clip = if full {
             Decision::run(FORCED)
         } else if self.clip_tests.contains(&true) {
@@ -209,7 +247,18 @@ impl Plan {
             shading,
             full,
             clip_tests: std::mem::take(&mut self.clip_tests),
+            box_pretests: std::mem::take(&mut self.box_pretests),
         };
+    }
+
+    /// Whether mesh `i`'s triangles are tested for a bounding box without
+    /// a sample centre before they are set up (and, when it has none, only
+    /// counted): for a mesh drawn without clip tests whose triangles are
+    /// small on screen, where most boxes are empty. Never in the full
+    /// pipeline. Speed alone: the test finds exactly the triangles the
+    /// set-up would find covering nothing, and counts them as it would.
+    pub fn pretests_boxes(&self, mesh: usize) -> bool {
+        self.box_pretests.get(mesh).copied().unwrap_or(false)
     }
 
     /// Whether group `i` (mesh `i`, or the loose triangles after the last
@@ -292,6 +341,27 @@ fn loose_bounds(scene: &Scene) -> Option<[Vec3; 2]> {
         hi = hi.max(p);
     }
     Some([lo, hi])
+}
+
+/// The share of the screen (the canonical square, of area 4) covered by
+/// the projected bounding box of `bounds` drawn with `mvp`, for a box inside
+/// every clip plane (0 for unknown bounds).
+fn screen_share(mvp: Mat4, bounds: Option<[Vec3; 2]>) -> f32 {
+    let Some([lo, hi]) = bounds else { return 0.0 };
+    let (mut min, mut max) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+    for i in 0..8 {
+        let corner = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        let c = mvp * corner.extend(1.0);
+        let p = Vec2::new(c.x, c.y) / c.w;
+        min = min.min(p);
+        max = max.max(p);
+    }
+    let size = (max.min(Vec2::ONE) - min.max(Vec2::NEG_ONE)).max(Vec2::ZERO);
+    size.x * size.y / 4.0
 }
 
 /// Whether a group of vertices inside `bounds` (model space), drawn with

@@ -182,6 +182,40 @@ fn last_sample(hi: i64) -> i64 {
     (hi - ONE / 2).div_euclid(ONE)
 }
 
+/// The samples a snapped point bounds, `[first x, last x, first y, last
+/// y]`: along each axis the first sample whose centre is at or after it and
+/// the last at or before it. Both are monotone in the coordinate, so a
+/// triangle's bounding box runs from the least `first` of its vertices to
+/// the greatest `last` ([`box_is_empty`]): found once per vertex rather than
+/// once per triangle. Coordinates within `MAX_COORD` give samples within
+/// `i32`.
+#[inline(always)]
+pub fn sample_span(p: FixedPoint) -> [i32; 4] {
+    [
+        first_sample(p.x.0) as i32,
+        last_sample(p.x.0) as i32,
+        first_sample(p.y.0) as i32,
+        last_sample(p.y.0) as i32,
+    ]
+}
+
+/// Whether the bounding box of a triangle whose vertices have these
+/// [`sample_span`]s, clamped to `grid`, holds no sample centre: then
+/// sampling finds nothing in it, and [`Setup::signed_area2`] tells all a
+/// sampling caller counts (most triangles of a detailed model seen small).
+/// The same box [`Setup::from_fixed`] finds.
+#[inline(always)]
+pub fn box_is_empty(s: [&[i32; 4]; 3], grid: Grid) -> bool {
+    let x0 = s[0][0].min(s[1][0]).min(s[2][0]).max(0);
+    let x1 = s[0][1].max(s[1][1]).max(s[2][1]).min(grid.width as i32 - 1);
+    let y0 = s[0][2].min(s[1][2]).min(s[2][2]).max(0);
+    let y1 = s[0][3]
+        .max(s[1][3])
+        .max(s[2][3])
+        .min(grid.height as i32 - 1);
+    x0 > x1 || y0 > y1
+}
+
 /// A triangle set up for rasterization: snapped, oriented, bounded.
 #[derive(Clone, Copy, Debug)]
 pub struct Setup {
@@ -304,6 +338,27 @@ impl Setup {
             y0,
             y1,
         })
+    }
+
+    /// Twice the signed area of a snapped triangle (positive when
+    /// counter-clockwise), or why [`Setup::from_fixed`] rejects it before
+    /// looking at its bounding box: a coordinate out of range, no area, or
+    /// culled. (Written out again in `from_fixed`: calling this there
+    /// measured 4 % more instructions on the bunny.)
+    #[inline(always)]
+    pub fn signed_area2(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
+        let limit = (MAX_COORD as i64) * ONE;
+        if p.iter().any(|q| q.x.0.abs() > limit || q.y.0.abs() > limit) {
+            return Err(Rejected::OutOfRange);
+        }
+        let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
+        if area2 == 0 {
+            return Err(Rejected::Degenerate);
+        }
+        match (cull, area2 > 0) {
+            (Cull::Back, false) | (Cull::Front, true) => Err(Rejected::Culled),
+            _ => Ok(area2),
+        }
     }
 
     /// Whether the sample centre `(x + 0.5, y + 0.5)` is inside, with its

@@ -49,7 +49,9 @@ use crate::frame::Frame;
 use crate::framebuffer::Framebuffer;
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
-use crate::raster::{Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal};
+use crate::raster::{
+    self, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal,
+};
 use crate::scene::{Cull, Projection, Scene};
 use crate::shade::{Lights, Shading};
 use crate::texture::{Sampler, Texture};
@@ -144,6 +146,8 @@ struct Vert {
     xy: [f32; 2],
     /// `xy` snapped, once per vertex rather than once per triangle.
     fixed: FixedPoint,
+    /// The samples it bounds ([`raster::sample_span`]).
+    span: [i32; 4],
     z: f32,
     inv_w: f32,
 }
@@ -398,15 +402,38 @@ impl Renderer {
             let model = turn * mesh.model;
             let tests = p.clip_tests(i);
             let transforms = Transforms::new(vp, model);
-            self.vertex_stage(stage, &transforms, &mesh.positions, &mesh.normals, tests);
+            // Where the plan says so, a triangle inside every clip plane
+            // whose box holds no sample centre is only counted, as its
+            // set-up would count it.
+            let pretest = p.pretests_boxes(i);
+            self.vertex_stage(
+                stage,
+                &transforms,
+                (&mesh.positions, &mesh.normals),
+                tests,
+                pretest,
+            );
             self.times.vertices += lap();
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
+            let grid = self.fb.grid();
             for run in mesh.runs(Lin::from_srgb(mesh.color)) {
                 let texture = p.texture(run.texture);
                 for face in &mesh.faces[run.faces] {
                     let v = face.map(|i| &verts[i as usize]);
+                    if pretest
+                        && v[0].code | v[1].code | v[2].code == 0
+                        && !(v[0].bad_normal | v[1].bad_normal | v[2].bad_normal)
+                        && raster::box_is_empty(v.map(|v| &v.span), grid)
+                    {
+                        self.stats.triangles_in += 1;
+                        match Setup::signed_area2(&v.map(|v| v.fixed), cull) {
+                            Ok(_) => self.stats.raster.triangles_drawn += 1,
+                            Err(r) => self.stats.raster.count_rejected(r),
+                        }
+                        continue;
+                    }
                     let base = match &mesh.colors {
                         Some(c) => face.map(|i| c[i as usize]),
                         None => [run.color; 3],
@@ -437,7 +464,13 @@ impl Renderer {
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
-            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
+            self.vertex_stage(
+                stage,
+                &loose,
+                (&tri.vertices, &[normal; 3]),
+                loose_tests,
+                false,
+            );
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
                 stage,
@@ -484,14 +517,15 @@ impl Renderer {
         }
     }
 
-    /// Transforms `positions` (with `normals`) into `self.verts`.
+    /// Transforms `positions` (with `normals`) into `self.verts`; with
+    /// `spans`, finds the samples each bounds (for the plan's box pretest).
     fn vertex_stage(
         &mut self,
         stage: &Stage<'_>,
         t: &Transforms,
-        positions: &[Vec3],
-        normals: &[Vec3],
+        (positions, normals): (&[Vec3], &[Vec3]),
         clip_tests: bool,
+        spans: bool,
     ) {
         let Transforms {
             mvp,
@@ -547,7 +581,12 @@ impl Renderer {
                     v.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
                     v.z = clip.z * v.inv_w;
                     match FixedPoint::snap(v.xy) {
-                        Some(f) => v.fixed = f,
+                        Some(f) => {
+                            v.fixed = f;
+                            if spans {
+                                v.span = raster::sample_span(f);
+                            }
+                        }
                         // Cannot happen inside the guard band; if it did, the
                         // clip path deals with it.
                         None => v.code = F64_PATH,

@@ -404,3 +404,37 @@ fn skipped_stages_do_no_work() {
     r.render(&example("near-plane"), &opts);
     assert!(r.plan().unwrap().clip.run && r.stats().clip_tests > 0);
 }
+
+/// A mesh of triangles small on screen has each triangle's box tested for
+/// a sample centre before set-up, and those without one only counted: the
+/// samples, the frame and every raster count are those of the full
+/// pipeline, which sets every triangle up. Drawn large, it is not tested.
+#[test]
+fn small_triangles_are_pretested_and_counted_as_their_set_up_would() {
+    let scene = Scene::of_mesh(Shape::Sphere.mesh(Rgb::WHITE));
+    for (cols, rows, pretest) in [(12, 4, true), (30, 10, true), (120, 40, false)] {
+        let opts = RenderOptions {
+            cols,
+            rows,
+            turn: Vec3::new(10.0, 35.0, 5.0),
+            ..RenderOptions::default()
+        };
+        let mut planned = Renderer::new();
+        planned.render(&scene, &opts);
+        assert_eq!(planned.plan().unwrap().pretests_boxes(0), pretest, "{cols}×{rows}");
+        let mut full = Renderer::new();
+        full.render(
+            &scene,
+            &RenderOptions {
+                pipeline: Pipeline::Full,
+                ..opts
+            },
+        );
+        assert_eq!(planned.framebuffer().samples(), full.framebuffer().samples());
+        assert_eq!(planned.frame(), full.frame());
+        let (p, f) = (planned.stats(), full.stats());
+        assert_eq!(p.raster, f.raster, "{cols}×{rows}");
+        assert_eq!(p.triangles_in, f.triangles_in);
+        assert!(p.raster.triangles_drawn > 0 && p.raster.samples_covered > 0);
+    }
+}
