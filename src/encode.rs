@@ -313,66 +313,78 @@ fn digits(n: u32) -> usize {
     }
 }
 
-/// The decimal digits of every byte value, and how many there are: a
-/// colour channel is written by a table lookup, not by dividing.
-static BYTE_DIGITS: [([u8; 3], u8); 256] = {
-    let mut t = [([0u8; 3], 0u8); 256];
+/// The decimal digits of every byte value followed by `;`, and how many
+/// bytes that is: a colour channel is written by copying four bytes and
+/// advancing by the count, not by dividing.
+static BYTE_DIGITS: [([u8; 4], u8); 256] = {
+    let mut t = [([0u8; 4], 0u8); 256];
     let mut n = 0;
     while n < 256 {
         let (h, te, o) = ((n / 100) as u8, (n / 10 % 10) as u8, (n % 10) as u8);
         t[n] = match n {
-            0..=9 => ([b'0' + o, 0, 0], 1),
-            10..=99 => ([b'0' + te, b'0' + o, 0], 2),
-            _ => ([b'0' + h, b'0' + te, b'0' + o], 3),
+            0..=9 => ([b'0' + o, b';', 0, 0], 2),
+            10..=99 => ([b'0' + te, b'0' + o, b';', 0], 3),
+            _ => ([b'0' + h, b'0' + te, b'0' + o, b';'], 4),
         };
         n += 1;
     }
     t
 };
 
-/// Appends the decimal digits of a byte.
-#[inline(always)]
-fn push_byte(buf: &mut Vec<u8>, v: u8) {
-    // Slices of a constant length: stores, not a call to `memcpy`.
-    match BYTE_DIGITS[v as usize] {
-        (d, 3) => buf.extend_from_slice(&d),
-        (d, 2) => buf.extend_from_slice(&[d[0], d[1]]),
-        (d, _) => buf.push(d[0]),
+/// An SGR being assembled on the stack (the longest, two 24-bit colours,
+/// is 36 bytes), appended to the buffer in one copy.
+struct SgrBytes {
+    bytes: [u8; 48],
+    len: usize,
+}
+
+impl SgrBytes {
+    /// Appends a byte's digits and a `;`.
+    #[inline(always)]
+    fn byte(&mut self, v: u8) {
+        let (d, n) = BYTE_DIGITS[v as usize];
+        self.bytes[self.len..self.len + 4].copy_from_slice(&d);
+        self.len += n as usize;
+    }
+
+    /// Appends a constant prefix.
+    #[inline(always)]
+    fn put(&mut self, s: &[u8; 5]) {
+        self.bytes[self.len..self.len + 5].copy_from_slice(s);
+        self.len += 5;
+    }
+
+    /// Appends the SGR parameters of one plane and a `;`: `fg` for the
+    /// foreground (30–39, 90–97), else the background (40–49, 100–107).
+    #[inline(always)]
+    fn ink(&mut self, fg: bool, ink: Ink) {
+        let base = if fg { 30 } else { 40 };
+        match ink {
+            Ink::Default => self.byte(base + 9),
+            Ink::Indexed(i @ 0..=7) => self.byte(base + i),
+            Ink::Indexed(i @ 8..=15) => self.byte(base + 60 + (i - 8)),
+            Ink::Indexed(i) => {
+                self.put(if fg { b"38;5;" } else { b"48;5;" });
+                self.byte(i);
+            }
+            Ink::Rgb(Rgb([r, g, b])) => {
+                self.put(if fg { b"38;2;" } else { b"48;2;" });
+                self.byte(r);
+                self.byte(g);
+                self.byte(b);
+            }
+        }
     }
 }
 
-/// Appends the SGR parameters of one plane: `base` is 30 for the
-/// foreground, 40 for the background.
-fn push_ink(buf: &mut Vec<u8>, base: u32, ink: Ink) {
-    match ink {
-        Ink::Default => push_num(buf, base + 9),
-        Ink::Indexed(i @ 0..=7) => push_num(buf, base + i as u32),
-        Ink::Indexed(i @ 8..=15) => push_num(buf, base + 60 + (i - 8) as u32),
-        Ink::Indexed(i) => {
-            push_num(buf, base + 8);
-            buf.extend_from_slice(b";5;");
-            push_byte(buf, i);
-        }
-        Ink::Rgb(Rgb([r, g, b])) => {
-            push_num(buf, base + 8);
-            buf.extend_from_slice(b";2;");
-            push_byte(buf, r);
-            buf.push(b';');
-            push_byte(buf, g);
-            buf.push(b';');
-            push_byte(buf, b);
-        }
-    }
-}
-
-/// The length of [`push_ink`]'s parameters.
+/// The length of [`SgrBytes::ink`]'s parameters, without the `;`.
 fn ink_cost(base: u32, ink: Ink) -> usize {
     match ink {
         Ink::Default | Ink::Indexed(0..=7) => 2,
         Ink::Indexed(8..=15) => digits(base + 60),
-        Ink::Indexed(i) => 5 + BYTE_DIGITS[i as usize].1 as usize,
+        Ink::Indexed(i) => 4 + BYTE_DIGITS[i as usize].1 as usize,
         Ink::Rgb(Rgb([r, g, b])) => {
-            7 + [r, g, b]
+            4 + [r, g, b]
                 .iter()
                 .map(|&v| BYTE_DIGITS[v as usize].1 as usize)
                 .sum::<usize>()
@@ -399,23 +411,25 @@ pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
     if from == to {
         return;
     }
-    buf.extend_from_slice(b"\x1b[");
     if to == Pen::default() {
         // `CSI m` resets both planes in three bytes.
-        buf.push(b'm');
+        buf.extend_from_slice(b"\x1b[m");
         return;
     }
-    let fg = from.fg != to.fg;
-    if fg {
-        push_ink(buf, 30, to.fg);
+    let mut sgr = SgrBytes {
+        bytes: [0; 48],
+        len: 2,
+    };
+    sgr.bytes[..2].copy_from_slice(b"\x1b[");
+    if from.fg != to.fg {
+        sgr.ink(true, to.fg);
     }
     if from.bg != to.bg {
-        if fg {
-            buf.push(b';');
-        }
-        push_ink(buf, 40, to.bg);
+        sgr.ink(false, to.bg);
     }
-    buf.push(b'm');
+    // Each plane ended with `;`: the last becomes the final `m`.
+    sgr.bytes[sgr.len - 1] = b'm';
+    buf.extend_from_slice(&sgr.bytes[..sgr.len]);
 }
 
 /// Appends a character as UTF-8.
@@ -935,11 +949,14 @@ mod tests {
     }
 
     #[test]
-    fn byte_digits_are_the_decimal_numbers() {
+    fn byte_digits_are_the_decimal_numbers_and_a_semicolon() {
         for v in 0..=255u8 {
-            let mut buf = Vec::new();
-            push_byte(&mut buf, v);
-            assert_eq!(buf, v.to_string().as_bytes());
+            let mut sgr = SgrBytes {
+                bytes: [0; 48],
+                len: 0,
+            };
+            sgr.byte(v);
+            assert_eq!(sgr.bytes[..sgr.len], *format!("{v};").as_bytes());
         }
     }
 

@@ -421,7 +421,11 @@ fn small_triangles_are_pretested_and_counted_as_their_set_up_would() {
         };
         let mut planned = Renderer::new();
         planned.render(&scene, &opts);
-        assert_eq!(planned.plan().unwrap().pretests_boxes(0), pretest, "{cols}×{rows}");
+        assert_eq!(
+            planned.plan().unwrap().pretests_boxes(0),
+            pretest,
+            "{cols}×{rows}"
+        );
         let mut full = Renderer::new();
         full.render(
             &scene,
@@ -430,7 +434,10 @@ fn small_triangles_are_pretested_and_counted_as_their_set_up_would() {
                 ..opts
             },
         );
-        assert_eq!(planned.framebuffer().samples(), full.framebuffer().samples());
+        assert_eq!(
+            planned.framebuffer().samples(),
+            full.framebuffer().samples()
+        );
         assert_eq!(planned.frame(), full.frame());
         let (p, f) = (planned.stats(), full.stats());
         assert_eq!(p.raster, f.raster, "{cols}×{rows}");
