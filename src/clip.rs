@@ -54,7 +54,7 @@
 //! The result is a convex polygon of at most [`MAX_POLYGON`] vertices, in a
 //! fixed array (no allocation), fanned into triangles.
 
-use glam::{DMat4, DVec4, Vec2, Vec3, Vec4};
+use glam::{DMat4, DVec4, Mat4, Vec2, Vec3, Vec4};
 
 use crate::fixed::FixedPoint;
 use crate::scene::Projection;
@@ -219,6 +219,62 @@ impl Clipper {
             | out(p.x + gxw) << 4
             | out(gyw - p.y) << 5
             | out(p.y + gyw) << 6
+    }
+
+    /// Whether every point of the box `lo..=hi` gets outcode 0 when the
+    /// vertex stage transforms it, `mvp * p.extend(1.0)` in f32 and then
+    /// [`Clipper::outcode`], whatever that product's rounding: then testing
+    /// each vertex, as the full pipeline does, finds every one inside.
+    ///
+    /// The corners' clip positions are found in f64 from the same f32
+    /// numbers (products of two f32 are exact there), and each plane must
+    /// hold at every corner with room for the f32 error of any point of the
+    /// box (at most 8 units in the last place of the sum of its terms'
+    /// magnitudes, per coordinate) and for the rounding of `gx·w`. A plane's
+    /// value is linear, so the corners bound it over the box. A model far
+    /// from the origin whose turn brings it back near the camera cancels
+    /// large numbers in f32: then the room is wide, and its vertices are
+    /// tested.
+    pub fn box_inside(&self, mvp: Mat4, lo: Vec3, hi: Vec3) -> bool {
+        const U: f64 = f32::EPSILON as f64 / 2.0;
+        let rows = [0, 1, 2, 3].map(|k| mvp.row(k).to_array().map(f64::from));
+        let big = [
+            (lo.x.abs().max(hi.x.abs())) as f64,
+            (lo.y.abs().max(hi.y.abs())) as f64,
+            (lo.z.abs().max(hi.z.abs())) as f64,
+            1.0,
+        ];
+        // Per clip coordinate, the largest f32 error of any point of the box.
+        let err = rows.map(|r| 8.0 * U * (0..4).map(|j| (r[j] * big[j]).abs()).sum::<f64>());
+        let [ex, ey, ez, ew] = err;
+        let (gx, gy) = (self.gx as f32 as f64, self.gy as f32 as f64);
+        let w_min = self.w_min as f32 as f64;
+        (0..8).all(|i| {
+            let p = [
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+                1.0,
+            ]
+            .map(f64::from);
+            let [x, y, z, w] = rows.map(|r| (0..4).map(|j| r[j] * p[j]).sum::<f64>());
+            // The smallest `w` any nearby point may have, and the smallest
+            // `g·w` its f32 product may round to.
+            let w_lo = w - ew;
+            let (gxw, gyw) = (gx * w_lo * (1.0 - U), gy * w_lo * (1.0 - U));
+            [
+                w_lo - w_min,
+                w_lo - (z + ez),
+                (z - ez) + w_lo,
+                gxw - (x + ex),
+                (x - ex) + gxw,
+                gyw - (y + ey),
+                (y - ey) + gyw,
+            ]
+            .iter()
+            // A tiny absolute room for the f64 sums themselves.
+            .all(|&d| d.is_finite() && d > 1e-30)
+        })
     }
 
     /// The seven planes pulled back into model space through `mvp`, in

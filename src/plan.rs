@@ -5,7 +5,7 @@
 //!
 //! | stage | runs when | skipped when |
 //! |---|---|---|
-//! | depth buffer | primitives may overlap at different depths | a single primitive; a flat 2D scene (one depth everywhere); one closed convex mesh drawn with back faces culled (its front faces never overlap) |
+//! | depth buffer | primitives may overlap at different depths | a single primitive; a flat 2D scene (one depth everywhere) |
 //! | clip tests | a mesh's (or the loose triangles') bounding box reaches a clip plane or leaves the guard band | the box is inside: then no vertex of it can be outside |
 //! | interpolation | an attribute varies over a triangle (per-vertex colours, smooth shading) | every triangle is one colour: written with no barycentrics |
 //! | perspective correction | perspective projection and something is interpolated | parallel views (`w = 1` exactly, so affine weights are the same numbers) or nothing interpolated |
@@ -19,7 +19,14 @@
 //! depth test does for primitives of equal depth (the first drawn stays),
 //! and what it does anywhere for primitives that never overlap.
 //!
-//! When unsure, the planner runs the stage.
+//! When unsure, the planner runs the stage. A lone closed convex mesh with
+//! back faces culled keeps its depth test: its exact front faces never
+//! overlap, but snapped to the sample grid a nearly edge-on face can fold
+//! over its neighbour (a property test found such a sphere), and the clip
+//! path's f64 triangles need not meet their f32 neighbours exactly.
+//! Clip tests are skipped for a group only when its bounding box is inside
+//! every plane with room for the vertex stage's f32 rounding
+//! ([`Clipper::box_inside`]).
 //!
 //! One decision is about speed alone, never about the picture: whether a
 //! mesh's triangles are tested for a bounding box without a sample centre
@@ -38,7 +45,7 @@ use glam::{Mat4, Vec2, Vec3};
 use crate::clip::Clipper;
 use crate::options::{Aa, Interpolation, Pipeline, RenderOptions};
 use crate::raster::Precision;
-use crate::scene::{Cull, Projection, Scene, TriangleColor};
+use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
 
@@ -202,7 +209,7 @@ impl Plan {
         let depth = if full {
             Decision::run(FORCED)
         } else {
-            depth(scene, opts, vp, turn)
+            depth(scene, vp, turn)
         };
         self.clip_tests.clear();
         let groups = scene
@@ -210,9 +217,11 @@ impl Plan {
             .iter()
             .map(|m| (turn * m.model, m.bounds))
             .chain((!scene.triangles.is_empty()).then(|| (turn, loose_bounds(scene))));
-        self.clip_tests.extend(
-            groups.map(|(model, bounds)| full || needs_clip_tests(clipper, vp * model, bounds)),
-        );
+        self.clip_tests.extend(groups.map(|(model, bounds)| {
+            // The matrix the vertex stage uses: composed in f64, rounded.
+            let mvp = (vp.as_dmat4() * model.as_dmat4()).as_mat4();
+            full || !bounds.is_some_and(|[lo, hi]| clipper.box_inside(mvp, lo, hi))
+        }));
         self.box_pretests.clear();
         let (w, h) = opts.glyphs.cell_size();
         let samples = (opts.cols as u32 * w) as f32 * (opts.rows as u32 * h) as f32;
@@ -298,7 +307,8 @@ impl Plan {
     }
 }
 
-fn depth(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4) -> Decision {
+/// Whether samples need a depth test.
+fn depth(scene: &Scene, vp: Mat4, turn: Mat4) -> Decision {
     if scene.triangle_count() <= 1 {
         return Decision::skip("one primitive cannot overlap another");
     }
@@ -314,14 +324,6 @@ fn depth(scene: &Scene, opts: &RenderOptions, vp: Mat4, turn: Mat4) -> Decision 
         if first.is_some_and(|z| z.is_finite()) && zs.all(|z| Some(z) == first) {
             return Decision::skip(
                 "a flat 2D scene: one depth everywhere, the first triangle drawn stays",
-            );
-        }
-    }
-    if let [mesh] = scene.meshes.as_slice() {
-        let cull = opts.cull.unwrap_or(mesh.cull);
-        if scene.triangles.is_empty() && cull == Cull::Back && mesh.is_convex() {
-            return Decision::skip(
-                "one closed convex mesh with back faces culled: its front faces never overlap",
             );
         }
     }
@@ -362,22 +364,6 @@ fn screen_share(mvp: Mat4, bounds: Option<[Vec3; 2]>) -> f32 {
     }
     let size = (max.min(Vec2::ONE) - min.max(Vec2::NEG_ONE)).max(Vec2::ZERO);
     size.x * size.y / 4.0
-}
-
-/// Whether a group of vertices inside `bounds` (model space), drawn with
-/// `mvp`, needs per-vertex clip tests: unless all eight corners of the box
-/// are inside every clip plane (then, the clip volume being convex, so is
-/// every point of the box). Unknown bounds need them.
-pub fn needs_clip_tests(clipper: &Clipper, mvp: Mat4, bounds: Option<[Vec3; 2]>) -> bool {
-    let Some([lo, hi]) = bounds else { return true };
-    (0..8).any(|i| {
-        let corner = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
-        clipper.outcode(mvp * corner.extend(1.0)) != 0
-    })
 }
 
 impl fmt::Display for Plan {
