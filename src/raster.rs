@@ -182,38 +182,16 @@ fn last_sample(hi: i64) -> i64 {
     (hi - ONE / 2).div_euclid(ONE)
 }
 
-/// The samples a snapped point bounds, `[first x, last x, first y, last
-/// y]`: along each axis the first sample whose centre is at or after it and
-/// the last at or before it. Both are monotone in the coordinate, so a
-/// triangle's bounding box runs from the least `first` of its vertices to
-/// the greatest `last` ([`box_is_empty`]): found once per vertex rather than
-/// once per triangle. Coordinates within `MAX_COORD` give samples within
-/// `i32`.
+/// Whether a snapped triangle's bounding box, clamped to `grid`, holds no
+/// sample centre (the same box [`Setup::from_fixed`] finds): then sampling
+/// finds nothing in it, and [`Setup::signed_area2`] tells all a sampling
+/// caller counts (most triangles of a detailed model seen small).
 #[inline(always)]
-pub fn sample_span(p: FixedPoint) -> [i32; 4] {
-    [
-        first_sample(p.x.0) as i32,
-        last_sample(p.x.0) as i32,
-        first_sample(p.y.0) as i32,
-        last_sample(p.y.0) as i32,
-    ]
-}
-
-/// Whether the bounding box of a triangle whose vertices have these
-/// [`sample_span`]s, clamped to `grid`, holds no sample centre: then
-/// sampling finds nothing in it, and [`Setup::signed_area2`] tells all a
-/// sampling caller counts (most triangles of a detailed model seen small).
-/// The same box [`Setup::from_fixed`] finds.
-#[inline(always)]
-pub fn box_is_empty(s: [&[i32; 4]; 3], grid: Grid) -> bool {
-    let x0 = s[0][0].min(s[1][0]).min(s[2][0]).max(0);
-    let x1 = s[0][1].max(s[1][1]).max(s[2][1]).min(grid.width as i32 - 1);
-    let y0 = s[0][2].min(s[1][2]).min(s[2][2]).max(0);
-    let y1 = s[0][3]
-        .max(s[1][3])
-        .max(s[2][3])
-        .min(grid.height as i32 - 1);
-    x0 > x1 || y0 > y1
+pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid) -> bool {
+    let (min_x, max_x) = min_max(p.map(|q| q.x.0));
+    let (min_y, max_y) = min_max(p.map(|q| q.y.0));
+    first_sample(min_x).max(0) > last_sample(max_x).min(grid.width as i64 - 1)
+        || first_sample(min_y).max(0) > last_sample(max_y).min(grid.height as i64 - 1)
 }
 
 /// A triangle set up for rasterization: snapped, oriented, bounded.

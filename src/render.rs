@@ -146,8 +146,6 @@ struct Vert {
     xy: [f32; 2],
     /// `xy` snapped, once per vertex rather than once per triangle.
     fixed: FixedPoint,
-    /// The samples it bounds ([`raster::sample_span`]).
-    span: [i32; 4],
     z: f32,
     inv_w: f32,
 }
@@ -406,13 +404,7 @@ impl Renderer {
             // whose box holds no sample centre is only counted, as its
             // set-up would count it.
             let pretest = p.pretests_boxes(i);
-            self.vertex_stage(
-                stage,
-                &transforms,
-                (&mesh.positions, &mesh.normals),
-                tests,
-                pretest,
-            );
+            self.vertex_stage(stage, &transforms, &mesh.positions, &mesh.normals, tests);
             self.times.vertices += lap();
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Borrowed out of `self` for the loop, and put back.
@@ -425,7 +417,7 @@ impl Renderer {
                     if pretest
                         && v[0].code | v[1].code | v[2].code == 0
                         && !(v[0].bad_normal | v[1].bad_normal | v[2].bad_normal)
-                        && raster::box_is_empty(v.map(|v| &v.span), grid)
+                        && raster::box_is_empty(&v.map(|v| v.fixed), grid)
                     {
                         self.stats.triangles_in += 1;
                         match Setup::signed_area2(&v.map(|v| v.fixed), cull) {
@@ -464,13 +456,7 @@ impl Renderer {
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
-            self.vertex_stage(
-                stage,
-                &loose,
-                (&tri.vertices, &[normal; 3]),
-                loose_tests,
-                false,
-            );
+            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
             let verts = std::mem::take(&mut self.verts);
             self.triangle(
                 stage,
@@ -517,15 +503,14 @@ impl Renderer {
         }
     }
 
-    /// Transforms `positions` (with `normals`) into `self.verts`; with
-    /// `spans`, finds the samples each bounds (for the plan's box pretest).
+    /// Transforms `positions` (with `normals`) into `self.verts`.
     fn vertex_stage(
         &mut self,
         stage: &Stage<'_>,
         t: &Transforms,
-        (positions, normals): (&[Vec3], &[Vec3]),
+        positions: &[Vec3],
+        normals: &[Vec3],
         clip_tests: bool,
-        spans: bool,
     ) {
         let Transforms {
             mvp,
@@ -581,12 +566,7 @@ impl Renderer {
                     v.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
                     v.z = clip.z * v.inv_w;
                     match FixedPoint::snap(v.xy) {
-                        Some(f) => {
-                            v.fixed = f;
-                            if spans {
-                                v.span = raster::sample_span(f);
-                            }
-                        }
+                        Some(f) => v.fixed = f,
                         // Cannot happen inside the guard band; if it did, the
                         // clip path deals with it.
                         None => v.code = F64_PATH,
