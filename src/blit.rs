@@ -481,6 +481,20 @@ pub fn blit(
     let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
     // Every cell is written below.
     frame.resize(cols, rows);
+    blit_band(fb, mode, depth, background, split, frame.cells_mut());
+}
+
+/// [`blit`] of the cell rows whose samples `fb` holds (a band of whole
+/// cell rows: see [`Framebuffer::band`]) into `cells`, those rows' cells,
+/// top row first.
+pub(crate) fn blit_band(
+    fb: &Framebuffer,
+    mode: GlyphMode,
+    depth: ColorDepth,
+    background: Option<Rgb>,
+    split: Split,
+    cells: &mut [Cell],
+) {
     let blank_when_uniform =
         depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
     let args = (
@@ -493,12 +507,12 @@ pub fn blit(
     );
     // One copy of the loop per cell size, so that gathering a cell's
     // samples is constant indexing.
-    match (w, h) {
-        (1, 1) => blit_cells::<1, 1>(args, frame),
-        (1, 2) => blit_cells::<1, 2>(args, frame),
-        (2, 2) => blit_cells::<2, 2>(args, frame),
-        (2, 3) => blit_cells::<2, 3>(args, frame),
-        _ => blit_cells::<2, 4>(args, frame),
+    match mode.cell_size() {
+        (1, 1) => blit_cells::<1, 1>(args, cells),
+        (1, 2) => blit_cells::<1, 2>(args, cells),
+        (2, 2) => blit_cells::<2, 2>(args, cells),
+        (2, 3) => blit_cells::<2, 3>(args, cells),
+        _ => blit_cells::<2, 4>(args, cells),
     }
 }
 
@@ -513,15 +527,21 @@ type BlitArgs<'a> = (
 
 fn blit_cells<const W: usize, const H: usize>(
     (fb, mode, depth, background, split, blank_when_uniform): BlitArgs,
-    frame: &mut Frame,
+    cells: &mut [Cell],
 ) {
-    let grid = fb.grid();
+    let (grid, band) = (fb.grid(), fb.band());
+    let cols = grid.width as usize / W;
+    if cols == 0 {
+        return;
+    }
+    // The band's cell rows, counted from the top of the frame.
+    let first = (grid.height - band.y1) as usize / H;
     let mut samples = [None; 8];
-    for row in 0..frame.rows() {
+    for (i, out) in cells.chunks_exact_mut(cols).enumerate() {
         // The cell's sample rows, top first.
-        let top = grid.height as usize - 1 - row as usize * H;
+        let top = grid.height as usize - 1 - (first + i) * H;
         let lines: [&[Option<Lin>]; H] = std::array::from_fn(|dy| fb.row((top - dy) as u32));
-        for (col, cell) in frame.row_mut(row).iter_mut().enumerate() {
+        for (col, cell) in out.iter_mut().enumerate() {
             let x = col * W;
             for (i, s) in samples[..W * H].iter_mut().enumerate() {
                 *s = lines[i / W][x + i % W];

@@ -211,6 +211,11 @@ pub struct ViewArgs {
     /// does not need (the same picture, slower: for comparison)
     #[arg(long)]
     pub full_pipeline: bool,
+    /// Threads drawing each frame, a band of rows each (the same picture
+    /// with any count): auto uses every core for frames of 400×120 cells
+    /// or more, one thread below
+    #[arg(long, value_name = "N|auto", default_value = "auto")]
+    pub threads: rastty::Threads,
 }
 
 impl ViewArgs {

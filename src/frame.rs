@@ -98,6 +98,11 @@ impl Frame {
         self.cells[i] = cell;
     }
 
+    /// Every cell, row by row from the top, to write.
+    pub(crate) fn cells_mut(&mut self) -> &mut [Cell] {
+        &mut self.cells
+    }
+
     /// Row `row` (0 at the top), to write.
     pub fn row_mut(&mut self, row: u16) -> &mut [Cell] {
         let w = self.cols as usize;

@@ -9,14 +9,19 @@
 //! terminal's own. Depth is the canonical cube's z (larger is nearer),
 //! cleared to −∞. Rows are stored bottom to top (y up, as the notes have
 //! it); the blitters turn them over.
+//!
+//! A framebuffer may hold one [`Band`] of its grid's rows only: what one
+//! thread draws of a frame drawn in parallel. Its samples keep the grid's
+//! coordinates (an index subtracts the band's first row).
 
 use crate::color::Lin;
-use crate::transform::Grid;
+use crate::transform::{Band, Grid};
 
-/// A `width × height` grid of samples.
+/// A `width × height` grid of samples, or one band of its rows.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Framebuffer {
     grid: Grid,
+    band: Band,
     samples: Vec<Option<Lin>>,
     depth: Vec<f32>,
 }
@@ -26,6 +31,7 @@ impl Framebuffer {
     pub fn new(grid: Grid) -> Framebuffer {
         Framebuffer {
             grid,
+            band: grid.all_rows(),
             samples: vec![None; grid.len()],
             depth: vec![f32::NEG_INFINITY; grid.len()],
         }
@@ -36,24 +42,71 @@ impl Framebuffer {
         self.grid
     }
 
+    /// The rows held: every row of the grid, or one band of them.
+    pub fn band(&self) -> Band {
+        self.band
+    }
+
     /// Clears every sample to the background and, with `depth`, every depth
     /// to −∞ (a frame without a depth test leaves the depth buffer alone);
     /// resizes if the grid changed (the only time it allocates).
     pub fn reset(&mut self, grid: Grid, depth: bool) {
+        self.reset_band(grid, grid.all_rows(), depth);
+    }
+
+    /// [`Framebuffer::reset`] to hold only `band`'s rows of `grid` (clamped
+    /// to the grid).
+    pub fn reset_band(&mut self, grid: Grid, band: Band, depth: bool) {
+        let y1 = band.y1.min(grid.height);
+        self.band = Band {
+            y0: band.y0.min(y1),
+            y1,
+        };
         self.grid = grid;
+        let len = grid.width as usize * self.band.height() as usize;
         self.samples.clear();
-        self.samples.resize(grid.len(), None);
-        if depth || self.depth.len() != grid.len() {
+        self.samples.resize(len, None);
+        if depth || self.depth.len() != len {
+            self.depth.clear();
+            self.depth.resize(len, f32::NEG_INFINITY);
+        }
+    }
+
+    /// Holds every row of `grid`, its contents left as they are (or, where
+    /// it grows, cleared): for a frame whose every row is about to be
+    /// copied in from bands.
+    pub(crate) fn fit(&mut self, grid: Grid) {
+        self.grid = grid;
+        self.band = grid.all_rows();
+        if self.samples.len() != grid.len() {
+            self.samples.clear();
+            self.samples.resize(grid.len(), None);
+        }
+        if self.depth.len() != grid.len() {
             self.depth.clear();
             self.depth.resize(grid.len(), f32::NEG_INFINITY);
         }
     }
 
+    /// Copies the samples held into `samples` and, where given, the
+    /// depths into `depths` (each as long as what is held).
+    pub(crate) fn copy_into(&self, samples: &mut [Option<Lin>], depths: Option<&mut [f32]>) {
+        samples.copy_from_slice(&self.samples);
+        if let Some(d) = depths {
+            d.copy_from_slice(&self.depth);
+        }
+    }
+
+    /// The samples and depths held, to write a band of rows each.
+    pub(crate) fn parts_mut(&mut self) -> (&mut [Option<Lin>], &mut [f32]) {
+        (&mut self.samples, &mut self.depth)
+    }
+
     #[inline(always)]
     /// Where sample `(x, y)` is stored (rows from the bottom).
     pub fn index(&self, x: u32, y: u32) -> usize {
-        debug_assert!(x < self.grid.width && y < self.grid.height);
-        y as usize * self.grid.width as usize + x as usize
+        debug_assert!(x < self.grid.width && y >= self.band.y0 && y < self.band.y1);
+        (y - self.band.y0) as usize * self.grid.width as usize + x as usize
     }
 
     #[inline(always)]
@@ -105,10 +158,11 @@ impl Framebuffer {
     /// Sample row `y` (y up: row 0 is the bottom of the screen).
     pub fn row(&self, y: u32) -> &[Option<Lin>] {
         let w = self.grid.width as usize;
-        &self.samples[y as usize * w..(y as usize + 1) * w]
+        let i = (y - self.band.y0) as usize * w;
+        &self.samples[i..i + w]
     }
 
-    /// All samples, row by row from the bottom.
+    /// All samples held, row by row from the bottom.
     pub fn samples(&self) -> &[Option<Lin>] {
         &self.samples
     }

@@ -54,6 +54,7 @@
 //! | `gltf` | yes | `scene::gltf`: glTF 2.0 and GLB models, with their textures |
 //! | `ply` | yes | `scene::ply`: PLY models |
 //! | `textures` | yes | `scene::image`: PNG and JPEG images for OBJ `map_Kd` textures |
+//! | `parallel` | yes | frames of 400×120 cells or more drawn in bands of rows on every core (rayon); the same frame, bit for bit ([`Threads`]) |
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
 //! With `default-features = false` the crate is the renderer alone (glam,
@@ -119,8 +120,10 @@ pub use encode::Encoder;
 pub use error::{Error, Result};
 pub use frame::{Cell, Frame};
 pub use framebuffer::Framebuffer;
-pub use options::{Aa, Interpolation, MAX_CELLS, Pipeline, RenderOptions};
-pub use plan::{Decision, Plan};
+pub use options::{
+    Aa, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads,
+};
+pub use plan::{Bands, Decision, Plan};
 pub use raster::{Precision, Traversal};
 pub use render::{FrameStats, FrameTimes, Renderer, render};
 pub use scene::{

@@ -341,5 +341,6 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         split: view.split,
         precision: view.precision,
         filter: view.filter,
+        threads: view.threads,
     }
 }

@@ -55,6 +55,50 @@ pub struct RenderOptions {
     /// Texture filtering for every texture (`None`: as each file's sampler
     /// says).
     pub filter: Option<FilterMode>,
+    /// How many threads may draw the frame, each a band of its rows (the
+    /// same frame, bit for bit, with any number).
+    pub threads: Threads,
+}
+
+/// How many threads draw a frame. Each draws one band of the sample rows;
+/// the frame is the same, bit for bit, whatever the count (a test renders
+/// random scenes with 1 to 7). Only the fixed-point set-up without
+/// anti-aliasing or a full-grid scan draws in bands; otherwise the plan
+/// says why it draws on one thread ([`crate::Plan::bands`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Threads {
+    /// As many as the machine has, for frames of at least
+    /// [`PARALLEL_CELLS`] cells; one for smaller frames, where splitting
+    /// costs more than it gains.
+    #[default]
+    Auto,
+    /// This many bands, at most [`MAX_THREADS`] and one per cell row, for
+    /// any frame size. Without the `parallel` feature the bands are drawn
+    /// one after another on the calling thread.
+    Exactly(u16),
+}
+
+/// The most bands a frame is split into.
+pub const MAX_THREADS: u16 = 64;
+
+/// The smallest frame, in cells, that [`Threads::Auto`] draws in parallel
+/// (400×120): below it the per-band work every triangle costs (its set-up,
+/// once per band it reaches) and starting the threads outweigh the gain.
+pub const PARALLEL_CELLS: u32 = 400 * 120;
+
+impl std::str::FromStr for Threads {
+    type Err = String;
+
+    /// `auto`, or a count from 1 to [`MAX_THREADS`].
+    fn from_str(s: &str) -> Result<Threads, String> {
+        if s == "auto" {
+            return Ok(Threads::Auto);
+        }
+        match s.parse::<u16>() {
+            Ok(n @ 1..=MAX_THREADS) => Ok(Threads::Exactly(n)),
+            _ => Err(format!("expected auto or a count from 1 to {MAX_THREADS}")),
+        }
+    }
 }
 
 /// How attributes are interpolated across a triangle.
@@ -162,6 +206,7 @@ impl Default for RenderOptions {
             split: Split::default(),
             precision: Precision::default(),
             filter: None,
+            threads: Threads::Auto,
         }
     }
 }

@@ -37,14 +37,25 @@
 //! projected box has less than one sample per triangle. The triangles it
 //! finds are exactly those the set-up finds covering nothing, counted the
 //! same way (a test compares every count with the full pipeline's).
+//!
+//! The other speed decision is how many bands of rows the frame is drawn
+//! in, one thread each ([`Plan::bands`]): as many as there are cores for
+//! frames of [`PARALLEL_CELLS`] cells or more (below that, the per-band
+//! set-up of every triangle and starting the threads cost more than they
+//! gain), as many as [`Threads::Exactly`] asks for, and one wherever a
+//! band could not draw its rows alone: anti-aliasing (its passes accumulate
+//! over the whole grid), the f64 and f32 set-ups (comparison modes, whose
+//! boxes are clamped to the whole grid only) and the full-grid scan.
 
 use std::fmt;
 
 use glam::{Mat4, Vec2, Vec3};
 
 use crate::clip::Clipper;
-use crate::options::{Aa, Interpolation, Pipeline, RenderOptions};
-use crate::raster::Precision;
+use crate::options::{
+    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads,
+};
+use crate::raster::{Precision, Traversal};
 use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
@@ -111,6 +122,66 @@ pub struct Plan {
     /// Per mesh: whether its triangles are tested for an empty box before
     /// set-up (see [`Plan::pretests_boxes`]).
     box_pretests: Vec<bool>,
+    /// How many bands of rows the frame is drawn in, one thread each.
+    pub bands: Bands,
+}
+
+/// How many bands of sample rows a frame is drawn in (each by a thread of
+/// its own, with the `parallel` feature), and why. Speed alone: every
+/// band sets up each triangle that reaches it, clamped to its rows, and the
+/// set-up's edge values are exact integers from any row, so the bands draw
+/// exactly the samples one thread would, in the same order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bands {
+    /// Bands, one or more; never more than the frame's cell rows.
+    pub count: u16,
+    /// Why.
+    pub why: &'static str,
+}
+
+impl fmt::Display for Bands {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:<4}  {}", self.count, self.why)
+    }
+}
+
+/// The threads this process may run at once (asked once: the answer reads
+/// files on Linux).
+fn cores() -> u16 {
+    static CORES: std::sync::OnceLock<u16> = std::sync::OnceLock::new();
+    *CORES.get_or_init(|| {
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS as usize) as u16)
+    })
+}
+
+/// How many bands `opts` asks for and allows.
+fn bands(opts: &RenderOptions) -> Bands {
+    let one = |why| Bands { count: 1, why };
+    if opts.aa != Aa::None {
+        return one("anti-aliasing accumulates over the whole grid");
+    }
+    if opts.precision != Precision::Fixed {
+        return one("the f64 and f32 set-ups draw the whole grid (comparison modes)");
+    }
+    if opts.traversal == Traversal::Scan {
+        return one("a scan tests every sample of the grid");
+    }
+    let rows = opts.rows.max(1);
+    match opts.threads {
+        Threads::Exactly(n) => Bands {
+            count: n.clamp(1, MAX_THREADS).min(rows),
+            why: "as many as asked for, at most one a cell row",
+        },
+        Threads::Auto if !cfg!(feature = "parallel") => one("built without the parallel feature"),
+        Threads::Auto if (opts.cols as u32 * opts.rows as u32) < PARALLEL_CELLS => {
+            one("a frame under 400×120 cells is faster on one thread")
+        }
+        Threads::Auto if cores() < 2 => one("one core"),
+        Threads::Auto => Bands {
+            count: cores().min(rows),
+            why: "one a core, for a frame of 400×120 cells or more",
+        },
+    }
 }
 
 /// Screen area (in samples) per triangle of a mesh's projected bounding
@@ -146,6 +217,10 @@ impl Plan {
             full: true,
             clip_tests: Vec::new(),
             box_pretests: Vec::new(),
+            bands: Bands {
+                count: 1,
+                why: "not planned yet",
+            },
         };
         plan.replan(scene, opts, vp, turn, clipper);
         plan
@@ -257,6 +332,7 @@ impl Plan {
             full,
             clip_tests: std::mem::take(&mut self.clip_tests),
             box_pretests: std::mem::take(&mut self.box_pretests),
+            bands: bands(opts),
         };
     }
 
@@ -373,6 +449,7 @@ impl fmt::Display for Plan {
         writeln!(f, "texturing      {}", self.texturing)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
-        write!(f, "perspective    {}", self.perspective)
+        writeln!(f, "perspective    {}", self.perspective)?;
+        write!(f, "bands          {}", self.bands)
     }
 }

@@ -46,7 +46,7 @@
 
 use crate::fixed::{Fixed, FixedPoint, MAX_COORD, ONE};
 use crate::scene::Cull;
-use crate::transform::{Grid, MAX_GRID};
+use crate::transform::{Band, Grid, MAX_GRID};
 
 /// How the rasterizer walks the samples. All give identical coverage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -182,16 +182,17 @@ fn last_sample(hi: i64) -> i64 {
     (hi - ONE / 2).div_euclid(ONE)
 }
 
-/// Whether a snapped triangle's bounding box, clamped to `grid`, holds no
-/// sample centre (the same box [`Setup::from_fixed`] finds): then sampling
-/// finds nothing in it, and [`Setup::signed_area2`] tells all a sampling
-/// caller counts (most triangles of a detailed model seen small).
+/// Whether a snapped triangle's bounding box, clamped to `grid`'s columns
+/// and `band`'s rows, holds no sample centre (the same box
+/// [`Setup::from_fixed_in`] finds): then sampling finds nothing in it, and
+/// [`Setup::signed_area2`] tells all a sampling caller counts (most
+/// triangles of a detailed model seen small).
 #[inline(always)]
-pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid) -> bool {
+pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
     let (min_x, max_x) = min_max(p.map(|q| q.x.0));
     let (min_y, max_y) = min_max(p.map(|q| q.y.0));
     first_sample(min_x).max(0) > last_sample(max_x).min(grid.width as i64 - 1)
-        || first_sample(min_y).max(0) > last_sample(max_y).min(grid.height as i64 - 1)
+        || first_sample(min_y).max(band.y0 as i64) > last_sample(max_y).min(band.y1 as i64 - 1)
 }
 
 /// A triangle set up for rasterization: snapped, oriented, bounded.
@@ -245,6 +246,21 @@ impl Setup {
     /// set up without its edges: nothing will evaluate them.
     #[inline]
     pub fn from_fixed(p: [FixedPoint; 3], grid: Grid, cull: Cull) -> Result<Setup, Rejected> {
+        Setup::from_fixed_in(p, grid, grid.all_rows(), cull)
+    }
+
+    /// [`Setup::from_fixed`] with the bounding box clamped to `band`'s rows
+    /// as well: the part of the triangle one band of a parallel frame
+    /// draws. The edge values at a sample are exact integers, whatever row
+    /// the walk starts from, so the bands together cover exactly the
+    /// samples the whole grid's set-up covers, with the same weights.
+    #[inline]
+    pub fn from_fixed_in(
+        p: [FixedPoint; 3],
+        grid: Grid,
+        band: Band,
+        cull: Cull,
+    ) -> Result<Setup, Rejected> {
         // Twice the signed area, the same from any starting vertex: cull
         // and drop degenerates before anything else.
         let area2 = Setup::signed_area2(&p, cull)?;
@@ -256,8 +272,8 @@ impl Setup {
             last_sample(max_x).min(grid.width as i64 - 1),
         );
         let (y0, y1) = (
-            first_sample(min_y).max(0),
-            last_sample(max_y).min(grid.height as i64 - 1),
+            first_sample(min_y).max(band.y0 as i64),
+            last_sample(max_y).min(band.y1 as i64 - 1),
         );
         if x0 > x1 || y0 > y1 {
             // A return of its own rather than one `Ok(Setup { .. })` below

@@ -333,6 +333,31 @@ impl Grid {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+
+    /// Every row of the grid, as one band.
+    pub fn all_rows(&self) -> Band {
+        Band {
+            y0: 0,
+            y1: self.height,
+        }
+    }
+}
+
+/// A band of whole sample rows, `y0 ≤ y < y1` (y up): the part of the grid
+/// one thread draws when a frame is drawn in parallel bands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Band {
+    /// The first row.
+    pub y0: u32,
+    /// One past the last row.
+    pub y1: u32,
+}
+
+impl Band {
+    /// Rows in the band.
+    pub fn height(&self) -> u32 {
+        self.y1.saturating_sub(self.y0)
+    }
 }
 
 #[cfg(test)]

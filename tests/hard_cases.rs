@@ -1059,10 +1059,9 @@ fn depth_stays_within_its_vertices_and_coplanar_overlaps_resolve_the_same_way() 
 
 #[test]
 fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
-    // The renderer is single-threaded and walks whole triangles: there is
-    // no thread count or tile size to change the frame. Rendering the same
-    // frame twice, with a fresh renderer and a reused one, is bit for bit
-    // the same.
+    // Rendering the same frame twice, with a fresh renderer and a reused
+    // one, is bit for bit the same. (The same with any thread count:
+    // `tests/plan.rs`, `random_scenes_are_the_same_with_any_thread_count`.)
     let scene = rastty::default_scene();
     let opts = RenderOptions {
         cols: 50,

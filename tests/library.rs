@@ -1,14 +1,17 @@
 //! rastty as a library: frame after frame into the caller's memory, with no
 //! allocation once the sizes are stable, counted by a global allocator that
-//! counts this thread's allocations.
+//! counts this thread's allocations and those of rayon's threads (which
+//! only a frame drawn in bands uses here).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use rastty::glam::Vec3;
 use rastty::scene::Shape;
 use rastty::{
     Aa, ColorDepth, Encoder, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Shading,
+    Threads,
 };
 
 struct Counting;
@@ -17,18 +20,30 @@ thread_local! {
     static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
 }
 
+/// Allocations made on rayon's threads.
+static WORKER_ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+fn count() {
+    if rayon::current_thread_index().is_some() {
+        WORKER_ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+    } else {
+        ALLOCATIONS.with(|n| n.set(n.get() + 1));
+    }
+}
+
 // SAFETY: every call is passed on to the system allocator unchanged; the
-// counter is a const-initialised thread local, which allocates nothing.
+// counters are an atomic and a const-initialised thread local, and rayon's
+// thread index is a const-initialised thread local too: none allocates.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|n| n.set(n.get() + 1));
+        count();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|n| n.set(n.get() + 1));
+        count();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -36,11 +51,12 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// Allocations made on this thread while `f` runs.
+/// Allocations made on this thread, and on rayon's, while `f` runs.
 fn allocations(f: impl FnOnce()) -> u64 {
-    let before = ALLOCATIONS.with(Cell::get);
+    let total = || ALLOCATIONS.with(Cell::get) + WORKER_ALLOCATIONS.load(Ordering::Relaxed);
+    let before = total();
     f();
-    ALLOCATIONS.with(Cell::get) - before
+    total() - before
 }
 
 /// A cube with a 4×4 texture, its coordinates the positions' x and y.
@@ -131,6 +147,37 @@ fn render_into_allocates_nothing_once_warmed() {
         // The frames went through the clip path and read the texture too.
         assert!(clipped > 0 && textured > 0, "{glyphs:?}");
     }
+}
+
+#[test]
+fn a_frame_drawn_in_bands_allocates_only_rayons_queue_blocks_once_warmed() {
+    let scene = scene();
+    let opts = RenderOptions {
+        cols: 100,
+        rows: 30,
+        color: ColorDepth::TrueColor,
+        threads: Threads::Exactly(3),
+        ..Default::default()
+    };
+    let (mut renderer, mut frame) = (Renderer::new(), Frame::default());
+    renderer.render_into(&scene, &opts, &mut frame);
+    assert_eq!(renderer.plan().unwrap().bands.count, 3);
+    let mut clipped = 0;
+    let n = allocations(|| {
+        for k in 1..=630 {
+            let opts = RenderOptions {
+                turn: Vec3::new(0.0, 7.0 * k as f32, 0.0),
+                ..opts
+            };
+            renderer.render_into(&scene, &opts, &mut frame);
+            clipped += renderer.stats().clipped;
+        }
+    });
+    // The renderer allocates nothing; rayon's queue for jobs sent from
+    // outside its pool (one a frame) takes a new block of 63 slots every
+    // 63 jobs.
+    assert!(n <= 630 / 63 + 1, "{n} allocations in 630 frames");
+    assert!(clipped > 0);
 }
 
 #[test]

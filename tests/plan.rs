@@ -12,7 +12,7 @@ use rastty::Cull;
 use rastty::Pipeline;
 use rastty::Shading;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
+use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Threads};
 
 /// Renders both ways; returns the planned renderer's statistics.
 fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameStats, String> {
@@ -52,6 +52,60 @@ fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameSt
         return Err("frames differ".into());
     }
     Ok(*planned.stats())
+}
+
+/// Renders with one band, then with 2 to 7 (one reused renderer): the
+/// frame, every sample, every depth (where tested) and every count are the
+/// same, except per-face lighting, which each band does for itself.
+fn same_with_any_thread_count(scene: &Scene, opts: &RenderOptions) -> Result<(), String> {
+    let mut one = Renderer::new();
+    let opts = |n| RenderOptions {
+        threads: Threads::Exactly(n),
+        ..*opts
+    };
+    let frame = one.render(scene, &opts(1)).clone();
+    let plan = one.plan().unwrap();
+    if plan.bands.count != 1 {
+        return Err(format!("one thread asked for, {} bands", plan.bands.count));
+    }
+    let depth = plan.depth.run;
+    let fb = one.framebuffer();
+    let grid = fb.grid();
+    let depths = |fb: &rastty::Framebuffer| -> Vec<u32> {
+        (0..grid.height)
+            .flat_map(|y| (0..grid.width).map(move |x| (x, y)))
+            .map(|(x, y)| fb.depth(x, y).to_bits())
+            .collect()
+    };
+    let mut reused = Renderer::new();
+    for n in 2..=7 {
+        let banded = reused.render(scene, &opts(n)).clone();
+        let bands = reused.plan().unwrap().bands.count;
+        let rows = opts(n).rows;
+        if opts(n).aa == Aa::None && bands != n.min(rows) {
+            return Err(format!(
+                "{n} threads asked for, {bands} bands of {rows} rows"
+            ));
+        }
+        if banded != frame {
+            return Err(format!("{n} threads: frames differ"));
+        }
+        if reused.framebuffer().samples() != fb.samples() {
+            return Err(format!("{n} threads: samples differ"));
+        }
+        if depth && depths(reused.framebuffer()) != depths(fb) {
+            return Err(format!("{n} threads: depths differ"));
+        }
+        let (a, b) = (*one.stats(), *reused.stats());
+        let unlit = |s: rastty::FrameStats| rastty::FrameStats {
+            lighting_evaluations: 0,
+            ..s
+        };
+        if unlit(a) != unlit(b) {
+            return Err(format!("{n} threads: counts differ: {a:?} {b:?}"));
+        }
+    }
+    Ok(())
 }
 
 fn color() -> impl Strategy<Value = Rgb> {
@@ -248,6 +302,113 @@ proptest! {
     ) {
         let lone = Scene { camera, meshes: vec![mesh], lights, ..Scene::default() };
         same_both_ways(&lone, &opts).map_err(TestCaseError::fail)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64)
+    ))]
+
+    /// Promise 11: the same frame, bit for bit, drawn by one thread or in
+    /// bands by several, in every glyph mode, with clipping, depth,
+    /// culling, lighting and the full pipeline.
+    #[test]
+    fn random_scenes_are_the_same_with_any_thread_count(
+        triangles in prop::collection::vec(triangle(false), 0..5),
+        meshes in prop::collection::vec(mesh(), 0..3),
+        camera in camera(),
+        lights in prop::collection::vec(light(), 0..3),
+        background in prop::option::of(color()),
+        opts in options(),
+        full in any::<bool>(),
+    ) {
+        let scene = Scene { background, camera, triangles, meshes, lights, ..Scene::default() };
+        let pipeline = if full { Pipeline::Full } else { Pipeline::Planned };
+        // Anti-aliased frames are drawn on one thread (and checked to be).
+        let opts = RenderOptions { aa: Aa::None, pipeline, ..opts };
+        same_with_any_thread_count(&scene, &opts).map_err(TestCaseError::fail)?;
+    }
+}
+
+#[test]
+fn every_example_scene_is_the_same_with_any_thread_count() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let scene = Scene::load(&path).unwrap();
+        for glyphs in GlyphMode::ALL {
+            let opts = RenderOptions {
+                cols: 40,
+                rows: 14,
+                glyphs,
+                turn: Vec3::new(10.0, 35.0, 5.0),
+                ..RenderOptions::default()
+            };
+            same_with_any_thread_count(&scene, &opts)
+                .unwrap_or_else(|e| panic!("{} {glyphs:?}: {e}", path.display()));
+        }
+    }
+}
+
+#[test]
+fn threads_are_planned_from_the_frame_and_the_options() {
+    let scene = rastty::default_scene();
+    let bands = |opts: RenderOptions| {
+        let mut r = Renderer::new();
+        r.render(&scene, &opts);
+        r.plan().unwrap().bands
+    };
+    let big = RenderOptions {
+        cols: 400,
+        rows: 120,
+        ..RenderOptions::default()
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as u16;
+    let auto = bands(big);
+    if cfg!(feature = "parallel") {
+        assert_eq!(auto.count, cores.min(rastty::MAX_THREADS), "{}", auto.why);
+    } else {
+        assert_eq!(auto.count, 1, "{}", auto.why);
+    }
+    // One cell short of 400×120: one thread.
+    let small = RenderOptions { cols: 399, ..big };
+    assert_eq!(bands(small).count, 1);
+    // As many as asked for, at most one a cell row.
+    let exactly = |n| RenderOptions {
+        threads: Threads::Exactly(n),
+        rows: 5,
+        ..small
+    };
+    assert_eq!(bands(exactly(3)).count, 3);
+    assert_eq!(bands(exactly(64)).count, 5);
+    // What only one thread can draw.
+    for opts in [
+        RenderOptions {
+            aa: Aa::X4,
+            ..exactly(3)
+        },
+        RenderOptions {
+            aa: Aa::Exact,
+            ..exactly(3)
+        },
+        RenderOptions {
+            precision: rastty::Precision::F32,
+            ..exactly(3)
+        },
+        RenderOptions {
+            traversal: rastty::Traversal::Scan,
+            ..exactly(3)
+        },
+    ] {
+        let b = bands(opts);
+        assert_eq!(b.count, 1, "{opts:?}");
+        assert!(!b.why.is_empty());
+    }
+    assert_eq!("auto".parse::<Threads>(), Ok(Threads::Auto));
+    assert_eq!("7".parse::<Threads>(), Ok(Threads::Exactly(7)));
+    for bad in ["0", "65", "-1", "two", ""] {
+        assert!(bad.parse::<Threads>().is_err(), "{bad}");
     }
 }
 

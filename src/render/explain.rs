@@ -101,6 +101,17 @@ impl Renderer {
         );
         let _ = writeln!(
             out,
+            "bands          {}\n{:<20}{}",
+            plan.bands,
+            "",
+            if plan.bands.count > 1 {
+                "each a thread; vertices transformed once, each triangle set up by every band it reaches"
+            } else {
+                "one thread draws every row"
+            }
+        );
+        let _ = writeln!(
+            out,
             "time: plan {} · vertices {} · triangles {} · blit {} · encode {} ({} bytes)",
             ms(t.plan),
             ms(t.vertices),
