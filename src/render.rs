@@ -66,7 +66,7 @@ use crate::plan::Plan;
 use crate::raster::{
     self, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal,
 };
-use crate::scene::{Cull, Mesh, Projection, Scene};
+use crate::scene::{Camera, Cull, Mesh, Projection, Scene};
 use crate::shade::{Lights, Shading};
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Band, Grid};
@@ -295,6 +295,9 @@ pub struct Renderer {
     /// The bands of the last frame drawn in parallel, each a renderer of
     /// its own with a framebuffer of its rows (empty until one is).
     bands: Vec<Renderer>,
+    /// The last camera resolved, the aspect it was resolved for, and the
+    /// result ([`Camera::resolved`]).
+    camera: Option<(Camera, u32, Camera)>,
     /// Where each mesh's vertices are in `verts`, and its matrices, for a
     /// frame drawn in bands.
     meshes: Vec<(std::ops::Range<usize>, Transforms)>,
@@ -320,6 +323,7 @@ impl Renderer {
             acc: Vec::new(),
             aa: Aa::None,
             bands: Vec::new(),
+            camera: None,
             meshes: Vec::new(),
         }
     }
@@ -365,8 +369,9 @@ impl Renderer {
         };
 
         let turn = transform::rotation(opts.turn);
-        // A camera that frames a model is placed for this view's aspect.
-        let cam = &scene.camera.resolved(opts.aspect());
+        // A camera that frames a model is placed for this view's aspect
+        // (a few hundred thousand instructions), once while neither changes.
+        let cam = &self.resolved(&scene.camera, opts.aspect());
         let vp = cam.view_projection(opts.aspect());
         let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
         // The plan is taken out of `self` for the frame (the stages borrow
@@ -457,6 +462,19 @@ impl Renderer {
             self.times.blit += lap();
         }
         self.plan = plan;
+    }
+
+    /// `camera` resolved for `aspect`: the last frame's result when both are
+    /// the same (bit for bit), otherwise found afresh.
+    fn resolved(&mut self, camera: &Camera, aspect: f32) -> Camera {
+        match self.camera {
+            Some((c, a, resolved)) if c.same_bits(camera) && a == aspect.to_bits() => resolved,
+            _ => {
+                let resolved = camera.resolved(aspect);
+                self.camera = Some((*camera, aspect.to_bits(), resolved));
+                resolved
+            }
+        }
     }
 
     /// Draws every mesh and loose triangle into the framebuffer (or, for

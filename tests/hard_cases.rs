@@ -1079,4 +1079,19 @@ fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     );
     let a = reused.render(&scene, &opts).clone();
     assert_eq!(a, rastty::render(&scene, &opts));
+    // A framing camera is placed once for an aspect and kept while neither
+    // changes: orbited and zoomed, at the same aspect, it is placed anew.
+    let mut model = Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::Rgb::WHITE));
+    assert!(model.camera.fit.is_some());
+    reused.render(&model, &opts);
+    model.camera = model.camera.orbited(40.0, 20.0, 0.7);
+    let b = reused.render(&model, &opts).clone();
+    assert_eq!(b, rastty::render(&model, &opts));
+    assert_ne!(
+        b,
+        rastty::render(
+            &Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::Rgb::WHITE)),
+            &opts
+        )
+    );
 }

@@ -283,6 +283,25 @@ impl Camera {
         }
     }
 
+    /// Whether two cameras are the same bit for bit (`==` takes −0 for 0):
+    /// then [`Camera::resolved`] gives the same camera for both.
+    pub(crate) fn same_bits(&self, o: &Camera) -> bool {
+        let v = |v: Vec3| v.to_array().map(f32::to_bits);
+        let p = |p: Projection| match p {
+            Projection::Perspective { fov_y, near, far } => {
+                [1, fov_y.to_bits(), near.to_bits(), far.to_bits()]
+            }
+            Projection::Orthographic { height, near, far } => {
+                [2, height.to_bits(), near.to_bits(), far.to_bits()]
+            }
+            Projection::None => [0; 4],
+        };
+        let fit = |f: Option<Fit>| f.map(|f| f.points.map(v));
+        p(self.projection) == p(o.projection)
+            && [self.eye, self.target, self.up].map(v) == [o.eye, o.target, o.up].map(v)
+            && fit(self.fit) == fit(o.fit)
+    }
+
     /// This camera for a view of `aspect` (width over height): where it
     /// frames a model ([`Camera::fit`]), the eye moved along `eye − target`
     /// to the distance at which the model's outline, turned any way about
