@@ -64,11 +64,27 @@ impl Framebuffer {
         };
         self.grid = grid;
         let len = grid.width as usize * self.band.height() as usize;
-        self.samples.clear();
-        self.samples.resize(len, None);
-        if depth || self.depth.len() != len {
+        if self.samples.len() == len {
+            // Eight at a time: `fill` stores one tag at a time.
+            let mut chunks = self.samples.chunks_exact_mut(8);
+            for c in &mut chunks {
+                c.copy_from_slice(&[None; 8]);
+            }
+            chunks.into_remainder().fill(None);
+        } else {
+            self.samples.clear();
+            self.samples.resize(len, None);
+        }
+        if self.depth.len() != len {
             self.depth.clear();
             self.depth.resize(len, f32::NEG_INFINITY);
+        } else if depth {
+            // Eight at a time: `fill` of one f32 stores one at a time.
+            let mut chunks = self.depth.chunks_exact_mut(8);
+            for c in &mut chunks {
+                c.copy_from_slice(&[f32::NEG_INFINITY; 8]);
+            }
+            chunks.into_remainder().fill(f32::NEG_INFINITY);
         }
     }
 
