@@ -212,7 +212,7 @@ pub struct ViewArgs {
     #[arg(long)]
     pub full_pipeline: bool,
     /// Threads drawing each frame, a band of rows each (the same picture
-    /// with any count): auto uses every core for frames of 400×120 cells
+    /// with any count): auto uses every core for frames of 600×180 cells
     /// or more, one thread below
     #[arg(long, value_name = "N|auto", default_value = "auto")]
     pub threads: rastty::Threads,

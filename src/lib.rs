@@ -54,7 +54,7 @@
 //! | `gltf` | yes | `scene::gltf`: glTF 2.0 and GLB models, with their textures |
 //! | `ply` | yes | `scene::ply`: PLY models |
 //! | `textures` | yes | `scene::image`: PNG and JPEG images for OBJ `map_Kd` textures |
-//! | `parallel` | yes | frames of 400×120 cells or more drawn in bands of rows on every core (rayon); the same frame, bit for bit ([`Threads`]) |
+//! | `parallel` | yes | frames of 600×180 cells or more drawn in bands of rows on every core (rayon); the same frame, bit for bit ([`Threads`]) |
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
 //! With `default-features = false` the crate is the renderer alone (glam,

@@ -82,9 +82,14 @@ pub enum Threads {
 pub const MAX_THREADS: u16 = 64;
 
 /// The smallest frame, in cells, that [`Threads::Auto`] draws in parallel
-/// (400×120): below it the per-band work every triangle costs (its set-up,
-/// once per band it reaches) and starting the threads outweigh the gain.
-pub const PARALLEL_CELLS: u32 = 400 * 120;
+/// (600×180). Below it the per-band work (each band sets up every triangle
+/// that reaches it, and copies its rows), the vertex stage left on one
+/// thread and handing the bands to rayon outweigh the gain. On this
+/// project's 2-core machine two bands took 0.90–1.07 times one band's time
+/// at 400×120 cells, 0.80–1.02 at 600×180 and 0.63–0.76 at 1000×300 (the
+/// torus and the Tux, four runs of `cargo run --release --example
+/// bands`).
+pub const PARALLEL_CELLS: u32 = 600 * 180;
 
 impl std::str::FromStr for Threads {
     type Err = String;

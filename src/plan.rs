@@ -174,12 +174,12 @@ fn bands(opts: &RenderOptions) -> Bands {
         },
         Threads::Auto if !cfg!(feature = "parallel") => one("built without the parallel feature"),
         Threads::Auto if (opts.cols as u32 * opts.rows as u32) < PARALLEL_CELLS => {
-            one("a frame under 400×120 cells is faster on one thread")
+            one("a frame under 600×180 cells is faster on one thread")
         }
         Threads::Auto if cores() < 2 => one("one core"),
         Threads::Auto => Bands {
             count: cores().min(rows),
-            why: "one a core, for a frame of 400×120 cells or more",
+            why: "one a core, for a frame of 600×180 cells or more",
         },
     }
 }

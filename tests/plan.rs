@@ -360,8 +360,8 @@ fn threads_are_planned_from_the_frame_and_the_options() {
         r.plan().unwrap().bands
     };
     let big = RenderOptions {
-        cols: 400,
-        rows: 120,
+        cols: 600,
+        rows: 180,
         ..RenderOptions::default()
     };
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as u16;
@@ -371,8 +371,8 @@ fn threads_are_planned_from_the_frame_and_the_options() {
     } else {
         assert_eq!(auto.count, 1, "{}", auto.why);
     }
-    // One cell short of 400×120: one thread.
-    let small = RenderOptions { cols: 399, ..big };
+    // One column short of 600×180: one thread.
+    let small = RenderOptions { cols: 599, ..big };
     assert_eq!(bands(small).count, 1);
     // As many as asked for, at most one a cell row.
     let exactly = |n| RenderOptions {
