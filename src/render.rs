@@ -593,6 +593,8 @@ impl Renderer {
         let (samples, depths) = self.fb.parts_mut();
         let cells = frame.cells_mut();
         // Cells are stored from the top: the bottom band's are the last.
+        // The same zip twice, rayon's and the standard library's: their
+        // iterators have the same shape but not the same types.
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;

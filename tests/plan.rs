@@ -223,6 +223,25 @@ fn light() -> impl Strategy<Value = Light> {
         })
 }
 
+/// Loose triangles, meshes, a camera, lights and a background.
+fn scene() -> impl Strategy<Value = Scene> {
+    (
+        prop::collection::vec(triangle(false), 0..5),
+        prop::collection::vec(mesh(), 0..3),
+        camera(),
+        prop::collection::vec(light(), 0..3),
+        prop::option::of(color()),
+    )
+        .prop_map(|(triangles, meshes, camera, lights, background)| Scene {
+            background,
+            camera,
+            triangles,
+            meshes,
+            lights,
+            ..Scene::default()
+        })
+}
+
 fn options() -> impl Strategy<Value = RenderOptions> {
     (
         prop::sample::select(GlyphMode::ALL.to_vec()),
@@ -257,18 +276,25 @@ proptest! {
     ))]
 
     #[test]
-    fn random_scenes_are_the_same_planned_or_full(
-        triangles in prop::collection::vec(triangle(false), 0..5),
-        meshes in prop::collection::vec(mesh(), 0..3),
-        camera in camera(),
-        lights in prop::collection::vec(light(), 0..3),
-        background in prop::option::of(color()),
-        opts in options(),
-    ) {
-        let scene = Scene { background, camera, triangles, meshes, lights, ..Scene::default() };
+    fn random_scenes_are_the_same_planned_or_full(scene in scene(), opts in options()) {
         if let Err(e) = same_both_ways(&scene, &opts) {
             prop_assert!(false, "{}", e);
         }
+    }
+
+    /// Promise 11: the same frame, bit for bit, drawn by one thread or in
+    /// bands by several, in every glyph mode, with clipping, depth,
+    /// culling, lighting and the full pipeline.
+    #[test]
+    fn random_scenes_are_the_same_with_any_thread_count(
+        scene in scene(),
+        opts in options(),
+        full in any::<bool>(),
+    ) {
+        let pipeline = if full { Pipeline::Full } else { Pipeline::Planned };
+        // Anti-aliased frames are drawn on one thread (and checked to be).
+        let opts = RenderOptions { aa: Aa::None, pipeline, ..opts };
+        same_with_any_thread_count(&scene, &opts).map_err(TestCaseError::fail)?;
     }
 
     /// The depth-free path's favourite case, flat 2D scenes; and one
@@ -302,32 +328,6 @@ proptest! {
     ) {
         let lone = Scene { camera, meshes: vec![mesh], lights, ..Scene::default() };
         same_both_ways(&lone, &opts).map_err(TestCaseError::fail)?;
-    }
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(
-        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64)
-    ))]
-
-    /// Promise 11: the same frame, bit for bit, drawn by one thread or in
-    /// bands by several, in every glyph mode, with clipping, depth,
-    /// culling, lighting and the full pipeline.
-    #[test]
-    fn random_scenes_are_the_same_with_any_thread_count(
-        triangles in prop::collection::vec(triangle(false), 0..5),
-        meshes in prop::collection::vec(mesh(), 0..3),
-        camera in camera(),
-        lights in prop::collection::vec(light(), 0..3),
-        background in prop::option::of(color()),
-        opts in options(),
-        full in any::<bool>(),
-    ) {
-        let scene = Scene { background, camera, triangles, meshes, lights, ..Scene::default() };
-        let pipeline = if full { Pipeline::Full } else { Pipeline::Planned };
-        // Anti-aliased frames are drawn on one thread (and checked to be).
-        let opts = RenderOptions { aa: Aa::None, pipeline, ..opts };
-        same_with_any_thread_count(&scene, &opts).map_err(TestCaseError::fail)?;
     }
 }
 
