@@ -59,6 +59,7 @@ use crate::raster::{Precision, Traversal};
 use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
+use crate::transform::MAX_GRID;
 
 /// One stage's decision, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -165,6 +166,14 @@ fn bands(opts: &RenderOptions) -> Bands {
     }
     if opts.traversal == Traversal::Scan {
         return one("a scan tests every sample of the grid");
+    }
+    let (w, h) = opts.glyphs.cell_size();
+    if opts.cols == 0 || opts.rows == 0 {
+        return one("an empty frame");
+    }
+    if opts.cols as u32 * w > MAX_GRID || opts.rows as u32 * h > MAX_GRID {
+        // The grid is cut to its largest side, not to whole cells.
+        return one("a frame beyond the largest grid");
     }
     let rows = opts.rows.max(1);
     match opts.threads {

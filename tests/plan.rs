@@ -405,6 +405,17 @@ fn threads_are_planned_from_the_frame_and_the_options() {
         assert_eq!(b.count, 1, "{opts:?}");
         assert!(!b.why.is_empty());
     }
+    // An empty frame, and one whose grid is cut to the largest side (not
+    // to whole cells), are drawn by one thread.
+    for (cols, rows, glyphs) in [(0, 5, GlyphMode::Half), (1, 30_000, GlyphMode::Sextant)] {
+        let opts = RenderOptions {
+            cols,
+            rows,
+            glyphs,
+            ..exactly(3)
+        };
+        assert_eq!(bands(opts).count, 1, "{cols}×{rows}");
+    }
     assert_eq!("auto".parse::<Threads>(), Ok(Threads::Auto));
     assert_eq!("7".parse::<Threads>(), Ok(Threads::Exactly(7)));
     for bad in ["0", "65", "-1", "two", ""] {
