@@ -144,9 +144,11 @@ pub struct FrameTimes {
     /// Transforms, clip tests and per-vertex lighting.
     pub vertices: Duration,
     /// Setup, clipping, per-face lighting, traversal, depth tests,
-    /// interpolation and writes.
+    /// interpolation and writes; for a frame drawn in bands, everything
+    /// the bands do, their blits included.
     pub triangles: Duration,
-    /// Turning samples into cells.
+    /// Turning samples into cells (zero for a frame drawn in bands, whose
+    /// bands blit their own rows).
     pub blit: Duration,
 }
 
