@@ -189,10 +189,56 @@ fn last_sample(hi: i64) -> i64 {
 /// triangles of a detailed model seen small).
 #[inline(always)]
 pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
+    let [x0, x1, y0, y1] = clamped_box(p, grid, band);
+    x0 > x1 || y0 > y1
+}
+
+/// A snapped triangle's bounding box in samples, `[x0, x1, y0, y1]`
+/// inclusive, clamped to `grid`'s columns and `band`'s rows; empty when
+/// `x0 > x1` or `y0 > y1`.
+#[inline(always)]
+fn clamped_box(p: &[FixedPoint; 3], grid: Grid, band: Band) -> [i64; 4] {
     let (min_x, max_x) = min_max(p.map(|q| q.x.0));
     let (min_y, max_y) = min_max(p.map(|q| q.y.0));
-    first_sample(min_x).max(0) > last_sample(max_x).min(grid.width as i64 - 1)
-        || first_sample(min_y).max(band.y0 as i64) > last_sample(max_y).min(band.y1 as i64 - 1)
+    [
+        first_sample(min_x).max(0),
+        last_sample(max_x).min(grid.width as i64 - 1),
+        first_sample(min_y).max(band.y0 as i64),
+        last_sample(max_y).min(band.y1 as i64 - 1),
+    ]
+}
+
+/// A triangle's edges, each oriented so that the interior is positive, and
+/// the vertex order they follow: `edges[k]` is opposite vertex `order[k]`.
+#[inline(always)]
+fn oriented(p: &[FixedPoint; 3], ccw: bool) -> ([Edge; 3], [usize; 3]) {
+    // Start from the lowest vertex (then leftmost): ABC, BCA and CAB are
+    // then one and the same triangle to everything below, so a frame does
+    // not depend on which vertex a file lists first. The first of the
+    // lowest (then leftmost), as `min_by_key` would find it, in two
+    // comparisons.
+    let below = |a: usize, b: usize| (p[a].y.0, p[a].x.0) < (p[b].y.0, p[b].x.0);
+    let r = if below(1, 0) { 1 } else { 0 };
+    let r = if below(2, r) { 2 } else { r };
+    let order = [r, (r + 1) % 3, (r + 2) % 3];
+    (edges(&order.map(|i| p[i]), ccw), order)
+}
+
+/// The edges of a triangle whose vertices are in set-up order: edge `i`
+/// is opposite vertex `i`, oriented so that the interior is positive.
+#[inline(always)]
+fn edges(p: &[FixedPoint; 3], ccw: bool) -> [Edge; 3] {
+    // Edge opposite vertex i runs from i+1 to i+2 when counter-clockwise; a
+    // clockwise triangle takes each edge the other way round.
+    let edge = |i: usize| {
+        let (a, b) = (p[(i + 1) % 3], p[(i + 2) % 3]);
+        if ccw {
+            Edge::new(a, b)
+        } else {
+            Edge::new(b, a)
+        }
+    };
+    [edge(0), edge(1), edge(2)]
 }
 
 /// A triangle set up for rasterization: snapped, oriented, bounded.
@@ -265,16 +311,7 @@ impl Setup {
         // and drop degenerates before anything else.
         let area2 = Setup::signed_area2(&p, cull)?;
         let ccw = area2 > 0;
-        let (min_x, max_x) = min_max(p.map(|q| q.x.0));
-        let (min_y, max_y) = min_max(p.map(|q| q.y.0));
-        let (x0, x1) = (
-            first_sample(min_x).max(0),
-            last_sample(max_x).min(grid.width as i64 - 1),
-        );
-        let (y0, y1) = (
-            first_sample(min_y).max(band.y0 as i64),
-            last_sample(max_y).min(band.y1 as i64 - 1),
-        );
+        let [x0, x1, y0, y1] = clamped_box(&p, grid, band);
         if x0 > x1 || y0 > y1 {
             // A return of its own rather than one `Ok(Setup { .. })` below
             // with the edges chosen by an `if`: 3 % fewer instructions on a
@@ -290,27 +327,7 @@ impl Setup {
                 y1,
             });
         }
-        // Start from the lowest vertex (then leftmost): ABC, BCA and CAB are
-        // then one and the same triangle to everything below, so a frame
-        // does not depend on which vertex a file lists first. The first of
-        // the lowest (then leftmost), as `min_by_key` would find it, in two
-        // comparisons.
-        let below = |a: usize, b: usize| (p[a].y.0, p[a].x.0) < (p[b].y.0, p[b].x.0);
-        let r = if below(1, 0) { 1 } else { 0 };
-        let r = if below(2, r) { 2 } else { r };
-        let order = [r, (r + 1) % 3, (r + 2) % 3];
-        let p = order.map(|i| p[i]);
-        // Edge opposite vertex i runs from i+1 to i+2 when counter-clockwise;
-        // a clockwise triangle takes each edge the other way round.
-        let edge = |i: usize| {
-            let (a, b) = (p[(i + 1) % 3], p[(i + 2) % 3]);
-            if ccw {
-                Edge::new(a, b)
-            } else {
-                Edge::new(b, a)
-            }
-        };
-        let edges = [edge(0), edge(1), edge(2)];
+        let (edges, order) = oriented(&p, ccw);
         Ok(Setup {
             edges,
             order,
@@ -437,6 +454,138 @@ impl Setup {
 /// sample by sample: most triangles of a detailed model seen small have a
 /// box of one to four samples and cover none of them.
 pub const SMALL_BOX: u64 = 8;
+
+/// A triangle whose clamped bounding box holds at most [`SMALL_BOX`]
+/// samples, set up by testing each of them once: which it covers. Most
+/// triangles of a detailed model seen small are such, and most of those
+/// cover nothing: that is then known without a [`Setup`] built and walked.
+/// Small, so that it stays in registers: the vertices and which samples
+/// are covered, whose weights the walk finds again. The same samples,
+/// weights and counts as [`Setup::from_fixed_in`] and its walk (a test
+/// compares the two).
+#[derive(Clone, Copy, Debug)]
+pub struct SmallSetup {
+    /// The vertices in `order`.
+    p: [FixedPoint; 3],
+    order: [u8; 3],
+    ccw: bool,
+    area2: i64,
+    /// The box's first sample and its width.
+    x0: u32,
+    y0: u32,
+    w: u8,
+    /// Samples in the clamped box, all tested.
+    tested: u8,
+    /// Bit k: the box's sample k (rows bottom to top, left to right) is
+    /// covered.
+    covered: u8,
+}
+
+impl SmallSetup {
+    /// Sets up a snapped triangle as [`Setup::from_fixed_in`] does, when
+    /// its box clamped to `grid`'s columns and `band`'s rows holds at most
+    /// [`SMALL_BOX`] samples: `Ok(None)` when it holds more, and the same
+    /// rejection otherwise.
+    #[inline(always)]
+    pub fn new(
+        p: [FixedPoint; 3],
+        grid: Grid,
+        band: Band,
+        cull: Cull,
+    ) -> Result<Option<SmallSetup>, Rejected> {
+        let area2 = Setup::signed_area2(&p, cull)?;
+        let ccw = area2 > 0;
+        let [x0, x1, y0, y1] = clamped_box(&p, grid, band);
+        let mut s = SmallSetup {
+            p,
+            order: [0, 1, 2],
+            ccw,
+            area2: area2.abs(),
+            x0: 0,
+            y0: 0,
+            w: 0,
+            tested: 0,
+            covered: 0,
+        };
+        if x0 > x1 || y0 > y1 {
+            return Ok(Some(s));
+        }
+        let (w, n) = (x1 - x0 + 1, (x1 - x0 + 1) * (y1 - y0 + 1));
+        if n as u64 > SMALL_BOX {
+            return Ok(None);
+        }
+        let (edges, order) = oriented(&p, ccw);
+        s.p = order.map(|i| p[i]);
+        s.order = order.map(|i| i as u8);
+        (s.x0, s.y0, s.w, s.tested) = (x0 as u32, y0 as u32, w as u8, n as u8);
+        let accepts = |x: i64, y: i64| {
+            let (px, py) = (x * ONE + ONE / 2, y * ONE + ONE / 2);
+            edges.iter().all(|e| e.at(px, py) >= e.min)
+        };
+        let mut bit = 1;
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                if accepts(x, y) {
+                    s.covered |= bit;
+                }
+                bit <<= 1;
+            }
+        }
+        Ok(Some(s))
+    }
+}
+
+impl Coverage for SmallSetup {
+    type Weights = [i64; 3];
+
+    fn order(&self) -> [usize; 3] {
+        self.order.map(usize::from)
+    }
+
+    fn inv_area(&self) -> f32 {
+        1.0 / self.area2 as f32
+    }
+
+    fn ccw(&self) -> bool {
+        self.ccw
+    }
+
+    fn bbox_samples(&self) -> u64 {
+        self.tested as u64
+    }
+
+    fn covers_any(&self) -> bool {
+        self.covered != 0
+    }
+
+    #[inline(always)]
+    fn f32(w: [i64; 3]) -> [f32; 3] {
+        w.map(|e| e as f32)
+    }
+
+    /// The covered samples found at set-up, with their weights: what the
+    /// bounding-box and incremental walks find. Not the full-grid scan,
+    /// which tests every sample.
+    #[inline(always)]
+    fn walk_samples<F: FnMut(u32, u32, [i64; 3])>(
+        &self,
+        _grid: Grid,
+        traversal: Traversal,
+        mut hit: F,
+    ) -> u64 {
+        debug_assert!(traversal != Traversal::Scan);
+        let edges = edges(&self.p, self.ccw);
+        let mut covered = self.covered;
+        while covered != 0 {
+            let k = covered.trailing_zeros();
+            covered &= covered - 1;
+            let (x, y) = (self.x0 + k % self.w as u32, self.y0 + k / self.w as u32);
+            let (px, py) = (Fixed::sample_centre(x).0, Fixed::sample_centre(y).0);
+            hit(x, y, edges.map(|e| e.at(px, py)));
+        }
+        self.tested as u64
+    }
+}
 
 fn min_max(v: [i64; 3]) -> (i64, i64) {
     (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]))
@@ -767,6 +916,58 @@ mod tests {
                 proptest::prop_assert_eq!(s.covers_any(), hits > 0 || !small);
             }
         }
+    }
+
+    proptest::proptest! {
+        /// A small triangle's one-pass set-up finds what the set-up and its
+        /// walk find: the same rejection, vertex order, winding, area,
+        /// samples tested, and covered samples with the same weights, in
+        /// the same order; and it declines exactly the boxes of more than
+        /// `SMALL_BOX` samples.
+        #[test]
+        fn small_setup_finds_what_the_setup_and_its_walk_find(
+            // Half the coordinates on a multiple of half a sample, so that
+            // edges run through sample centres (the top-left rule's case).
+            c in proptest::array::uniform6(proptest::prop_oneof![
+                -300i64..1800,
+                proptest::strategy::Strategy::prop_map(-2i64..14, |k| k * 128),
+            ]),
+            rows in (0u32..5, 0u32..5),
+            cull in proptest::sample::select(vec![Cull::None, Cull::Back, Cull::Front]),
+        ) {
+            let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
+            let grid = Grid::new(6, 5);
+            let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
+            match (SmallSetup::new(p, grid, band, cull), Setup::from_fixed_in(p, grid, band, cull)) {
+                (Err(a), Err(b)) => proptest::prop_assert_eq!(a, b),
+                (Ok(None), Ok(s)) => proptest::prop_assert!(s.bbox_samples() > SMALL_BOX),
+                (Ok(Some(small)), Ok(s)) => {
+                    proptest::prop_assert!(s.bbox_samples() <= SMALL_BOX);
+                    proptest::prop_assert_eq!(Coverage::bbox_samples(&small), s.bbox_samples());
+                    proptest::prop_assert_eq!(small.inv_area().to_bits(), s.inv_area().to_bits());
+                    proptest::prop_assert_eq!(Coverage::ccw(&small), s.ccw);
+                    let (tested, hits) = walk(&s, grid);
+                    if !hits.is_empty() {
+                        // The order matters only to a triangle that is filled.
+                        proptest::prop_assert_eq!(Coverage::order(&small), s.order());
+                    }
+                    proptest::prop_assert_eq!(small.covers_any(), !hits.is_empty());
+                    let found = walk(&small, grid);
+                    proptest::prop_assert_eq!(found, (tested, hits));
+                }
+                (a, b) => proptest::prop_assert!(false, "{a:?} against {b:?}"),
+            }
+        }
+    }
+
+    /// Samples tested, and the covered samples with their weights.
+    fn walk<C: Coverage<Weights = [i64; 3]>>(
+        c: &C,
+        grid: Grid,
+    ) -> (u64, Vec<(u32, u32, [i64; 3])>) {
+        let mut hits = Vec::new();
+        let tested = c.walk_samples(grid, Traversal::Incremental, |x, y, e| hits.push((x, y, e)));
+        (tested, hits)
     }
 
     fn coverage(v: [[f32; 2]; 3], grid: Grid, t: Traversal) -> Vec<u8> {

@@ -65,7 +65,7 @@ use crate::framebuffer::Framebuffer;
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
 use crate::raster::{
-    self, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, Traversal,
+    self, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, SmallSetup, Traversal,
 };
 use crate::scene::{Camera, Cull, Mesh, Projection, Scene};
 use crate::shade::{Lights, Shading};
@@ -630,11 +630,20 @@ impl Renderer {
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
             let texture = p.texture(run.texture);
+            // What most triangles of a model take: inside every clip plane,
+            // one colour or interpolated, sampled in fixed point.
+            let lean = texture.is_none()
+                && !p.full
+                && !stage.exact
+                && stage.precision == Precision::Fixed
+                && stage.traversal != Traversal::Scan;
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
-                if f.pretest
-                    && v[0].code | v[1].code | v[2].code == 0
-                    && !(v[0].bad_normal | v[1].bad_normal | v[2].bad_normal)
+                let inside = v[0].code | v[1].code | v[2].code == 0
+                    && !(v[0].bad_normal | v[1].bad_normal | v[2].bad_normal);
+                if inside
+                    && !lean
+                    && f.pretest
                     && raster::box_is_empty(&v.map(|v| v.fixed), grid, band)
                 {
                     self.stats.triangles_in += 1;
@@ -648,6 +657,10 @@ impl Renderer {
                     Some(c) => face.map(|i| c[i as usize]),
                     None => [run.color; 3],
                 };
+                if inside && lean {
+                    self.inside_triangle(stage, v, base, f.cull);
+                    continue;
+                }
                 let tex = texture.map(|(texture, sampler)| Tex {
                     texture,
                     sampler,
@@ -909,6 +922,56 @@ impl Renderer {
         self.poly = poly;
     }
 
+    /// What [`Renderer::triangle`] does for a triangle inside every clip
+    /// plane without a texture, in the planned pipeline's fixed point (not
+    /// the full pipeline, nor exact coverage, nor the full-grid scan):
+    /// set it up, and light and fill it only if it covers a sample.
+    #[inline(always)]
+    fn inside_triangle(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], cull: Cull) {
+        self.stats.triangles_in += 1;
+        let (grid, band) = (self.fb.grid(), self.fb.band());
+        let fixed = v.map(|v| v.fixed);
+        match SmallSetup::new(fixed, grid, band, cull) {
+            Err(r) => self.stats.raster.count_rejected(r),
+            Ok(Some(s)) => {
+                self.stats.raster.triangles_drawn += 1;
+                self.inside_fill(stage, v, base, &s);
+            }
+            Ok(None) => {
+                let setup = Setup::from_fixed_in(fixed, grid, band, cull);
+                if let Some(s) = self.setup(&setup, false) {
+                    self.inside_fill(stage, v, base, s);
+                }
+            }
+        }
+    }
+
+    /// Lights and fills a set-up triangle of [`Renderer::inside_triangle`]
+    /// if it covers a sample; counts its box's samples as tested if not.
+    #[inline(always)]
+    fn inside_fill<C: Coverage>(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Lin; 3],
+        s: &C,
+    ) {
+        if !s.covers_any() {
+            self.stats.raster.samples_tested += s.bbox_samples();
+            return;
+        }
+        let color = self.shade(stage, v, base, !s.ccw());
+        let a = Attributes::new(
+            s.order(),
+            s.inv_area(),
+            [v.map(|v| v.z), v.map(|v| v.inv_w)],
+            color,
+            stage.plan.perspective.run,
+        );
+        let flat = !stage.plan.interpolates(&color);
+        self.fill_colour(s, &a, flat, stage);
+    }
+
     /// The triangle's colour at each vertex. `back`: seen from behind, so
     /// lit on its other side (two-sided lighting).
     /// Colours are linear light in [0, 65535], rounded to whole steps, so
@@ -977,80 +1040,75 @@ impl Renderer {
             self.accumulate_exact(t, texture);
             return;
         }
+        let o = setup.order();
+        let a = Attributes::new(
+            o,
+            setup.inv_area(),
+            [t.z, t.inv_w],
+            t.color,
+            stage.plan.perspective.run,
+        );
+        let flat = !stage.plan.interpolates(&t.color);
+        match texture {
+            Some((texture, sampler)) => {
+                // Texture coordinates are planes over the screen, found
+                // from the triangle as given (their order does not matter).
+                let planes = UvPlanes::new(t, stage.plan.perspective.run);
+                self.fill_textured(setup, &a, flat, stage, (texture, sampler, &planes));
+            }
+            None => self.fill_colour(setup, &a, flat, stage),
+        }
+    }
+
+    /// [`Renderer::fill`] of a triangle with a texture: the lit colour
+    /// (one, or interpolated) times the texel.
+    fn fill_textured<C: Coverage>(
+        &mut self,
+        setup: &C,
+        a: &Attributes,
+        flat: bool,
+        stage: &Stage,
+        (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
+    ) {
         let grid = self.fb.grid();
-        let stats = &mut self.stats;
         let fb = &mut self.fb;
         let mut covered = 0u64;
-        let inv_area = setup.inv_area();
-        // Attributes in the setup's vertex order (which starts from the
-        // lowest vertex, so the sums below do not depend on the order the
-        // triangle was given in).
-        let o = setup.order();
-        let [z0, z1, z2] = o.map(|i| t.z[i]);
-        // Texture coordinates are planes over the screen, found from the
-        // triangle as given (their order does not matter).
-        let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
-        let t = &ScreenTriangle {
-            xy: o.map(|i| t.xy[i]),
-            z: [z0, z1, z2],
-            inv_w: o.map(|i| t.inv_w[i]),
-            color: o.map(|i| t.color[i]),
-            uv: [Vec2::ZERO; 3],
+        let shade = move |x: u32, y: u32, e: C::Weights| {
+            let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
+            let (uv, dx, dy) = planes.at(x, y);
+            let texel = texture.sample(&sampler, uv, dx, dy);
+            Lin::from_f32((lit * texel).to_array())
         };
-        let (z_lo, z_hi) = (z0.min(z1).min(z2), z0.max(z1).max(z2));
-        let use_depth = stage.plan.depth.run;
-        let depth = move |e: C::Weights| {
-            let e = C::f32(e);
-            let z = (e[0] * z0 + e[1] * z1 + e[2] * z2) * inv_area;
-            z.clamp(z_lo, z_hi)
-        };
-        let flat = !stage.plan.interpolates(&t.color);
-        // Weights e_i, or e_i / w_i for perspective correction, renormalised.
-        let [a, b, c] = if stage.plan.perspective.run {
-            unit_scale(t.inv_w)
-        } else {
-            [1.0; 3]
-        };
-        let [ca, cb, cc] = t.color;
-        let interpolate = move |e: C::Weights| {
-            let e = C::f32(e);
-            let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
-            Lin::from_f32(((ca * wa + cb * wb + cc * wc) / (wa + wb + wc)).to_array())
-        };
-        let one = Lin::from_f32(ca.to_array());
         let tr = stage.traversal;
-        if let (Some((texture, sampler)), Some(planes)) = (texture, planes) {
-            // The lit colour (one, or interpolated) times the texel.
-            let shade = move |x: u32, y: u32, e: C::Weights| {
-                let lit = if flat {
-                    ca
-                } else {
-                    let e = C::f32(e);
-                    let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
-                    (ca * wa + cb * wb + cc * wc) / (wa + wb + wc)
-                };
-                let (uv, dx, dy) = planes.at(x, y);
-                let texel = texture.sample(&sampler, uv, dx, dy);
-                Lin::from_f32((lit * texel).to_array())
-            };
-            let tested = if use_depth {
-                setup.walk_samples(grid, tr, |x, y, e| {
-                    covered += 1;
-                    fb.set_if_nearer(x, y, depth(e), shade(x, y, e));
-                })
-            } else {
-                setup.walk_samples(grid, tr, |x, y, e| {
-                    covered += 1;
-                    fb.set_if_empty(x, y, shade(x, y, e));
-                })
-            };
-            stats.textured_samples += covered;
-            // Texture coordinates are interpolated, whatever the colour.
-            self.count_fill(stage, false, covered, tested);
-            return;
-        }
+        let tested = if stage.plan.depth.run {
+            setup.walk_samples(grid, tr, |x, y, e| {
+                covered += 1;
+                fb.set_if_nearer(x, y, a.depth(C::f32(e)), shade(x, y, e));
+            })
+        } else {
+            setup.walk_samples(grid, tr, |x, y, e| {
+                covered += 1;
+                fb.set_if_empty(x, y, shade(x, y, e));
+            })
+        };
+        self.stats.textured_samples += covered;
+        // Texture coordinates are interpolated, whatever the colour.
+        self.count_fill(stage, false, covered, tested);
+    }
+
+    /// [`Renderer::fill`] of a triangle without a texture: one colour, or
+    /// interpolated.
+    #[inline(always)]
+    fn fill_colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool, stage: &Stage) {
+        let grid = self.fb.grid();
+        let fb = &mut self.fb;
+        let mut covered = 0u64;
+        let one = Lin::from_f32(a.color[0].to_array());
+        let interpolate = |e: C::Weights| Lin::from_f32(a.lit(C::f32(e)).to_array());
+        let depth = |e: C::Weights| a.depth(C::f32(e));
+        let tr = stage.traversal;
         // One tight loop per combination, so that each inlines.
-        let tested = match (flat, use_depth) {
+        let tested = match (flat, stage.plan.depth.run) {
             (true, false) => setup.walk_samples(grid, tr, |x, y, _| {
                 covered += 1;
                 fb.set_if_empty(x, y, one);
@@ -1188,6 +1246,67 @@ impl Renderer {
     /// Where the last frame's time went.
     pub fn times(&self) -> &FrameTimes {
         &self.times
+    }
+}
+
+/// What a fill reads of a triangle at a sample, set up once: its depths
+/// and colours in the set-up's vertex order (which starts from the lowest
+/// vertex, so the sums below do not depend on the order the triangle was
+/// given in), with the weights' perspective scale.
+#[derive(Clone, Copy)]
+struct Attributes {
+    z: [f32; 3],
+    z_lo: f32,
+    z_hi: f32,
+    inv_area: f32,
+    /// `1/w` scaled to [1, 2) at its largest where the plan corrects for
+    /// perspective, else 1.
+    w: [f32; 3],
+    color: [Vec3; 3],
+}
+
+impl Attributes {
+    /// `order` is the set-up's vertex order; `z_w` the depths and `1/w`
+    /// and `color` the colours, in the caller's order.
+    #[inline(always)]
+    fn new(
+        order: [usize; 3],
+        inv_area: f32,
+        [z, inv_w]: [[f32; 3]; 2],
+        color: [Vec3; 3],
+        perspective: bool,
+    ) -> Attributes {
+        let z = order.map(|i| z[i]);
+        Attributes {
+            z,
+            z_lo: z[0].min(z[1]).min(z[2]),
+            z_hi: z[0].max(z[1]).max(z[2]),
+            inv_area,
+            // Weights e_i, or e_i / w_i for perspective correction,
+            // renormalised.
+            w: if perspective {
+                unit_scale(order.map(|i| inv_w[i]))
+            } else {
+                [1.0; 3]
+            },
+            color: order.map(|i| color[i]),
+        }
+    }
+
+    /// The depth at a sample of weights `e`, kept within the vertices'.
+    #[inline(always)]
+    fn depth(&self, e: [f32; 3]) -> f32 {
+        let z = (e[0] * self.z[0] + e[1] * self.z[1] + e[2] * self.z[2]) * self.inv_area;
+        z.clamp(self.z_lo, self.z_hi)
+    }
+
+    /// The colour at a sample of weights `e`.
+    #[inline(always)]
+    fn lit(&self, e: [f32; 3]) -> Vec3 {
+        let [a, b, c] = self.w;
+        let [ca, cb, cc] = self.color;
+        let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
+        (ca * wa + cb * wb + cc * wc) / (wa + wb + wc)
     }
 }
 
