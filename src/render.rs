@@ -189,11 +189,9 @@ struct Vert {
     normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     light: Vec3,
-    /// Its normal (as given) is NaN or infinite: its triangles are dropped.
-    bad_normal: bool,
-    /// Clip outcode: 0 when inside every plane (then the fields below are
-    /// valid).
-    code: u8,
+    /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
+    /// every plane with a finite normal (then the fields below are valid).
+    code: u16,
     xy: [f32; 2],
     /// `xy` snapped, once per vertex rather than once per triangle.
     fixed: FixedPoint,
@@ -205,9 +203,13 @@ struct Vert {
 /// finite (coordinates near f32's largest overflow in the product) or its
 /// screen position could not be snapped; it takes the clip path, which
 /// works in f64. Never a reason to reject a triangle outright.
-const F64_PATH: u8 = 1 << 7;
+const F64_PATH: u16 = 1 << 7;
 /// The outcode bits of the clip planes.
-const PLANES: u8 = F64_PATH - 1;
+const PLANES: u16 = F64_PATH - 1;
+/// A bit of no clip plane: the vertex's normal (as given) is NaN or
+/// infinite, and its triangles are dropped. In the code, so that one test
+/// tells a triangle that takes the common path.
+const BAD_NORMAL: u16 = 1 << 8;
 
 /// A triangle after the divide: screen positions in samples, depth, `1/w`,
 /// colours, texture coordinates.
@@ -639,8 +641,7 @@ impl Renderer {
                 && stage.traversal != Traversal::Scan;
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
-                let inside = v[0].code | v[1].code | v[2].code == 0
-                    && !(v[0].bad_normal | v[1].bad_normal | v[2].bad_normal);
+                let inside = v[0].code | v[1].code | v[2].code == 0;
                 if inside
                     && !lean
                     && f.pretest
@@ -792,7 +793,7 @@ impl Renderer {
             Some(t) => (Some((t.texture, t.sampler)), t.uv),
             None => (None, [Vec2::ZERO; 3]),
         };
-        if v.iter().any(|v| v.bad_normal) {
+        if (v[0].code | v[1].code | v[2].code) & BAD_NORMAL != 0 {
             self.stats.dropped_non_finite_normals += 1;
             return;
         }
@@ -979,8 +980,9 @@ impl Renderer {
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
     fn shade(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
-        self.light(stage, v, base, back)
-            .map(|c| Vec3::from(Lin::from_f32(c.to_array()).to_f32()))
+        let round = |c: Vec3| Vec3::from(Lin::from_f32(c.to_array()).to_f32());
+        let c = self.light(stage, v, base, back);
+        [round(c[0]), round(c[1]), round(c[2])]
     }
 
     fn light(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
@@ -998,7 +1000,11 @@ impl Renderer {
                 self.stats.lighting_evaluations += 3;
                 [0, 1, 2].map(|i| base[i] * stage.lights.lambert(-v[i].normal))
             }
-            Shading::Smooth => [0, 1, 2].map(|i| base[i] * v[i].light),
+            Shading::Smooth => [
+                base[0] * v[0].light,
+                base[1] * v[1].light,
+                base[2] * v[2].light,
+            ],
         }
     }
 
@@ -1385,7 +1391,7 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
     let code = if !clip.is_finite() {
         F64_PATH
     } else if clip_tests {
-        stage.clipper.outcode(clip)
+        u16::from(stage.clipper.outcode(clip))
     } else {
         0
     };
@@ -1402,7 +1408,6 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
             Vec3::ZERO
         },
         normal,
-        bad_normal: !n.is_finite(),
         code,
         ..Vert::default()
     };
@@ -1419,6 +1424,9 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
             // deals with it.
             None => v.code = F64_PATH,
         }
+    }
+    if !n.is_finite() {
+        v.code |= BAD_NORMAL;
     }
     v
 }
