@@ -132,6 +132,35 @@ impl Framebuffer {
         self.samples[i] = Some(c);
     }
 
+    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
+    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
+    #[inline(always)]
+    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let i = self.index(x, y);
+        (z > self.depth[i]).then_some(i)
+    }
+
+    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
+    #[inline(always)]
+    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
+        let i = self.index(x, y);
+        self.samples[i].is_none().then_some(i)
+    }
+
+    /// Writes colour `c` and depth `z` at index `i` (from
+    /// [`Framebuffer::nearer`]).
+    #[inline(always)]
+    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
+        self.depth[i] = z;
+        self.samples[i] = Some(c);
+    }
+
+    /// Writes colour `c` at index `i` (from [`Framebuffer::empty`]).
+    #[inline(always)]
+    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
+        self.samples[i] = Some(c);
+    }
+
     /// Writes `c` at depth `z` if `z` is nearer than what the sample holds
     /// (strictly: of two equal depths the first drawn stays). Returns
     /// whether it was written.

@@ -87,9 +87,10 @@ pub struct FrameStats {
     pub lighting_evaluations: u64,
     /// Per-sample depth comparisons.
     pub depth_tests: u64,
-    /// Samples whose colour was interpolated (not a flat write).
+    /// Samples written with an interpolated colour (not a flat write): a
+    /// sample the depth test hides is not coloured, so not counted.
     pub interpolated_samples: u64,
-    /// Samples that read a texture.
+    /// Samples written with a texel (read only for those).
     pub textured_samples: u64,
     /// Of those, samples interpolated through `1/w`.
     pub perspective_samples: u64,
@@ -654,14 +655,16 @@ impl Renderer {
                     }
                     continue;
                 }
-                let base = match &mesh.colors {
+                let base = || match &mesh.colors {
                     Some(c) => face.map(|i| c[i as usize]),
                     None => [run.color; 3],
                 };
                 if inside && lean {
+                    // The colours are read only if it covers a sample.
                     self.inside_triangle(stage, v, base, f.cull);
                     continue;
                 }
+                let base = base();
                 let tex = texture.map(|(texture, sampler)| Tex {
                     texture,
                     sampler,
@@ -928,7 +931,13 @@ impl Renderer {
     /// the full pipeline, nor exact coverage, nor the full-grid scan):
     /// set it up, and light and fill it only if it covers a sample.
     #[inline(always)]
-    fn inside_triangle(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], cull: Cull) {
+    fn inside_triangle(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: impl Fn() -> [Lin; 3],
+        cull: Cull,
+    ) {
         self.stats.triangles_in += 1;
         let (grid, band) = (self.fb.grid(), self.fb.band());
         let fixed = v.map(|v| v.fixed);
@@ -936,12 +945,12 @@ impl Renderer {
             Err(r) => self.stats.raster.count_rejected(r),
             Ok(Some(s)) => {
                 self.stats.raster.triangles_drawn += 1;
-                self.inside_fill(stage, v, base, &s);
+                self.inside_fill(stage, v, &base, &s);
             }
             Ok(None) => {
                 let setup = Setup::from_fixed_in(fixed, grid, band, cull);
                 if let Some(s) = self.setup(&setup, false) {
-                    self.inside_fill(stage, v, base, s);
+                    self.inside_fill(stage, v, &base, s);
                 }
             }
         }
@@ -954,14 +963,14 @@ impl Renderer {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: [Lin; 3],
+        base: &impl Fn() -> [Lin; 3],
         s: &C,
     ) {
         if !s.covers_any() {
             self.stats.raster.samples_tested += s.bbox_samples();
             return;
         }
-        let color = self.shade(stage, v, base, !s.ccw());
+        let color = self.shade(stage, v, base(), !s.ccw());
         let a = Attributes::new(
             s.order(),
             s.inv_area(),
@@ -1067,7 +1076,8 @@ impl Renderer {
     }
 
     /// [`Renderer::fill`] of a triangle with a texture: the lit colour
-    /// (one, or interpolated) times the texel.
+    /// (one, or interpolated) times the texel, found only for the samples
+    /// it is written to.
     fn fill_textured<C: Coverage>(
         &mut self,
         setup: &C,
@@ -1078,7 +1088,7 @@ impl Renderer {
     ) {
         let grid = self.fb.grid();
         let fb = &mut self.fb;
-        let mut covered = 0u64;
+        let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
             let (uv, dx, dy) = planes.at(x, y);
@@ -1089,26 +1099,33 @@ impl Renderer {
         let tested = if stage.plan.depth.run {
             setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                fb.set_if_nearer(x, y, a.depth(C::f32(e)), shade(x, y, e));
+                let z = a.depth(C::f32(e));
+                if let Some(i) = fb.nearer(x, y, z) {
+                    written += 1;
+                    fb.write(i, z, shade(x, y, e));
+                }
             })
         } else {
             setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                fb.set_if_empty(x, y, shade(x, y, e));
+                if let Some(i) = fb.empty(x, y) {
+                    written += 1;
+                    fb.write_color(i, shade(x, y, e));
+                }
             })
         };
-        self.stats.textured_samples += covered;
+        self.stats.textured_samples += written;
         // Texture coordinates are interpolated, whatever the colour.
-        self.count_fill(stage, false, covered, tested);
+        self.count_fill(stage, covered, written, tested);
     }
 
     /// [`Renderer::fill`] of a triangle without a texture: one colour, or
-    /// interpolated.
+    /// interpolated for the samples it is written to.
     #[inline(always)]
     fn fill_colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool, stage: &Stage) {
         let grid = self.fb.grid();
         let fb = &mut self.fb;
-        let mut covered = 0u64;
+        let (mut covered, mut written) = (0u64, 0u64);
         let one = Lin::from_f32(a.color[0].to_array());
         let interpolate = |e: C::Weights| Lin::from_f32(a.lit(C::f32(e)).to_array());
         let depth = |e: C::Weights| a.depth(C::f32(e));
@@ -1117,36 +1134,48 @@ impl Renderer {
         let tested = match (flat, stage.plan.depth.run) {
             (true, false) => setup.walk_samples(grid, tr, |x, y, _| {
                 covered += 1;
-                fb.set_if_empty(x, y, one);
+                if let Some(i) = fb.empty(x, y) {
+                    fb.write_color(i, one);
+                }
             }),
             (true, true) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                fb.set_if_nearer(x, y, depth(e), one);
+                let z = depth(e);
+                if let Some(i) = fb.nearer(x, y, z) {
+                    fb.write(i, z, one);
+                }
             }),
             (false, false) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                fb.set_if_empty(x, y, interpolate(e));
+                if let Some(i) = fb.empty(x, y) {
+                    written += 1;
+                    fb.write_color(i, interpolate(e));
+                }
             }),
             (false, true) => setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                fb.set_if_nearer(x, y, depth(e), interpolate(e));
+                let z = depth(e);
+                if let Some(i) = fb.nearer(x, y, z) {
+                    written += 1;
+                    fb.write(i, z, interpolate(e));
+                }
             }),
         };
-        self.count_fill(stage, flat, covered, tested);
+        self.count_fill(stage, covered, written, tested);
     }
 
-    /// Counts what one fill did.
+    /// Counts what one fill did: `covered` samples, each depth-tested where
+    /// the plan tests depth, of which `interpolated` were written with an
+    /// interpolated colour; `tested` samples tested for coverage.
     #[inline(always)]
-    fn count_fill(&mut self, stage: &Stage, flat: bool, covered: u64, tested: u64) {
+    fn count_fill(&mut self, stage: &Stage, covered: u64, interpolated: u64, tested: u64) {
         let stats = &mut self.stats;
         if stage.plan.depth.run {
             stats.depth_tests += covered;
         }
-        if !flat {
-            stats.interpolated_samples += covered;
-            if stage.plan.perspective.run {
-                stats.perspective_samples += covered;
-            }
+        stats.interpolated_samples += interpolated;
+        if stage.plan.perspective.run {
+            stats.perspective_samples += interpolated;
         }
         stats.raster.samples_tested += tested;
         stats.raster.samples_covered += covered;
