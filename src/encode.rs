@@ -449,6 +449,11 @@ pub fn push_char(buf: &mut Vec<u8>, ch: char) {
 /// Maps a frame's cells to terminal cells for one depth, into `out`.
 fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
     out.clear();
+    if q.depth() == ColorDepth::TrueColor {
+        // No palette, no dithering: where a cell is does not matter.
+        out.extend(frame.cells().iter().map(|c| TermCell::of(c, q, 0, 0)));
+        return;
+    }
     let cols = frame.cols().max(1) as usize;
     for (y, row) in frame.cells().chunks(cols).enumerate() {
         out.extend(
