@@ -22,7 +22,8 @@ impl Fixed {
     /// Snaps a coordinate in samples to the nearest 1/256 (ties away from
     /// zero). `None` for NaN, infinity, or a magnitude beyond [`MAX_COORD`].
     pub fn snap(v: f32) -> Option<Fixed> {
-        if v.is_finite() && v.abs() <= MAX_COORD {
+        // NaN and the infinities fail the comparison too.
+        if v.abs() <= MAX_COORD {
             Some(Fixed(round_half_away(v * ONE as f32)))
         } else {
             None
