@@ -54,7 +54,7 @@ mod explain;
 
 use std::time::{Duration, Instant};
 
-use glam::{DMat4, Mat3, Mat4, Vec2, Vec3};
+use glam::{DMat4, Mat3, Mat4, Vec2, Vec3, Vec3A};
 
 use crate::blit;
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
@@ -1093,7 +1093,7 @@ impl Renderer {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
             let (uv, dx, dy) = planes.at(x, y);
             let texel = texture.sample(&sampler, uv, dx, dy);
-            Lin::from_f32((lit * texel).to_array())
+            Lin::from_f32((lit * Vec3A::from(texel)).to_array())
         };
         let tr = stage.traversal;
         let tested = if stage.plan.depth.run {
@@ -1297,7 +1297,9 @@ struct Attributes {
     /// `1/w` scaled to [1, 2) at its largest where the plan corrects for
     /// perspective, else 1.
     w: [f32; 3],
-    color: [Vec3; 3],
+    /// In SIMD lanes: the same operations on each channel as three f32s,
+    /// so the same results, in fewer instructions.
+    color: [Vec3A; 3],
 }
 
 impl Attributes {
@@ -1324,7 +1326,7 @@ impl Attributes {
             } else {
                 [1.0; 3]
             },
-            color: order.map(|i| color[i]),
+            color: order.map(|i| Vec3A::from(color[i])),
         }
     }
 
@@ -1337,7 +1339,7 @@ impl Attributes {
 
     /// The colour at a sample of weights `e`.
     #[inline(always)]
-    fn lit(&self, e: [f32; 3]) -> Vec3 {
+    fn lit(&self, e: [f32; 3]) -> Vec3A {
         let [a, b, c] = self.w;
         let [ca, cb, cc] = self.color;
         let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
