@@ -989,31 +989,40 @@ impl Renderer {
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
     fn shade(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
-        let round = |c: Vec3| Vec3::from(Lin::from_f32(c.to_array()).to_f32());
+        let round = |c: Vec3A| Vec3::from(Lin::from_f32(c.to_array()).to_f32());
         let c = self.light(stage, v, base, back);
         [round(c[0]), round(c[1]), round(c[2])]
     }
 
-    fn light(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
-        let base = base.map(|c| Vec3::from(c.to_f32()));
-        let side = if back { -1.0 } else { 1.0 };
+    /// [`Renderer::shade`] before rounding, in SIMD lanes (the same
+    /// operations per channel as three f32s).
+    #[inline(always)]
+    fn light(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Lin; 3],
+        back: bool,
+    ) -> [Vec3A; 3] {
+        let b = |i: usize| Vec3A::from_array(base[i].to_f32());
         match stage.plan.shading {
-            Shading::None => base,
+            Shading::None => [b(0), b(1), b(2)],
             Shading::Flat => {
                 self.stats.lighting_evaluations += 1;
+                let side = if back { -1.0 } else { 1.0 };
                 let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
-                let light = stage.lights.lambert(face * side);
-                base.map(|b| b * light)
+                let light = stage.lights.lambert_a(face * side);
+                [b(0) * light, b(1) * light, b(2) * light]
             }
             Shading::Smooth if back => {
                 self.stats.lighting_evaluations += 3;
-                [0, 1, 2].map(|i| base[i] * stage.lights.lambert(-v[i].normal))
+                let l = |i: usize| b(i) * stage.lights.lambert_a(-v[i].normal);
+                [l(0), l(1), l(2)]
             }
-            Shading::Smooth => [
-                base[0] * v[0].light,
-                base[1] * v[1].light,
-                base[2] * v[2].light,
-            ],
+            Shading::Smooth => {
+                let l = |i: usize| b(i) * Vec3A::from(v[i].light);
+                [l(0), l(1), l(2)]
+            }
         }
     }
 

@@ -75,12 +75,18 @@ impl Lights {
     /// the full colour of one white light).
     #[inline]
     pub fn lambert(&self, n: Vec3) -> Vec3 {
+        Vec3::from(self.lambert_a(n))
+    }
+
+    /// [`Lights::lambert`] in SIMD lanes, for the renderer.
+    #[inline(always)]
+    pub(crate) fn lambert_a(&self, n: Vec3) -> Vec3A {
         let mut sum = Vec3A::ZERO;
         for i in 0..self.len {
             let direct = n.dot(self.towards[i]).max(0.0);
             sum += self.color[i] * (self.ambient[i] + (1.0 - self.ambient[i]) * direct);
         }
-        Vec3::from(sum)
+        sum
     }
 }
 
