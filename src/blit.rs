@@ -32,6 +32,12 @@
 //! picks a shade from ` ░▒▓█` and `ascii` a character from
 //! ` .:-=+*#%@`, both by brightness; any drawn sample gets at least the
 //! first non-blank step, so a dark triangle still shows.
+//!
+//! **Speed.** Every cell of every frame passes here (300,000 at 1000×300
+//! cells), so the commonest case, half blocks in colour with the
+//! exhaustive split, has a loop of its own that reads a cell's two samples
+//! from two rows side by side and writes the cell out without the general
+//! path's dispatch; a property test keeps it equal to the general path.
 
 pub mod glyphs;
 

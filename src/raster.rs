@@ -40,6 +40,16 @@
 //! bounding box (the third, and the default: two additions per edge per
 //! sample instead of two multiplications).
 //!
+//! **Small triangles.** Most triangles of a detailed model seen small have
+//! a bounding box of a few samples and cover none of them. [`SmallSetup`]
+//! tests each sample of a box of at most [`SMALL_BOX`] once, at set-up,
+//! and keeps only the vertices and a bit per covered sample: a triangle
+//! that covers nothing is known without a [`Setup`] built (a couple of
+//! hundred bytes) or walked, and the weights of the few it covers are
+//! found again from the vertices. It finds what the set-up and the
+//! bounding-box or incremental walk find (a property test compares them),
+//! but not what the full-grid scan counts, so that traversal never uses it.
+//!
 //! The rasterizer knows nothing of colours or glyphs: it reports each
 //! covered sample, with its three edge values (the unnormalised barycentric
 //! weights), to a closure.

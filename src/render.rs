@@ -15,7 +15,15 @@
 //! **Triangles.** A triangle whose three vertices are inside every clip
 //! plane goes straight to the rasterizer; one that is not is clipped in
 //! homogeneous space first ([`crate::clip`]). Culling is decided on the
-//! snapped screen-space winding, exactly.
+//! snapped screen-space winding, exactly. Most triangles of a model take a
+//! lean path (inside every plane, no texture, the planned pipeline's fixed
+//! point): no clip-path arguments are gathered, a bounding box of at most
+//! eight samples is tested sample by sample at set-up
+//! ([`crate::raster::SmallSetup`]), and a triangle that covers no sample is
+//! neither lit nor filled, nor are its colours read. The trade-off: a
+//! second code path beside the general one, kept equal to it by tests of
+//! the set-up (`raster`), of the planned pipeline against the full one and
+//! of one band against several (`tests/plan.rs`).
 //!
 //! **Fragments.** Depth is the canonical cube's z, interpolated in screen
 //! space (where it is linear), clamped to its vertices' range, and tested
@@ -24,7 +32,10 @@
 //! perspective-correctly: the rasterizer's screen-space weights `e_i` are
 //! divided by each vertex's `w` and renormalised. A camera that frames a
 //! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
-//! interpolation.
+//! interpolation, and a sample's colour is computed only where the depth
+//! test lets it be written. Colours are added and multiplied in SIMD lanes
+//! (`Vec3A`): the same operations on each channel as three `f32`s, so the
+//! same results bit for bit.
 //!
 //! **Textures.** A triangle whose material has a texture (as the plan says:
 //! [`Plan::texture`]) multiplies its lit colour by the texture at each
