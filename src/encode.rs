@@ -28,8 +28,13 @@
 //!   of unchanged cells that need no SGR is rewritten instead when that is
 //!   shorter than any move.
 //! * **Only what changed** ([`Encoder`]): the frame the terminal shows is
-//!   kept, and a new frame sends only the cells that differ (a diff
-//!   iterator over two slices, allocating nothing). The first frame, a
+//!   kept, and a new frame sends only the cells that differ. The encoder
+//!   keeps cells packed, a word for the glyph and one for each ink, so
+//!   that finding the changes in a large frame is integer comparisons,
+//!   eight cells at a time where all eight are equal; the choices for a
+//!   changed cell (which way round, which SGR, how many copies follow)
+//!   are integer tests on the same words. Nothing is allocated per frame
+//!   once the buffers have grown. The first frame, a
 //!   resize, a change of colour depth, or [`Encoder::invalidate`] give a
 //!   full redraw: the screen is cleared and the frame's non-blank cells
 //!   written.
@@ -104,19 +109,112 @@ impl TermCell {
         }
     }
 
+    /// Whether the terminal shows the same picture for both cells, in
+    /// either orientation.
+    pub fn same_picture(&self, other: &TermCell) -> bool {
+        Packed::of(*self).same_picture(&Packed::of(*other))
+    }
+}
+
+/// A [`TermCell`] as the encoder keeps it: the character and each ink as
+/// a word ([`pack_ink`]). The hundreds of thousands of unchanged cells of a
+/// large frame are compared in three integer comparisons (an [`Ink`]'s
+/// derived equality matches on its variant first), and the choices made for
+/// a changed cell (which way round, which SGR) are integer tests too.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Packed {
+    ch: u32,
+    fg: u32,
+    bg: u32,
+}
+
+/// A [`Pen`] as the encoder keeps it, each ink packed by [`pack_ink`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Inks {
+    fg: u32,
+    bg: u32,
+}
+
+impl Inks {
+    fn of(pen: Pen) -> Inks {
+        Inks {
+            fg: pack_ink(pen.fg),
+            bg: pack_ink(pen.bg),
+        }
+    }
+}
+
+/// The default ink, packed.
+const DEFAULT: u32 = 0;
+
+/// An ink as a word: the variant in the top byte (0 the default, 1 a
+/// palette index, 2 a 24-bit colour) and its value below.
+#[inline(always)]
+fn pack_ink(ink: Ink) -> u32 {
+    match ink {
+        Ink::Default => DEFAULT,
+        Ink::Indexed(i) => 1 << 24 | i as u32,
+        Ink::Rgb(rgb) => pack_rgb(rgb),
+    }
+}
+
+/// A 24-bit colour, packed.
+#[inline(always)]
+fn pack_rgb(Rgb([r, g, b]): Rgb) -> u32 {
+    2 << 24 | (r as u32) << 16 | (g as u32) << 8 | b as u32
+}
+
+/// The glyph `ch` as a `char` (a packed cell is only made from one).
+#[inline(always)]
+fn glyph(ch: u32) -> char {
+    char::from_u32(ch).unwrap_or(' ')
+}
+
+const SPACE: u32 = ' ' as u32;
+const FULL_BLOCK: u32 = FULL as u32;
+
+impl Packed {
+    /// A space in the default colours.
+    const BLANK: Packed = Packed {
+        ch: SPACE,
+        fg: DEFAULT,
+        bg: DEFAULT,
+    };
+
+    #[inline(always)]
+    fn of(t: TermCell) -> Packed {
+        Packed {
+            ch: t.ch as u32,
+            fg: pack_ink(t.fg),
+            bg: pack_ink(t.bg),
+        }
+    }
+
+    /// The bytes of the glyph in UTF-8.
+    #[inline(always)]
+    fn len(&self) -> usize {
+        match self.ch {
+            0..=0x7f => 1,
+            0x80..=0x7ff => 2,
+            0x800..=0xffff => 3,
+            _ => 4,
+        }
+    }
+
     /// The pen this cell needs, given the current one: a blank keeps the
     /// current foreground, a full block the current background.
-    fn pen(&self, current: Pen) -> Pen {
+    #[inline(always)]
+    fn pen(&self, current: Inks) -> Inks {
         match self.ch {
-            ' ' => Pen {
+            SPACE => Inks {
                 fg: current.fg,
                 bg: self.bg,
             },
-            FULL => Pen {
+            FULL_BLOCK => Inks {
                 fg: self.fg,
                 bg: current.bg,
             },
-            _ => Pen {
+            _ => Inks {
                 fg: self.fg,
                 bg: self.bg,
             },
@@ -124,24 +222,22 @@ impl TermCell {
     }
 
     /// Whether the cell can be written with `pen` as it is.
-    fn fits(&self, pen: Pen) -> bool {
-        match self.ch {
-            ' ' => self.bg == pen.bg,
-            FULL => self.fg == pen.fg,
-            _ => self.bg == pen.bg && self.fg == pen.fg,
-        }
+    #[inline(always)]
+    fn fits(&self, pen: Inks) -> bool {
+        self.pen(pen) == pen
     }
 
     /// The cell with the colours a blank or a full block does not show set
     /// to the default, so that equal pictures compare equal.
-    fn normalized(self) -> TermCell {
+    #[inline(always)]
+    fn normalized(self) -> Packed {
         match self.ch {
-            ' ' => TermCell {
-                fg: Ink::Default,
+            SPACE => Packed {
+                fg: DEFAULT,
                 ..self
             },
-            FULL => TermCell {
-                bg: Ink::Default,
+            FULL_BLOCK => Packed {
+                bg: DEFAULT,
                 ..self
             },
             _ => self,
@@ -154,73 +250,76 @@ impl TermCell {
     /// red). Neither colour may be the terminal's default, which is a
     /// different colour as a foreground than as a background; braille and
     /// the ramps have no complement.
-    fn flipped(&self) -> Option<TermCell> {
+    fn flipped(&self) -> Option<Packed> {
         let shown_default = match self.ch {
-            ' ' => self.bg == Ink::Default,
-            FULL => self.fg == Ink::Default,
-            _ => self.fg == Ink::Default || self.bg == Ink::Default,
+            SPACE => self.bg == DEFAULT,
+            FULL_BLOCK => self.fg == DEFAULT,
+            _ => self.fg == DEFAULT || self.bg == DEFAULT,
         };
         if shown_default {
             return None;
         }
-        let ch = complement(self.ch)?;
+        let ch = complement(glyph(self.ch))? as u32;
         let (fg, bg) = match self.ch {
-            ' ' => (self.bg, Ink::Default),
-            FULL => (Ink::Default, self.fg),
+            SPACE => (self.bg, DEFAULT),
+            FULL_BLOCK => (DEFAULT, self.fg),
             _ => (self.bg, self.fg),
         };
-        Some(TermCell { ch, fg, bg }.normalized())
+        Some(Packed { ch, fg, bg }.normalized())
     }
 
     /// Whether the terminal shows the same picture for both cells, in
     /// either orientation.
-    pub fn same_picture(&self, other: &TermCell) -> bool {
-        if self == other {
-            return true;
-        }
+    #[inline(always)]
+    fn same_picture(&self, other: &Packed) -> bool {
+        self == other || self.differs_only_in_form(other)
+    }
+
+    /// [`Packed::same_picture`] for cells that are not equal.
+    fn differs_only_in_form(&self, other: &Packed) -> bool {
         match (self.ch, other.ch) {
-            (' ', ' ') => self.bg == other.bg,
-            (FULL, FULL) => self.fg == other.fg,
+            (SPACE, SPACE) => self.bg == other.bg,
+            (FULL_BLOCK, FULL_BLOCK) => self.fg == other.fg,
             // The same glyph, not equal: a different picture.
             (a, b) if a == b => false,
             _ => self.flipped() == Some(other.normalized()),
         }
     }
 
-    /// The form of this cell (itself or [`TermCell::flipped`]) that costs the
+    /// The form of this cell (itself or [`Packed::flipped`]) that costs the
     /// fewest bytes written `count` times from `pen`: the SGR and the
     /// characters (a space is one byte, a block element three).
     /// `count` is asked for only when the choice is open.
-    fn cheapest_from(&self, pen: Pen, count: impl FnOnce() -> usize) -> TermCell {
+    fn cheapest_from(&self, pen: Inks, count: impl FnOnce() -> usize) -> Packed {
         // A cell that fits is cheapest, unless it is a full block whose
         // blank (a third of its bytes) would pay for an SGR over a run.
-        if self.fits(pen) && self.ch != FULL {
+        if self.fits(pen) && self.ch != FULL_BLOCK {
             return *self;
         }
         let Some(f) = self.flipped() else {
             return *self;
         };
         // Glyphs of one length cost the same however many are written.
-        let count = if f.ch.len_utf8() == self.ch.len_utf8() {
+        let count = if f.len() == self.len() {
             // Two glyphs of two colours, neither keeping a colour of the
             // pen: both forms set both colours (the same bytes, but for a
             // bright palette colour's one digit as a background), so the
             // cell stays as it is without counting.
-            let keeps = |c: &TermCell| c.fg == pen.fg || c.bg == pen.bg;
-            if ![' ', FULL].contains(&self.ch) && !keeps(self) && !keeps(&f) {
+            let keeps = |c: &Packed| c.fg == pen.fg || c.bg == pen.bg;
+            if ![SPACE, FULL_BLOCK].contains(&self.ch) && !keeps(self) && !keeps(&f) {
                 return *self;
             }
             1
         } else {
             count()
         };
-        let cost = |c: &TermCell| sgr_cost(pen, c.pen(pen)) + count * c.ch.len_utf8();
+        let cost = |c: &Packed| sgr_cost(pen, c.pen(pen)) + count * c.len();
         if cost(&f) < cost(self) { f } else { *self }
     }
 
     /// The form of this cell that can be written with `pen` as it is, if
     /// either can.
-    fn fitting(&self, pen: Pen) -> Option<TermCell> {
+    fn fitting(&self, pen: Inks) -> Option<Packed> {
         if self.fits(pen) {
             return Some(*self);
         }
@@ -356,18 +455,22 @@ impl SgrBytes {
 
     /// Appends the SGR parameters of one plane and a `;`: `fg` for the
     /// foreground (30–39, 90–97), else the background (40–49, 100–107).
+    /// `ink` is packed ([`pack_ink`]).
     #[inline(always)]
-    fn ink(&mut self, fg: bool, ink: Ink) {
+    fn ink(&mut self, fg: bool, ink: u32) {
         let base = if fg { 30 } else { 40 };
-        match ink {
-            Ink::Default => self.byte(base + 9),
-            Ink::Indexed(i @ 0..=7) => self.byte(base + i),
-            Ink::Indexed(i @ 8..=15) => self.byte(base + 60 + (i - 8)),
-            Ink::Indexed(i) => {
-                self.put(if fg { b"38;5;" } else { b"48;5;" });
-                self.byte(i);
-            }
-            Ink::Rgb(Rgb([r, g, b])) => {
+        let [_, r, g, b] = ink.to_be_bytes();
+        match ink >> 24 {
+            0 => self.byte(base + 9),
+            1 => match b {
+                0..=7 => self.byte(base + b),
+                8..=15 => self.byte(base + 60 + (b - 8)),
+                _ => {
+                    self.put(if fg { b"38;5;" } else { b"48;5;" });
+                    self.byte(b);
+                }
+            },
+            _ => {
                 self.put(if fg { b"38;2;" } else { b"48;2;" });
                 self.byte(r);
                 self.byte(g);
@@ -377,41 +480,52 @@ impl SgrBytes {
     }
 }
 
-/// The length of [`SgrBytes::ink`]'s parameters, without the `;`.
-fn ink_cost(base: u32, ink: Ink) -> usize {
-    match ink {
-        Ink::Default | Ink::Indexed(0..=7) => 2,
-        Ink::Indexed(8..=15) => digits(base + 60),
-        Ink::Indexed(i) => 4 + BYTE_DIGITS[i as usize].1 as usize,
-        Ink::Rgb(Rgb([r, g, b])) => {
-            4 + [r, g, b]
-                .iter()
-                .map(|&v| BYTE_DIGITS[v as usize].1 as usize)
-                .sum::<usize>()
-        }
+/// The length of [`SgrBytes::ink`]'s parameters for a packed ink, without
+/// the `;`.
+#[inline(always)]
+fn ink_cost(base: u32, ink: u32) -> usize {
+    let [_, r, g, b] = ink.to_be_bytes();
+    let d = |v: u8| BYTE_DIGITS[v as usize].1 as usize;
+    match ink >> 24 {
+        0 => 2,
+        1 => match b {
+            0..=7 => 2,
+            8..=15 => digits(base + 60),
+            _ => 4 + d(b),
+        },
+        _ => 4 + d(r) + d(g) + d(b),
     }
 }
 
 /// The length of what [`push_sgr`] appends.
-fn sgr_cost(from: Pen, to: Pen) -> usize {
+#[inline(always)]
+fn sgr_cost(from: Inks, to: Inks) -> usize {
     if from == to {
         return 0;
     }
-    if to == Pen::default() {
+    if to == Inks::default() {
         return 3;
     }
-    let fg = (from.fg != to.fg).then(|| ink_cost(30, to.fg));
-    let bg = (from.bg != to.bg).then(|| ink_cost(40, to.bg));
-    3 + fg.unwrap_or(0) + bg.unwrap_or(0) + (fg.is_some() && bg.is_some()) as usize
+    match (from.fg != to.fg, from.bg != to.bg) {
+        (true, true) => 4 + ink_cost(30, to.fg) + ink_cost(40, to.bg),
+        (true, false) => 3 + ink_cost(30, to.fg),
+        _ => 3 + ink_cost(40, to.bg),
+    }
 }
 
 /// Appends the shortest SGR taking the terminal from `from` to `to`;
 /// nothing when they are equal.
 pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
+    push_inks(buf, Inks::of(from), Inks::of(to));
+}
+
+/// [`push_sgr`] for packed pens.
+#[inline(always)]
+fn push_inks(buf: &mut Vec<u8>, from: Inks, to: Inks) {
     if from == to {
         return;
     }
-    if to == Pen::default() {
+    if to == Inks::default() {
         // `CSI m` resets both planes in three bytes.
         buf.extend_from_slice(b"\x1b[m");
         return;
@@ -447,11 +561,17 @@ pub fn push_char(buf: &mut Vec<u8>, ch: char) {
 }
 
 /// Maps a frame's cells to terminal cells for one depth, into `out`.
-fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
+fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<Packed>) {
     out.clear();
     if q.depth() == ColorDepth::TrueColor {
-        // No palette, no dithering: where a cell is does not matter.
-        out.extend(frame.cells().iter().map(|c| TermCell::of(c, q, 0, 0)));
+        // No palette, no dithering: where a cell is does not matter, and a
+        // colour packs straight from its bytes.
+        let ink = |c: Option<Rgb>| c.map_or(DEFAULT, pack_rgb);
+        out.extend(frame.cells().iter().map(|c| Packed {
+            ch: c.ch as u32,
+            fg: if c.ch == ' ' { DEFAULT } else { ink(c.fg) },
+            bg: ink(c.bg),
+        }));
         return;
     }
     let cols = frame.cols().max(1) as usize;
@@ -459,7 +579,7 @@ fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
         out.extend(
             row.iter()
                 .enumerate()
-                .map(|(x, c)| TermCell::of(c, q, x as u16, y as u16)),
+                .map(|(x, c)| Packed::of(TermCell::of(c, q, x as u16, y as u16))),
         );
     }
 }
@@ -469,25 +589,26 @@ fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<TermCell>) {
 /// for the repeats. Returns the pen afterwards.
 fn push_run(
     buf: &mut Vec<u8>,
-    pen: Pen,
-    cell: &TermCell,
+    pen: Inks,
+    cell: &Packed,
     count: usize,
     rep: Rep,
     color: bool,
-) -> Pen {
+) -> Inks {
     let pen = if color {
         let want = cell.pen(pen);
-        push_sgr(buf, pen, want);
+        push_inks(buf, pen, want);
         want
     } else {
         pen
     };
-    push_char(buf, cell.ch);
+    let ch = glyph(cell.ch);
+    push_char(buf, ch);
     let repeats = count.saturating_sub(1);
-    if repeats > 0 && rep == Rep::On && csi_cost(repeats as u32) < repeats * cell.ch.len_utf8() {
+    if repeats > 0 && rep == Rep::On && csi_cost(repeats as u32) < repeats * cell.len() {
         push_csi(buf, repeats as u32, b'b');
     } else {
-        (0..repeats).for_each(|_| push_char(buf, cell.ch));
+        (0..repeats).for_each(|_| push_char(buf, ch));
     }
     pen
 }
@@ -514,7 +635,7 @@ pub fn write_lines(
 
 /// Appends `cells` (`cols × rows`) as lines of text.
 fn push_lines(
-    cells: &[TermCell],
+    cells: &[Packed],
     cols: u16,
     rows: u16,
     depth: ColorDepth,
@@ -524,14 +645,14 @@ fn push_lines(
     // Plain text means no escape sequence at all, REP included.
     let rep = if depth.has_color() { rep } else { Rep::Off };
     for row in cells.chunks(cols.max(1) as usize).take(rows as usize) {
-        let mut pen = Pen::default();
+        let mut pen = Inks::default();
         let mut rest = row;
         while let Some(cell) = rest.first() {
             let run = rest.iter().take_while(|c| *c == cell).count();
             pen = push_run(buf, pen, cell, run, rep, depth.has_color());
             rest = &rest[run..];
         }
-        push_sgr(buf, pen, Pen::default());
+        push_inks(buf, pen, Inks::default());
         buf.push(b'\n');
     }
 }
@@ -606,6 +727,10 @@ fn plan_move(
     let Some(from) = from else {
         return (cup, None);
     };
+    if from == to {
+        // The next cell written is the one the cursor is on: most often.
+        return (0, Some((Vertical::Stay, Horizontal::Stay)));
+    }
     let mut best = (cup, None);
     let mut consider = |v: Vertical, v_cost: usize, col_after: Option<u16>| {
         let (h_cost, h) = horizontal(col_after, to.col, cols);
@@ -677,6 +802,40 @@ pub fn diff<'a>(
         .map(|(i, (_, n))| (i, n))
 }
 
+/// Lists in `changes` the indices of the cells whose picture differs
+/// between `shown` and `next`. Equal cells, most of a large frame, cost a
+/// few word comparisons and no branch: every index is written, and the
+/// count advanced only past those that differ.
+fn changed_cells<'a>(shown: &[Packed], next: &[Packed], changes: &'a mut Vec<u32>) -> &'a [u32] {
+    let n = shown.len().min(next.len());
+    if changes.len() < n {
+        changes.resize(n, 0);
+    }
+    let slots = &mut changes[..n];
+    let mut len = 0;
+    let differs = |p: &Packed, q: &Packed| (p.ch ^ q.ch) | (p.fg ^ q.fg) | (p.bg ^ q.bg);
+    // Eight cells at a time: where all are equal (most of a frame), one
+    // test; otherwise each is listed if it differs.
+    let (shown, next) = (&shown[..n], &next[..n]);
+    for (k, (a, b)) in shown.chunks(8).zip(next.chunks(8)).enumerate() {
+        if a.len() == 8 && a.iter().zip(b).fold(0, |d, (p, q)| d | differs(p, q)) == 0 {
+            continue;
+        }
+        for (j, (p, q)) in a.iter().zip(b).enumerate() {
+            slots[len] = (k * 8 + j) as u32;
+            len += (differs(p, q) != 0) as usize;
+        }
+    }
+    // The same picture drawn the other way round is no change.
+    let mut kept = 0;
+    for k in 0..len {
+        let i = slots[k] as usize;
+        slots[kept] = i as u32;
+        kept += !shown[i].differs_only_in_form(&next[i]) as usize;
+    }
+    &slots[..kept]
+}
+
 /// Sends frames to a terminal, each as the difference from the last.
 ///
 /// ```
@@ -706,8 +865,10 @@ pub struct Encoder {
     cols: u16,
     rows: u16,
     /// What the terminal shows, when `synced`.
-    shown: Vec<TermCell>,
-    next: Vec<TermCell>,
+    shown: Vec<Packed>,
+    next: Vec<Packed>,
+    /// The indices of the cells that changed, in order (scratch space).
+    changes: Vec<u32>,
     synced: bool,
     buf: Vec<u8>,
     /// Bracket frames in synchronized output.
@@ -729,6 +890,7 @@ impl Encoder {
             rows: 0,
             shown: Vec::new(),
             next: Vec::new(),
+            changes: Vec::new(),
             synced: false,
             buf: Vec::new(),
             sync: true,
@@ -855,7 +1017,7 @@ impl Encoder {
             self.cols = frame.cols();
             self.rows = frame.rows();
             self.shown.clear();
-            self.shown.resize(self.next.len(), TermCell::BLANK);
+            self.shown.resize(self.next.len(), Packed::BLANK);
             // Home, default colours, clear: the screen is now all blanks.
             self.buf.extend_from_slice(b"\x1b[H\x1b[m\x1b[2J");
             cursor = Some(Cursor { row: 0, col: 0 });
@@ -876,14 +1038,20 @@ impl Encoder {
     fn write_changes(&mut self, mut cursor: Option<Cursor>) {
         let cols = self.cols as usize;
         let buf = &mut self.buf;
+        let changes = changed_cells(&self.shown, &self.next, &mut self.changes);
         let (shown, next) = (&self.shown, &self.next);
-        let mut pen = Pen::default();
+        let mut pen = Inks::default();
         // Index of the first cell not yet written (REP runs write ahead).
         let mut done = 0usize;
-        for (i, cell) in diff(shown, next) {
+        // The end of the last run of changed copies counted, and its cell:
+        // a cell inside it has the rest of the run as its copies.
+        let mut counted = (0usize, Packed::BLANK);
+        for &i in changes {
+            let i = i as usize;
             if i < done {
                 continue;
             }
+            let packed = next[i];
             let to = Cursor {
                 row: (i / cols) as u16,
                 col: (i % cols) as u16,
@@ -893,10 +1061,14 @@ impl Encoder {
             // cheaper than moving over it.
             let gap = match cursor {
                 Some(c) if c.row == to.row && c.col < to.col && move_cost > 0 => {
-                    let cells = &next[i - (to.col - c.col) as usize..i];
-                    let cost: usize = cells.iter().map(|c| c.ch.len_utf8()).sum();
-                    (cost < move_cost && cells.iter().all(|c| c.fitting(pen).is_some()))
-                        .then_some(cells)
+                    // Each cell is at least a byte.
+                    let gap = (to.col - c.col) as usize;
+                    let cells = &next[i - gap.min(move_cost)..i];
+                    let cost: usize = cells.iter().map(Packed::len).sum();
+                    (gap < move_cost
+                        && cost < move_cost
+                        && cells.iter().all(|c| c.fitting(pen).is_some()))
+                    .then_some(cells)
                 }
                 _ => None,
             };
@@ -904,16 +1076,16 @@ impl Encoder {
                 Some(cells) => cells
                     .iter()
                     .filter_map(|c| c.fitting(pen))
-                    .for_each(|c| push_char(buf, c.ch)),
+                    .for_each(|c| push_char(buf, glyph(c.ch))),
                 None => push_move(buf, plan, to),
             }
+            let row_end = (to.row as usize + 1) * cols;
             // With REP, identical cells that follow on the row are sent as
             // one run, up to the last changed one among them.
             let run = if self.rep == Rep::On {
-                let row_end = (to.row as usize + 1) * cols;
                 let same = next[i + 1..row_end]
                     .iter()
-                    .take_while(|c| *c == cell)
+                    .take_while(|c| **c == packed)
                     .count();
                 1 + (0..same)
                     .rev()
@@ -923,14 +1095,19 @@ impl Encoder {
                 1
             };
             // Of the cell and its flip, the one that costs least over the
-            // changed copies of it that follow.
+            // changed copies of it that follow (counted once a run).
             let copies = || {
-                let row_end = (to.row as usize + 1) * cols;
-                1 + (i + 1..row_end)
-                    .take_while(|&k| next[k] == *cell && !shown[k].same_picture(&next[k]))
-                    .count()
+                if i < counted.0 && counted.1 == packed {
+                    return counted.0 - i;
+                }
+                let n = 1
+                    + (i + 1..row_end)
+                        .take_while(|&k| next[k] == packed && !shown[k].same_picture(&next[k]))
+                        .count();
+                counted = (i + n, packed);
+                n
             };
-            let form = cell.cheapest_from(pen, copies);
+            let form = packed.cheapest_from(pen, copies);
             pen = push_run(buf, pen, &form, run, self.rep, true);
             done = i + run;
             cursor = Some(Cursor {
@@ -938,7 +1115,7 @@ impl Encoder {
                 col: to.col + run as u16,
             });
         }
-        push_sgr(buf, pen, Pen::default());
+        push_inks(buf, pen, Inks::default());
     }
 }
 
@@ -946,6 +1123,55 @@ impl Encoder {
 mod tests {
     use super::*;
     use crate::frame::Cell;
+    use proptest::prelude::*;
+
+    /// Inks from a small set, so that equal ones are drawn often.
+    fn ink() -> impl Strategy<Value = Ink> {
+        prop_oneof![
+            Just(Ink::Default),
+            (0u8..3).prop_map(Ink::Indexed),
+            (0u8..3).prop_map(|v| Ink::Rgb(Rgb([v, 0, 2 - v]))),
+        ]
+    }
+
+    /// Cells of the glyphs that have complements and of one that has not.
+    fn term_cell() -> impl Strategy<Value = TermCell> {
+        let ch = prop::sample::select(vec![' ', FULL, '▀', '▄', '⣿']);
+        (ch, ink(), ink()).prop_map(|(ch, fg, bg)| TermCell { ch, fg, bg })
+    }
+
+    proptest! {
+        /// Two inks pack to the same word exactly when they are equal, and
+        /// cells compare equal packed exactly when they do unpacked.
+        #[test]
+        fn packed_inks_and_cells_are_equal_exactly_when_they_are(
+            a in ink(), b in ink(), p in term_cell(), q in term_cell(),
+        ) {
+            prop_assert_eq!(pack_ink(a) == pack_ink(b), a == b);
+            prop_assert_eq!(Packed::of(p) == Packed::of(q), p == q);
+        }
+
+        /// The changed cells, found eight at a time, are exactly the cells
+        /// whose picture differs, in order, for frames of any length (not
+        /// only multiples of eight) and with changes anywhere in a chunk.
+        #[test]
+        fn changed_cells_are_the_cells_whose_picture_differs(
+            cells in prop::collection::vec((term_cell(), term_cell(), 0u8..4), 0..70),
+        ) {
+            // A quarter of the cells change; the rest are equal.
+            let shown: Vec<TermCell> = cells.iter().map(|c| c.0).collect();
+            let next: Vec<TermCell> =
+                cells.iter().map(|&(a, b, k)| if k == 0 { b } else { a }).collect();
+            let pack = |v: &[TermCell]| v.iter().map(|&c| Packed::of(c)).collect::<Vec<_>>();
+            let mut scratch = vec![7; 3];
+            let found = changed_cells(&pack(&shown), &pack(&next), &mut scratch).to_vec();
+            let expected: Vec<u32> = (0..shown.len())
+                .filter(|&i| !shown[i].same_picture(&next[i]))
+                .map(|i| i as u32)
+                .collect();
+            prop_assert_eq!(found, expected);
+        }
+    }
 
     fn sgr(from: Pen, to: Pen) -> String {
         let mut b = Vec::new();
@@ -1185,7 +1411,11 @@ mod tests {
             .collect();
         for &from in &pens {
             for &to in &pens {
-                assert_eq!(sgr_cost(from, to), sgr(from, to).len(), "{from:?} → {to:?}");
+                assert_eq!(
+                    sgr_cost(Inks::of(from), Inks::of(to)),
+                    sgr(from, to).len(),
+                    "{from:?} → {to:?}"
+                );
             }
         }
     }
