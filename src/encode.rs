@@ -543,7 +543,10 @@ fn push_inks(buf: &mut Vec<u8>, from: Inks, to: Inks) {
     }
     // Each plane ended with `;`: the last becomes the final `m`.
     sgr.bytes[sgr.len - 1] = b'm';
-    buf.extend_from_slice(&sgr.bytes[..sgr.len]);
+    // A copy of constant length (stores, not a call to `memcpy`), cut back.
+    let end = buf.len() + sgr.len;
+    buf.extend_from_slice(&sgr.bytes);
+    buf.truncate(end);
 }
 
 /// Appends a character as UTF-8.
