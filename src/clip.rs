@@ -221,6 +221,26 @@ impl Clipper {
             | out(p.y + gyw) << 6
     }
 
+    /// Whether four clip positions, their x, y, z and w each in the lanes
+    /// of a vector, all get outcode 0 from [`Clipper::outcode`]: the same
+    /// operations per lane, and a NaN is outside here too.
+    #[inline(always)]
+    pub(crate) fn inside4(&self, x: Vec4, y: Vec4, z: Vec4, w: Vec4) -> bool {
+        let (gxw, gyw) = (
+            Vec4::splat(self.gx as f32) * w,
+            Vec4::splat(self.gy as f32) * w,
+        );
+        let ok = |d: Vec4| d.cmpge(Vec4::ZERO);
+        (ok(w - Vec4::splat(self.w_min as f32))
+            & ok(w - z)
+            & ok(z + w)
+            & ok(gxw - x)
+            & ok(x + gxw)
+            & ok(gyw - y)
+            & ok(y + gyw))
+        .all()
+    }
+
     /// Whether every point of the box `lo..=hi` gets outcode 0 when the
     /// vertex stage transforms it, `mvp * p.extend(1.0)` in f32 and then
     /// [`Clipper::outcode`], whatever that product's rounding: then testing

@@ -7,6 +7,8 @@
 //! finite or lies beyond [`MAX_COORD`] does not snap, which is how the
 //! rasterizer's `i64` bit-width argument is kept (see [`crate::raster`]).
 
+use glam::Vec4;
+
 /// Fractional bits of a snapped coordinate.
 pub const FRAC_BITS: u32 = 8;
 /// One sample in fixed-point units.
@@ -87,6 +89,38 @@ impl FixedPoint {
         })
     }
 
+    /// [`FixedPoint::snap`] for four points, their x and y each in the
+    /// lanes of a vector; `None` when any of them cannot be snapped. The
+    /// same numbers: `v · 256` is exact, truncation in lanes is exact (the
+    /// magnitudes are below 2^29, and from 2^23 on a float has no fraction),
+    /// and so are the fraction and the sum with ±1 where there is one.
+    #[inline(always)]
+    pub(crate) fn snap4(x: Vec4, y: Vec4) -> Option<[FixedPoint; 4]> {
+        let limit = Vec4::splat(MAX_COORD);
+        // NaN and the infinities fail the comparison too.
+        if !(x.abs().cmple(limit) & y.abs().cmple(limit)).all() {
+            return None;
+        }
+        let round = |v: Vec4| {
+            let s = v * Vec4::splat(ONE as f32);
+            let t = s.trunc();
+            let frac = s - t;
+            let (one, zero) = (Vec4::ONE, Vec4::ZERO);
+            let r = t + Vec4::select(frac.cmpge(Vec4::splat(0.5)), one, zero)
+                - Vec4::select(frac.cmple(Vec4::splat(-0.5)), one, zero);
+            r.to_array()
+        };
+        let (xs, ys) = (round(x), round(y));
+        let mut out = [FixedPoint::default(); 4];
+        for (i, p) in out.iter_mut().enumerate() {
+            *p = FixedPoint {
+                x: Fixed(xs[i] as i64),
+                y: Fixed(ys[i] as i64),
+            };
+        }
+        Some(out)
+    }
+
     /// Snaps a point given in samples, in f64.
     pub fn snap64(p: [f64; 2]) -> Option<FixedPoint> {
         Some(FixedPoint {
@@ -117,6 +151,60 @@ mod tests {
             0.5f32, -0.5, 1.5, -1.5, 2.4999998, -2.4999998, 8388607.5, -8388607.5, 0.0, -0.0,
         ] {
             assert_eq!(round_half_away(s), s.round() as i64, "{s}");
+        }
+    }
+
+    #[test]
+    fn four_snapped_in_lanes_are_each_snapped_alone() {
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let v = (x as f32 / u32::MAX as f32 - 0.5) * 2.0 * MAX_COORD;
+            // Every other one a tie: a multiple of half of 1/256.
+            if x.is_multiple_of(2) {
+                v
+            } else {
+                (v * 512.0).round() / 512.0
+            }
+        };
+        let special = [
+            0.5 / 256.0,
+            -0.5 / 256.0,
+            0.0,
+            -0.0,
+            MAX_COORD,
+            -MAX_COORD,
+            8388607.5 / 256.0,
+        ];
+        for i in 0..20_000 {
+            let mut xs: [f32; 4] = std::array::from_fn(|_| next());
+            let ys: [f32; 4] = std::array::from_fn(|_| next());
+            xs[i % 4] = special[i % special.len()];
+            let alone: [Option<FixedPoint>; 4] =
+                std::array::from_fn(|k| FixedPoint::snap([xs[k], ys[k]]));
+            let lanes = FixedPoint::snap4(Vec4::from_array(xs), Vec4::from_array(ys));
+            assert_eq!(
+                lanes,
+                alone
+                    .iter()
+                    .copied()
+                    .collect::<Option<Vec<_>>>()
+                    .map(|v| { [v[0], v[1], v[2], v[3]] }),
+                "{xs:?} {ys:?}"
+            );
+        }
+        // Beyond the range or not finite in one lane: none of the four.
+        for bad in [MAX_COORD * 1.01, f32::NAN, f32::INFINITY] {
+            assert_eq!(
+                FixedPoint::snap4(Vec4::new(0.0, bad, 0.0, 0.0), Vec4::ZERO),
+                None
+            );
+            assert_eq!(
+                FixedPoint::snap4(Vec4::ZERO, Vec4::new(0.0, 0.0, 0.0, -bad)),
+                None
+            );
         }
     }
 

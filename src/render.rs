@@ -62,6 +62,7 @@
 //! frames stay on one thread ([`crate::PARALLEL_CELLS`]).
 
 mod explain;
+mod vertices;
 
 use std::time::{Duration, Instant};
 
@@ -770,12 +771,7 @@ impl Renderer {
         clip_tests: bool,
     ) {
         self.count_vertices(stage, positions.len(), clip_tests);
-        self.verts.extend(
-            positions
-                .iter()
-                .zip(normals)
-                .map(|(&p, &n)| vertex(stage, t, p, n, clip_tests)),
-        );
+        vertices::vertices(stage, t, positions, normals, clip_tests, &mut self.verts);
     }
 
     /// Counts what the vertex stage does for `n` vertices.

@@ -7,7 +7,7 @@
 //! drawn without culling, an open model like the teapot) is lit as seen
 //! from its visible side.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use crate::scene::{Light, MAX_LIGHTS};
 
@@ -85,6 +85,28 @@ impl Lights {
         for i in 0..self.len {
             let direct = n.dot(self.towards[i]).max(0.0);
             sum += self.color[i] * (self.ambient[i] + (1.0 - self.ambient[i]) * direct);
+        }
+        sum
+    }
+
+    /// [`Lights::lambert`] for four unit normals, given as their x, y and z
+    /// each in the lanes of a vector; returns the red, green and blue of the
+    /// four. The same operations per lane, in the same order, so the same
+    /// results bit for bit.
+    #[inline(always)]
+    pub(crate) fn lambert4(&self, n: [Vec4; 3]) -> [Vec4; 3] {
+        let mut sum = [Vec4::ZERO; 3];
+        for i in 0..self.len {
+            let t = self.towards[i];
+            // `f32::max` and the lanes' max differ only for a NaN (never
+            // here: the normals are finite) and in the sign of a zero, which
+            // the sum with the ambient term below loses either way.
+            let direct = (n[0] * t.x + n[1] * t.y + n[2] * t.z).max(Vec4::ZERO);
+            let a = self.ambient[i];
+            let s = Vec4::splat(a) + Vec4::splat(1.0 - a) * direct;
+            for (c, sum) in sum.iter_mut().enumerate() {
+                *sum += Vec4::splat(self.color[i][c]) * s;
+            }
         }
         sum
     }

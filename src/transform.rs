@@ -198,6 +198,17 @@ impl Viewport {
             self.half_h * y + self.half_h + self.dy,
         ]
     }
+
+    /// [`Viewport::apply`] to four points, their x and y each in the lanes
+    /// of a vector: the same operations per lane.
+    #[inline(always)]
+    pub(crate) fn apply4(&self, x: Vec4, y: Vec4) -> [Vec4; 2] {
+        let (hw, hh) = (Vec4::splat(self.half_w), Vec4::splat(self.half_h));
+        [
+            hw * x + hw + Vec4::splat(self.dx),
+            hh * y + hh + Vec4::splat(self.dy),
+        ]
+    }
 }
 
 /// The same view transform in f64: the eye may be 1e30 away, or 1e-30 from
@@ -270,14 +281,24 @@ pub fn rotation(degrees: Vec3) -> Mat4 {
 /// one 1e30 across, and comes out the same, bit for bit, at any
 /// power-of-two scale. Zero and non-finite vectors are returned as they are.
 pub fn pow2_unit(v: Vec3) -> Vec3 {
-    let max = v.abs().max_element();
+    match pow2_factors(v.abs().max_element()) {
+        Some((a, b)) => v * a * b,
+        None => v,
+    }
+}
+
+/// The two powers of two whose product brings `max` into [1, 2), for
+/// [`pow2_unit`] (which multiplies by one, then the other); `None` when
+/// `max` is zero, subnormal or not finite.
+#[inline(always)]
+pub(crate) fn pow2_factors(max: f32) -> Option<(f32, f32)> {
     if !max.is_normal() {
-        return v;
+        return None;
     }
     let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
     // 2^-e in two factors, each a normal f32 (2^-127 alone is not).
     let (a, b) = (-e / 2, -e - (-e / 2));
-    v * pow2(a) * pow2(b)
+    Some((pow2(a), pow2(b)))
 }
 
 /// 2^e for −126 ≤ e ≤ 127.
