@@ -296,6 +296,17 @@ impl Packed {
         if self.fits(pen) && self.ch != FULL_BLOCK {
             return *self;
         }
+        // The block elements but the full one (half blocks, quadrants) pair
+        // with a complement of their own length and the colours swapped:
+        // when neither form keeps a colour of the pen, the cell stays as it
+        // is (below), known before the complement is looked up.
+        let keeps_either = self.fg == pen.fg
+            || self.bg == pen.bg
+            || self.bg == pen.fg
+            || self.fg == pen.bg;
+        if (0x2580..=0x259f).contains(&self.ch) && self.ch != FULL_BLOCK && !keeps_either {
+            return *self;
+        }
         let Some(f) = self.flipped() else {
             return *self;
         };
@@ -721,6 +732,10 @@ fn plan_move(
     to: Cursor,
     cols: u16,
 ) -> (usize, Option<(Vertical, Horizontal)>) {
+    if from == Some(to) {
+        // The next cell written is the one the cursor is on: most often.
+        return (0, Some((Vertical::Stay, Horizontal::Stay)));
+    }
     // CUP: `CSI row ; col H`, with `; 1` and a lone `1` left out.
     let cup = 3 + match (to.row, to.col) {
         (0, 0) => 0,
@@ -730,10 +745,6 @@ fn plan_move(
     let Some(from) = from else {
         return (cup, None);
     };
-    if from == to {
-        // The next cell written is the one the cursor is on: most often.
-        return (0, Some((Vertical::Stay, Horizontal::Stay)));
-    }
     let mut best = (cup, None);
     let mut consider = |v: Vertical, v_cost: usize, col_after: Option<u16>| {
         let (h_cost, h) = horizontal(col_after, to.col, cols);
