@@ -268,6 +268,12 @@ impl Packed {
         Some(Packed { ch, fg, bg }.normalized())
     }
 
+    /// Zero exactly when the cells are equal: their words' differences.
+    #[inline(always)]
+    fn differs(&self, other: &Packed) -> u32 {
+        (self.ch ^ other.ch) | (self.fg ^ other.fg) | (self.bg ^ other.bg)
+    }
+
     /// Whether the terminal shows the same picture for both cells, in
     /// either orientation.
     #[inline(always)]
@@ -300,10 +306,8 @@ impl Packed {
         // with a complement of their own length and the colours swapped:
         // when neither form keeps a colour of the pen, the cell stays as it
         // is (below), known before the complement is looked up.
-        let keeps_either = self.fg == pen.fg
-            || self.bg == pen.bg
-            || self.bg == pen.fg
-            || self.fg == pen.bg;
+        let keeps_either =
+            self.fg == pen.fg || self.bg == pen.bg || self.bg == pen.fg || self.fg == pen.bg;
         if (0x2580..=0x259f).contains(&self.ch) && self.ch != FULL_BLOCK && !keeps_either {
             return *self;
         }
@@ -816,38 +820,74 @@ pub fn diff<'a>(
         .map(|(i, (_, n))| (i, n))
 }
 
-/// Lists in `changes` the indices of the cells whose picture differs
-/// between `shown` and `next`. Equal cells, most of a large frame, cost a
-/// few word comparisons and no branch: every index is written, and the
-/// count advanced only past those that differ.
-fn changed_cells<'a>(shown: &[Packed], next: &[Packed], changes: &'a mut Vec<u32>) -> &'a [u32] {
+/// Lists in `changes` the indices of the cells of `next` unequal to
+/// `shown`'s, in order, and returns how many. Equal cells, most of a large
+/// frame, cost a few word comparisons and no branch: every index is
+/// written, and the count advanced only past those that differ.
+fn unequal_cells(shown: &[Packed], next: &[Packed], changes: &mut Vec<u32>) -> usize {
     let n = shown.len().min(next.len());
     if changes.len() < n {
         changes.resize(n, 0);
     }
     let slots = &mut changes[..n];
     let mut len = 0;
-    let differs = |p: &Packed, q: &Packed| (p.ch ^ q.ch) | (p.fg ^ q.fg) | (p.bg ^ q.bg);
-    // Eight cells at a time: where all are equal (most of a frame), one
-    // test; otherwise each is listed if it differs.
+    // Eight cells at a time: where all are equal, one test; otherwise each
+    // is listed if it differs.
     let (shown, next) = (&shown[..n], &next[..n]);
     for (k, (a, b)) in shown.chunks(8).zip(next.chunks(8)).enumerate() {
-        if a.len() == 8 && a.iter().zip(b).fold(0, |d, (p, q)| d | differs(p, q)) == 0 {
+        if a.len() == 8 && a.iter().zip(b).fold(0, |d, (p, q)| d | p.differs(q)) == 0 {
             continue;
         }
         for (j, (p, q)) in a.iter().zip(b).enumerate() {
             slots[len] = (k * 8 + j) as u32;
-            len += (differs(p, q) != 0) as usize;
+            len += (p.differs(q) != 0) as usize;
         }
     }
-    // The same picture drawn the other way round is no change.
+    len
+}
+
+/// [`quantize`] and [`unequal_cells`] in one pass for 24-bit colour, where
+/// a cell packs straight from its bytes (no palette, no dithering): each
+/// cell is compared with `shown`'s while it is in registers.
+fn quantize_truecolor(
+    frame: &Frame,
+    shown: &[Packed],
+    next: &mut Vec<Packed>,
+    changes: &mut Vec<u32>,
+) -> usize {
+    let cells = frame.cells();
+    let n = cells.len().min(shown.len());
+    next.resize(cells.len(), Packed::BLANK);
+    if changes.len() < n {
+        changes.resize(n, 0);
+    }
+    let slots = &mut changes[..n];
+    let mut len = 0;
+    let ink = |c: Option<Rgb>| c.map_or(DEFAULT, pack_rgb);
+    for (i, ((out, c), s)) in next.iter_mut().zip(cells).zip(shown).enumerate() {
+        let p = Packed {
+            ch: c.ch as u32,
+            fg: if c.ch == ' ' { DEFAULT } else { ink(c.fg) },
+            bg: ink(c.bg),
+        };
+        *out = p;
+        slots[len] = i as u32;
+        len += (p.differs(s) != 0) as usize;
+    }
+    len
+}
+
+/// Keeps, of the cells `candidates` lists, those whose picture differs
+/// between `shown` and `next` (the same picture drawn the other way round
+/// is no change), in order.
+fn changed_cells<'a>(shown: &[Packed], next: &[Packed], candidates: &'a mut [u32]) -> &'a [u32] {
     let mut kept = 0;
-    for k in 0..len {
-        let i = slots[k] as usize;
-        slots[kept] = i as u32;
+    for k in 0..candidates.len() {
+        let i = candidates[k] as usize;
+        candidates[kept] = i as u32;
         kept += !shown[i].differs_only_in_form(&next[i]) as usize;
     }
-    &slots[..kept]
+    &candidates[..kept]
 }
 
 /// Sends frames to a terminal, each as the difference from the last.
@@ -1008,9 +1048,9 @@ impl Encoder {
     /// Encodes `frame` into [`Encoder::last_bytes`] without writing it, and
     /// takes it as shown.
     pub fn prepare(&mut self, frame: &Frame) {
-        quantize(frame, &mut self.quantizer, &mut self.next);
         self.buf.clear();
         if self.lines {
+            quantize(frame, &mut self.quantizer, &mut self.next);
             let depth = self.depth();
             push_lines(
                 &self.next,
@@ -1031,13 +1071,19 @@ impl Encoder {
             self.cols = frame.cols();
             self.rows = frame.rows();
             self.shown.clear();
-            self.shown.resize(self.next.len(), Packed::BLANK);
+            self.shown.resize(frame.cells().len(), Packed::BLANK);
             // Home, default colours, clear: the screen is now all blanks.
             self.buf.extend_from_slice(b"\x1b[H\x1b[m\x1b[2J");
             cursor = Some(Cursor { row: 0, col: 0 });
         }
+        let candidates = if self.quantizer.depth() == ColorDepth::TrueColor {
+            quantize_truecolor(frame, &self.shown, &mut self.next, &mut self.changes)
+        } else {
+            quantize(frame, &mut self.quantizer, &mut self.next);
+            unequal_cells(&self.shown, &self.next, &mut self.changes)
+        };
         let start = self.buf.len();
-        self.write_changes(cursor);
+        self.write_changes(candidates, cursor);
         if self.buf.len() == start && !full {
             // Nothing changed: nothing to send.
             self.buf.clear();
@@ -1049,10 +1095,12 @@ impl Encoder {
     }
 
     /// Appends the changed cells to the buffer, ending with the pen reset.
-    fn write_changes(&mut self, mut cursor: Option<Cursor>) {
+    /// `candidates`: the number of cells listed in `self.changes` as
+    /// unequal to the cell shown.
+    fn write_changes(&mut self, candidates: usize, mut cursor: Option<Cursor>) {
         let cols = self.cols as usize;
         let buf = &mut self.buf;
-        let changes = changed_cells(&self.shown, &self.next, &mut self.changes);
+        let changes = changed_cells(&self.shown, &self.next, &mut self.changes[..candidates]);
         let (shown, next) = (&self.shown, &self.next);
         let mut pen = Inks::default();
         // Index of the first cell not yet written (REP runs write ahead).
@@ -1177,13 +1225,50 @@ mod tests {
             let next: Vec<TermCell> =
                 cells.iter().map(|&(a, b, k)| if k == 0 { b } else { a }).collect();
             let pack = |v: &[TermCell]| v.iter().map(|&c| Packed::of(c)).collect::<Vec<_>>();
+            let (shown_p, next_p) = (pack(&shown), pack(&next));
             let mut scratch = vec![7; 3];
-            let found = changed_cells(&pack(&shown), &pack(&next), &mut scratch).to_vec();
+            let n = unequal_cells(&shown_p, &next_p, &mut scratch);
+            let found = changed_cells(&shown_p, &next_p, &mut scratch[..n]).to_vec();
             let expected: Vec<u32> = (0..shown.len())
                 .filter(|&i| !shown[i].same_picture(&next[i]))
                 .map(|i| i as u32)
                 .collect();
             prop_assert_eq!(found, expected);
+        }
+    }
+
+    proptest! {
+        /// Quantizing 24-bit colour and listing the unequal cells in one
+        /// pass gives the cells and the list the two passes give, for any
+        /// frame shape and with changes anywhere.
+        #[test]
+        fn one_pass_in_truecolor_is_the_two_passes(
+            (cols, rows) in (1u16..20, 1u16..5),
+            seed in prop::collection::vec((0usize..5, 0u8..4, 0u8..4, 0u8..3), 100),
+        ) {
+            let rgb = |k: u8| (k > 0).then(|| Rgb([k, 0, 3 - k]));
+            let mut frame = Frame::default();
+            frame.resize(cols, rows);
+            let chars = [' ', FULL, '▀', '▄', '⣿'];
+            for (c, &(ch, fg, bg, _)) in frame.cells_mut().iter_mut().zip(seed.iter().cycle()) {
+                *c = Cell { ch: chars[ch], fg: rgb(fg), bg: rgb(bg) };
+            }
+            // What is shown: the frame's own cells, a third of them changed.
+            let mut q = Quantizer::of(ColorDepth::TrueColor.into());
+            let mut shown = Vec::new();
+            quantize(&frame, &mut q, &mut shown);
+            for (p, &(_, fg, _, k)) in shown.iter_mut().zip(seed.iter().rev().cycle()) {
+                if k == 0 {
+                    p.bg = pack_ink(Ink::Indexed(fg));
+                }
+            }
+            let (mut two, mut two_list) = (Vec::new(), Vec::new());
+            quantize(&frame, &mut q, &mut two);
+            let n = unequal_cells(&shown, &two, &mut two_list);
+            let (mut one, mut one_list) = (vec![Packed::BLANK; 3], vec![9; 2]);
+            let m = quantize_truecolor(&frame, &shown, &mut one, &mut one_list);
+            prop_assert_eq!(one, two);
+            prop_assert_eq!(&one_list[..m], &two_list[..n]);
         }
     }
 
