@@ -554,6 +554,10 @@ fn blit_half(fb: &Framebuffer, depth: ColorDepth, background: Option<Lin>, cells
     for (i, out) in cells.chunks_exact_mut(cols).enumerate() {
         let top = grid.height - 1 - ((first + i) * 2) as u32;
         let (upper, lower) = (fb.row(top), fb.row(top - 1));
+        if background.is_none() {
+            blit_half_runs(upper, lower, depth, out);
+            continue;
+        }
         for ((cell, &t), &b) in out.iter_mut().zip(upper).zip(lower) {
             *cell = if t == b {
                 blank(t.or(background))
@@ -564,6 +568,40 @@ fn blit_half(fb: &Framebuffer, depth: ColorDepth, background: Option<Lin>, cells
                     _ => GlyphMode::Half.cell_split(&[t, b], depth, None, Split::Exhaustive),
                 }
             };
+        }
+    }
+}
+
+/// A row of [`blit_half`] without a scene background: runs of cells whose
+/// two samples are both undrawn (most of a frame around a model) are
+/// found by their tags alone and filled with blanks at once.
+#[inline(always)]
+fn blit_half_runs(
+    upper: &[Option<Lin>],
+    lower: &[Option<Lin>],
+    depth: ColorDepth,
+    out: &mut [Cell],
+) {
+    let n = out.len().min(upper.len()).min(lower.len());
+    let (upper, lower, out) = (&upper[..n], &lower[..n], &mut out[..n]);
+    let mut x = 0;
+    while x < n {
+        let empty = upper[x..]
+            .iter()
+            .zip(&lower[x..])
+            .take_while(|(t, b)| t.is_none() && b.is_none())
+            .count();
+        out[x..x + empty].fill(Cell::BLANK);
+        x += empty;
+        while x < n && (upper[x].is_some() || lower[x].is_some()) {
+            let (t, b) = (upper[x], lower[x]);
+            out[x] = match (t, b) {
+                (Some(t), Some(b)) if t == b => blank(Some(t)),
+                (Some(t), Some(b)) => half(t, b, None),
+                // One sample undrawn.
+                _ => GlyphMode::Half.cell_split(&[t, b], depth, None, Split::Exhaustive),
+            };
+            x += 1;
         }
     }
 }
