@@ -38,6 +38,10 @@
 //! exhaustive split, has a loop of its own that reads a cell's two samples
 //! from two rows side by side and writes the cell out without the general
 //! path's dispatch; a property test keeps it equal to the general path.
+//! Without a scene background, the runs of cells whose two samples are both
+//! undrawn (most of a frame around a model) are found by the samples' tags
+//! alone and filled with blanks at once: on the 1000×300 torus this took
+//! the blit from about 44 instructions a cell to about 20.
 
 pub mod glyphs;
 

@@ -10,7 +10,10 @@
 //! once per face that uses it): clip-space position, world position and
 //! normal, its clip outcode, and, when it is inside every clip plane, its
 //! screen position, depth and `1/w`. Lighting ([`crate::shade`]) is
-//! evaluated per vertex for smooth shading, per face for flat.
+//! evaluated per vertex for smooth shading, per face for flat. Vertices go
+//! through it four at a time in SIMD lanes where all four are the common
+//! case (`render/vertices.rs`), with the same arithmetic per lane as one at
+//! a time, so the same bits.
 //!
 //! **Triangles.** A triangle whose three vertices are inside every clip
 //! plane goes straight to the rasterizer; one that is not is clipped in

@@ -35,6 +35,7 @@ use crate::transform;
 
 /// Appends the vertex stage's result for each of `positions` with its
 /// normal, in order, to `out`: what `vertex` gives for each.
+#[inline(always)]
 pub(super) fn vertices(
     stage: &Stage<'_>,
     t: &Transforms,
@@ -47,19 +48,21 @@ pub(super) fn vertices(
     let (positions, normals) = (&positions[..n], &normals[..n]);
     let one = |(&p, &n): (&Vec3, &Vec3)| vertex(stage, t, p, n, clip_tests);
     let shading = stage.plan.shading;
-    let mut start = 0;
-    if shading != Shading::Flat {
-        let smooth = shading == Shading::Smooth;
-        out.reserve(n);
-        for (p, nn) in positions.chunks_exact(4).zip(normals.chunks_exact(4)) {
-            let (p, nn) = (as_four(p), as_four(nn));
-            match four(stage, t, p, nn, clip_tests, smooth) {
-                Some(v) => out.extend_from_slice(&v),
-                None => out.extend(p.iter().zip(nn).map(one)),
-            }
-        }
-        start = n - n % 4;
+    if n < 4 || shading == Shading::Flat {
+        // A loose triangle's three vertices, or flat shading.
+        out.extend(positions.iter().zip(normals).map(one));
+        return;
     }
+    let smooth = shading == Shading::Smooth;
+    out.reserve(n);
+    for (p, nn) in positions.chunks_exact(4).zip(normals.chunks_exact(4)) {
+        let (p, nn) = (as_four(p), as_four(nn));
+        match four(stage, t, p, nn, clip_tests, smooth) {
+            Some(v) => out.extend_from_slice(&v),
+            None => out.extend(p.iter().zip(nn).map(one)),
+        }
+    }
+    let start = n - n % 4;
     out.extend(positions[start..].iter().zip(&normals[start..]).map(one));
 }
 
