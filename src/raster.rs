@@ -376,6 +376,13 @@ impl Setup {
         if e[0] < -limit || e[1] > limit || e[2] < -limit || e[3] > limit {
             return Err(Rejected::OutOfRange);
         }
+        Setup::signed_area2_in_range(p, cull)
+    }
+
+    /// [`Setup::signed_area2`] of a triangle whose coordinates are known to
+    /// be within ±[`MAX_COORD`] samples.
+    #[inline(always)]
+    fn signed_area2_in_range(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
         let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
         if area2 == 0 {
             return Err(Rejected::Degenerate);
@@ -519,8 +526,40 @@ impl SmallSetup {
         band: Band,
         cull: Cull,
     ) -> Result<Option<SmallSetup>, Rejected> {
+        SmallSetup::set_up::<true>(p, grid, band, cull)
+    }
+
+    /// [`SmallSetup::new`] for vertices the vertex stage snapped: each
+    /// coordinate is within ±[`MAX_COORD`] samples (`Fixed::snap` accepts no
+    /// other), so the range is not tested again.
+    #[inline(always)]
+    pub(crate) fn new_snapped(
+        p: [FixedPoint; 3],
+        grid: Grid,
+        band: Band,
+        cull: Cull,
+    ) -> Result<Option<SmallSetup>, Rejected> {
+        let limit = (MAX_COORD as i64) * ONE;
+        debug_assert!(
+            p.iter()
+                .all(|q| q.x.0.abs() <= limit && q.y.0.abs() <= limit)
+        );
+        SmallSetup::set_up::<false>(p, grid, band, cull)
+    }
+
+    #[inline(always)]
+    fn set_up<const CHECK_RANGE: bool>(
+        p: [FixedPoint; 3],
+        grid: Grid,
+        band: Band,
+        cull: Cull,
+    ) -> Result<Option<SmallSetup>, Rejected> {
         let extent = extent(&p);
-        let area2 = Setup::signed_area2_in(&p, &extent, cull)?;
+        let area2 = if CHECK_RANGE {
+            Setup::signed_area2_in(&p, &extent, cull)?
+        } else {
+            Setup::signed_area2_in_range(&p, cull)?
+        };
         let ccw = area2 > 0;
         let [x0, x1, y0, y1] = clamped_box(&extent, grid, band);
         let mut s = SmallSetup {
@@ -965,6 +1004,11 @@ mod tests {
             let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
             let grid = Grid::new(6, 5);
             let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
+            // In range, the snapped vertices' set-up is the same.
+            proptest::prop_assert_eq!(
+                format!("{:?}", SmallSetup::new_snapped(p, grid, band, cull)),
+                format!("{:?}", SmallSetup::new(p, grid, band, cull))
+            );
             match (SmallSetup::new(p, grid, band, cull), Setup::from_fixed_in(p, grid, band, cull)) {
                 (Err(a), Err(b)) => proptest::prop_assert_eq!(a, b),
                 (Ok(None), Ok(s)) => proptest::prop_assert!(s.bbox_samples() > SMALL_BOX),

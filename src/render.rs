@@ -951,7 +951,8 @@ impl Renderer {
         self.stats.triangles_in += 1;
         let (grid, band) = (self.fb.grid(), self.fb.band());
         let fixed = v.map(|v| v.fixed);
-        match SmallSetup::new(fixed, grid, band, cull) {
+        // Inside every clip plane: snapped, so in range.
+        match SmallSetup::new_snapped(fixed, grid, band, cull) {
             Err(r) => self.stats.raster.count_rejected(r),
             Ok(Some(s)) => {
                 self.stats.raster.triangles_drawn += 1;
