@@ -563,15 +563,7 @@ fn blit_half(fb: &Framebuffer, depth: ColorDepth, background: Option<Lin>, cells
             continue;
         }
         for ((cell, &t), &b) in out.iter_mut().zip(upper).zip(lower) {
-            *cell = if t == b {
-                blank(t.or(background))
-            } else {
-                match (t.or(background), b.or(background)) {
-                    (Some(t), Some(b)) => half(t, b, background),
-                    // No scene background, one sample undrawn.
-                    _ => GlyphMode::Half.cell_split(&[t, b], depth, None, Split::Exhaustive),
-                }
-            };
+            *cell = half_cell(t, b, background, depth);
         }
     }
 }
@@ -598,15 +590,22 @@ fn blit_half_runs(
         out[x..x + empty].fill(Cell::BLANK);
         x += empty;
         while x < n && (upper[x].is_some() || lower[x].is_some()) {
-            let (t, b) = (upper[x], lower[x]);
-            out[x] = match (t, b) {
-                (Some(t), Some(b)) if t == b => blank(Some(t)),
-                (Some(t), Some(b)) => half(t, b, None),
-                // One sample undrawn.
-                _ => GlyphMode::Half.cell_split(&[t, b], depth, None, Split::Exhaustive),
-            };
+            out[x] = half_cell(upper[x], lower[x], None, depth);
             x += 1;
         }
+    }
+}
+
+/// The half-block cell of samples `t` over `b` (see [`blit_half`]).
+#[inline(always)]
+fn half_cell(t: Option<Lin>, b: Option<Lin>, background: Option<Lin>, depth: ColorDepth) -> Cell {
+    if t == b {
+        return blank(t.or(background));
+    }
+    match (t.or(background), b.or(background)) {
+        (Some(t), Some(b)) => half(t, b, background),
+        // No scene background, one sample undrawn.
+        _ => GlyphMode::Half.cell_split(&[t, b], depth, None, Split::Exhaustive),
     }
 }
 

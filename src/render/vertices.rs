@@ -207,6 +207,76 @@ mod tests {
         b
     }
 
+    /// The stage for the cube's scene seen at `cols × rows`, and its
+    /// transforms.
+    fn with_stage(
+        shading: Shading,
+        cols: u16,
+        rows: u16,
+        turn: Vec3,
+        f: impl FnOnce(&Stage<'_>, &Transforms),
+    ) {
+        let scene = Scene::of_mesh(Shape::Cube.mesh(Rgb::WHITE));
+        let opts = RenderOptions {
+            cols,
+            rows,
+            shading,
+            turn,
+            ..Default::default()
+        };
+        let grid = opts.glyphs.grid(cols, rows);
+        let cam = scene.camera.resolved(opts.aspect());
+        let vp = cam.view_projection(opts.aspect());
+        let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
+        let turn = transform::rotation(opts.turn);
+        let plan = Plan::new(&scene, &opts, vp, turn, &clipper);
+        let stage = Stage {
+            exact: false,
+            clipper,
+            plan: &plan,
+            viewport: Viewport::new(grid.width as f32, grid.height as f32),
+            lights: Lights::new(&scene.lights),
+            traversal: opts.traversal,
+            precision: opts.precision,
+            eye: Eye::Towards(Vec3::Z),
+        };
+        f(&stage, &Transforms::new(vp, turn * scene.meshes[0].model));
+    }
+
+    /// Four ordinary vertices (inside the view, finite, unit normals) do
+    /// take the lanes, with and without clip tests and smooth or no
+    /// shading, and come out as one at a time: the property test below
+    /// compares the two paths wherever they are taken, which this test makes
+    /// sure includes the lanes.
+    #[test]
+    fn ordinary_vertices_take_the_lanes() {
+        let p = [
+            Vec3::new(0.5, 0.5, 0.5),
+            Vec3::new(-0.5, 0.25, 0.0),
+            Vec3::new(0.0, -0.75, 0.5),
+            Vec3::new(0.25, 0.0, -0.5),
+        ];
+        // Normals of no special direction, whose products round.
+        let n = [
+            Vec3::new(0.3127, 0.5411, 0.7809),
+            Vec3::new(-0.6173, 0.2291, 0.7533),
+            Vec3::new(0.1103, -0.9137, 0.3911),
+            Vec3::new(0.7023, 0.1235, -0.6963),
+        ];
+        for shading in [Shading::Smooth, Shading::None] {
+            with_stage(shading, 80, 24, Vec3::new(10.0, 20.0, 0.0), |stage, t| {
+                for clip_tests in [false, true] {
+                    let smooth = shading == Shading::Smooth;
+                    let four = four(stage, t, &p, &n, clip_tests, smooth).expect("the lanes");
+                    for i in 0..4 {
+                        let one = vertex(stage, t, p[i], n[i], clip_tests);
+                        assert_eq!(bits(&four[i]), bits(&one), "vertex {i}");
+                    }
+                }
+            });
+        }
+    }
+
     proptest! {
         /// Four at a time in lanes, the vertex stage gives every vertex the
         /// same bits as one at a time: for any turn, size, shading and clip
@@ -221,33 +291,14 @@ mod tests {
             turn in vec3(-180f32..180.0),
             (cols, rows) in (1u16..300, 1u16..100),
         ) {
-            let scene = Scene::of_mesh(Shape::Cube.mesh(Rgb::WHITE));
-            let opts = RenderOptions { cols, rows, shading, turn, ..Default::default() };
-            let grid = opts.glyphs.grid(cols, rows);
-            let cam = scene.camera.resolved(opts.aspect());
-            let vp = cam.view_projection(opts.aspect());
-            let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
-            let turn = transform::rotation(opts.turn);
-            let plan = Plan::new(&scene, &opts, vp, turn, &clipper);
-            let stage = Stage {
-                exact: false,
-                clipper,
-                plan: &plan,
-                viewport: Viewport::new(grid.width as f32, grid.height as f32),
-                lights: Lights::new(&scene.lights),
-                traversal: opts.traversal,
-                precision: opts.precision,
-                eye: Eye::Towards(Vec3::Z),
-            };
-            let t = Transforms::new(vp, turn * scene.meshes[0].model);
             let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices_in.into_iter().unzip();
-            let mut four = Vec::new();
-            vertices(&stage, &t, &positions, &normals, clip_tests, &mut four);
-            let one: Vec<Vert> = positions
-                .iter()
-                .zip(&normals)
-                .map(|(&p, &n)| vertex(&stage, &t, p, n, clip_tests))
-                .collect();
+            let (mut four, mut one) = (Vec::new(), Vec::new());
+            with_stage(shading, cols, rows, turn, |stage, t| {
+                vertices(stage, t, &positions, &normals, clip_tests, &mut four);
+                one.extend(
+                    positions.iter().zip(&normals).map(|(&p, &n)| vertex(stage, t, p, n, clip_tests)),
+                );
+            });
             prop_assert_eq!(four.len(), one.len());
             for (i, (a, b)) in four.iter().zip(&one).enumerate() {
                 prop_assert_eq!(bits(a), bits(b), "vertex {}: {:?} {:?}", i, a, b);
