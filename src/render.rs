@@ -1000,7 +1000,7 @@ impl Renderer {
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
     fn shade(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
-        let round = |c: Vec3A| Vec3::from(Lin::from_f32(c.to_array()).to_f32());
+        let round = |c: Vec3A| Vec3::from(Lin::round_lanes(c));
         let c = self.light(stage, v, base, back);
         [round(c[0]), round(c[1]), round(c[2])]
     }
@@ -1113,7 +1113,7 @@ impl Renderer {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
             let (uv, dx, dy) = planes.at(x, y);
             let texel = texture.sample(&sampler, uv, dx, dy);
-            Lin::from_f32((lit * Vec3A::from(texel)).to_array())
+            Lin::from_lanes(lit * Vec3A::from(texel))
         };
         let tr = stage.traversal;
         let tested = if stage.plan.depth.run {
@@ -1146,8 +1146,8 @@ impl Renderer {
         let grid = self.fb.grid();
         let fb = &mut self.fb;
         let (mut covered, mut written) = (0u64, 0u64);
-        let one = Lin::from_f32(a.color[0].to_array());
-        let interpolate = |e: C::Weights| Lin::from_f32(a.lit(C::f32(e)).to_array());
+        let one = Lin::from_lanes(a.color[0]);
+        let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
         let depth = |e: C::Weights| a.depth(C::f32(e));
         let tr = stage.traversal;
         // One tight loop per combination, so that each inlines.

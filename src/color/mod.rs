@@ -116,7 +116,38 @@ impl Lin {
         // `as u16` truncates, saturates and maps NaN to 0.
         Lin(c.map(|v| (v + 0.5) as u16))
     }
+
+    /// [`Lin::from_f32`] of the three lanes of `c`, bit for bit, in SIMD
+    /// lanes: the pipeline's colours are `Vec3A`, and the saturating
+    /// conversion, channel by channel, was most of the cost of rounding
+    /// them. The rounded value `k` is found as a float ([`Lin::round_lanes`]),
+    /// and `k + 2^23`, exact, has `k` in its low bits.
+    #[inline(always)]
+    pub(crate) fn from_lanes(c: glam::Vec3A) -> Lin {
+        let [r, g, b] = (Lin::round_lanes(c) + TWO_23).to_array();
+        Lin([r, g, b].map(|v| v.to_bits() as u16))
+    }
+
+    /// `Lin::from_f32(c).to_f32()` in SIMD lanes, bit for bit: each lane
+    /// rounded (halves up) and clamped to a whole number in [0, 65535], a
+    /// NaN lane 0.
+    #[inline(always)]
+    pub(crate) fn round_lanes(c: glam::Vec3A) -> glam::Vec3A {
+        use glam::Vec3A;
+        let x = c + Vec3A::splat(0.5);
+        // Below zero and NaN (whose comparisons are false) to 0, on every
+        // architecture (SIMD max's NaN rule is not the same on all).
+        let x = Vec3A::select(x.cmpge(Vec3A::ZERO), x, Vec3A::ZERO).min(Vec3A::splat(65535.0));
+        // The whole number nearest x (ties to even), exactly: at 2^23 a
+        // float's step is 1. One less where that is above x: x's floor,
+        // which is `as u16`'s truncation of x ≥ 0.
+        let t = (x + TWO_23) - TWO_23;
+        t - Vec3A::select(t.cmpgt(x), Vec3A::ONE, Vec3A::ZERO)
+    }
 }
+
+/// 2^23, where an `f32`'s step is 1.
+const TWO_23: f32 = 8_388_608.0;
 
 impl From<Rgb> for Lin {
     fn from(c: Rgb) -> Lin {
@@ -279,6 +310,41 @@ mod tests {
                 Lin::from_srgb(Rgb([v; 3])),
                 "{v}"
             );
+        }
+    }
+
+    #[test]
+    fn in_lanes_is_from_f32_bit_for_bit() {
+        use glam::Vec3A;
+        let mut values = vec![
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            -0.0,
+            0.0,
+            1e9,
+            -1e9,
+        ];
+        // Every half-way point, its neighbours, and the steps between.
+        for k in -4..=65540 {
+            let h = k as f32 + 0.5;
+            values.extend([h, h.next_up(), h.next_down(), k as f32, k as f32 + 0.25]);
+        }
+        // And some of every binade.
+        values.extend((0..1u32 << 16).map(|i| f32::from_bits(i.wrapping_mul(0x9e37_79b9) | 1)));
+        for v in values.chunks(3) {
+            let c = [v[0], v[1 % v.len()], v[2 % v.len()]];
+            let want = Lin::from_f32(c);
+            let lanes = Vec3A::from_array(c);
+            assert_eq!(Lin::from_lanes(lanes), want, "{c:?}");
+            let got = Lin::round_lanes(lanes).to_array().map(f32::to_bits);
+            assert_eq!(got, want.to_f32().map(f32::to_bits), "{c:?}");
         }
     }
 
