@@ -38,7 +38,8 @@
 //! interpolation, and a sample's colour is computed only where the depth
 //! test lets it be written. Colours are added and multiplied in SIMD lanes
 //! (`Vec3A`): the same operations on each channel as three `f32`s, so the
-//! same results bit for bit.
+//! same results bit for bit; so is their rounding to whole steps
+//! (`Lin::round_lanes`, `Lin::from_lanes`).
 //!
 //! **Textures.** A triangle whose material has a texture (as the plan says:
 //! [`Plan::texture`]) multiplies its lit colour by the texture at each

@@ -336,7 +336,8 @@ mod tests {
             let h = k as f32 + 0.5;
             values.extend([h, h.next_up(), h.next_down(), k as f32, k as f32 + 0.25]);
         }
-        // And some of every binade.
+        // And 65,536 scattered bit patterns (NaNs, subnormals, huge values
+        // among them).
         values.extend((0..1u32 << 16).map(|i| f32::from_bits(i.wrapping_mul(0x9e37_79b9) | 1)));
         for v in values.chunks(3) {
             let c = [v[0], v[1 % v.len()], v[2 % v.len()]];
