@@ -46,9 +46,9 @@
 pub mod glyphs;
 
 use crate::color::{ColorDepth, Lin, Rgb};
-use crate::frame::{Cell, Frame};
+use crate::frame::{Cell, Frame, Known};
 use crate::framebuffer::Framebuffer;
-use crate::transform::Grid;
+use crate::transform::{Grid, Rect};
 
 /// How samples become glyphs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -496,12 +496,37 @@ pub fn blit(
     let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
     // Every cell is written below.
     frame.resize(cols, rows);
-    blit_band(fb, mode, depth, background, split, frame.cells_mut());
+    let known = blit_band(fb, mode, depth, background, split, frame.cells_mut());
+    frame.set_known(known);
+}
+
+/// The cells (columns, and rows from the top of the frame) that show a
+/// sample of `fb`'s [`Framebuffer::drawn`] rectangle in `mode`: every
+/// other cell shows undrawn samples only.
+pub(crate) fn drawn_cells(fb: &Framebuffer, mode: GlyphMode) -> Rect {
+    let d = fb.drawn();
+    let grid = fb.grid();
+    let d = d.intersect(Rect::all(grid.width, grid.height));
+    if d.is_empty() {
+        return Rect::EMPTY;
+    }
+    let (w, h) = mode.cell_size();
+    let (cols, rows) = (grid.width / w, grid.height / h);
+    // Sample row y shows in cell row (H − 1 − y) / h, counted from the top.
+    let r = Rect {
+        x0: d.x0 / w,
+        x1: (d.x1 - 1) / w + 1,
+        y0: (grid.height - d.y1) / h,
+        y1: (grid.height - 1 - d.y0) / h + 1,
+    };
+    r.intersect(Rect::all(cols, rows))
 }
 
 /// [`blit`] of the cell rows whose samples `fb` holds (a band of whole
 /// cell rows: see [`Framebuffer::band`]) into `cells`, those rows' cells,
-/// top row first.
+/// top row first. Cells that show no drawn sample (outside
+/// [`drawn_cells`]) are all the same cell, written at once; returns what
+/// that says of the frame's cells.
 pub(crate) fn blit_band(
     fb: &Framebuffer,
     mode: GlyphMode,
@@ -509,7 +534,7 @@ pub(crate) fn blit_band(
     background: Option<Rgb>,
     split: Split,
     cells: &mut [Cell],
-) {
+) -> Known {
     let blank_when_uniform =
         depth.has_color() && !matches!(mode, GlyphMode::Ascii | GlyphMode::Braille);
     let args = (
@@ -520,17 +545,45 @@ pub(crate) fn blit_band(
         split,
         blank_when_uniform,
     );
-    if mode == GlyphMode::Half && depth.has_color() && split == Split::Exhaustive {
-        return blit_half(fb, depth, background.map(Lin::from_srgb), cells);
-    }
-    // One copy of the loop per cell size, so that gathering a cell's
-    // samples is constant indexing.
-    match mode.cell_size() {
-        (1, 1) => blit_cells::<1, 1>(args, cells),
-        (1, 2) => blit_cells::<1, 2>(args, cells),
-        (2, 2) => blit_cells::<2, 2>(args, cells),
-        (2, 3) => blit_cells::<2, 3>(args, cells),
-        _ => blit_cells::<2, 4>(args, cells),
+    let drawn = drawn_cells(fb, mode);
+    let fill = if mode == GlyphMode::Half && depth.has_color() && split == Split::Exhaustive {
+        blit_half(fb, depth, background.map(Lin::from_srgb), drawn, cells)
+    } else {
+        // One copy of the loop per cell size, so that gathering a cell's
+        // samples is constant indexing.
+        match mode.cell_size() {
+            (1, 1) => blit_cells::<1, 1>(args, drawn, cells),
+            (1, 2) => blit_cells::<1, 2>(args, drawn, cells),
+            (2, 2) => blit_cells::<2, 2>(args, drawn, cells),
+            (2, 3) => blit_cells::<2, 3>(args, drawn, cells),
+            _ => blit_cells::<2, 4>(args, drawn, cells),
+        }
+    };
+    Known { rect: drawn, fill }
+}
+
+/// Calls `cell` for each of `drawn`'s cells of the band's rows, `out` being
+/// the row's cells from the top (row `first + i` of the frame) and the
+/// range its cells in `drawn`, after filling the rest of the row with
+/// `fill`.
+#[inline(always)]
+fn rows_drawn(
+    cells: &mut [Cell],
+    cols: usize,
+    first: usize,
+    drawn: Rect,
+    fill: Cell,
+    mut row: impl FnMut(usize, &mut [Cell], std::ops::Range<usize>),
+) {
+    for (i, out) in cells.chunks_exact_mut(cols).enumerate() {
+        let span = drawn.columns((first + i) as u32);
+        if span.is_empty() {
+            out.fill(fill);
+            continue;
+        }
+        out[..span.start].fill(fill);
+        out[span.end..].fill(fill);
+        row(i, out, span);
     }
 }
 
@@ -548,24 +601,34 @@ type BlitArgs<'a> = (
 /// rows side by side, and a cell of two drawn colours (or one on the
 /// scene's background) is [`half`] without the general path's dispatch.
 /// The same cells (a test compares every case with the general path).
-fn blit_half(fb: &Framebuffer, depth: ColorDepth, background: Option<Lin>, cells: &mut [Cell]) {
+/// Returns the cell of two undrawn samples, written outside `drawn`.
+fn blit_half(
+    fb: &Framebuffer,
+    depth: ColorDepth,
+    background: Option<Lin>,
+    drawn: Rect,
+    cells: &mut [Cell],
+) -> Cell {
+    let fill = half_cell(None, None, background, depth);
     let (grid, band) = (fb.grid(), fb.band());
     let cols = grid.width as usize;
     if cols == 0 {
-        return;
+        return fill;
     }
     let first = (grid.height - band.y1) as usize / 2;
-    for (i, out) in cells.chunks_exact_mut(cols).enumerate() {
+    rows_drawn(cells, cols, first, drawn, fill, |i, out, span| {
         let top = grid.height - 1 - ((first + i) * 2) as u32;
-        let (upper, lower) = (fb.row(top), fb.row(top - 1));
+        let (upper, lower) = (&fb.row(top)[span.clone()], &fb.row(top - 1)[span.clone()]);
+        let out = &mut out[span];
         if background.is_none() {
             blit_half_runs(upper, lower, depth, out);
-            continue;
+            return;
         }
         for ((cell, &t), &b) in out.iter_mut().zip(upper).zip(lower) {
             *cell = half_cell(t, b, background, depth);
         }
-    }
+    });
+    fill
 }
 
 /// A row of [`blit_half`] without a scene background: runs of cells whose
@@ -609,37 +672,45 @@ fn half_cell(t: Option<Lin>, b: Option<Lin>, background: Option<Lin>, depth: Col
     }
 }
 
+/// Blits the cells of `drawn` cell by cell, and fills the rest with the
+/// cell of undrawn samples, which it returns.
 fn blit_cells<const W: usize, const H: usize>(
     (fb, mode, depth, background, split, blank_when_uniform): BlitArgs,
+    drawn: Rect,
     cells: &mut [Cell],
-) {
+) -> Cell {
+    // Most cells are one colour (or all background): in the modes that
+    // draw such a cell as a blank, no split, no glyph table.
+    let cell = |samples: &[Option<Lin>]| {
+        let first = samples[0];
+        if blank_when_uniform && samples[1..].iter().all(|&s| s == first) {
+            blank(first.or(background))
+        } else {
+            mode.cell_split(samples, depth, background, split)
+        }
+    };
+    let fill = cell(&[None; 8][..W * H]);
     let (grid, band) = (fb.grid(), fb.band());
     let cols = grid.width as usize / W;
     if cols == 0 {
-        return;
+        return fill;
     }
     // The band's cell rows, counted from the top of the frame.
     let first = (grid.height - band.y1) as usize / H;
     let mut samples = [None; 8];
-    for (i, out) in cells.chunks_exact_mut(cols).enumerate() {
+    rows_drawn(cells, cols, first, drawn, fill, |i, out, span| {
         // The cell's sample rows, top first.
         let top = grid.height as usize - 1 - (first + i) * H;
         let lines: [&[Option<Lin>]; H] = std::array::from_fn(|dy| fb.row((top - dy) as u32));
-        for (col, cell) in out.iter_mut().enumerate() {
+        for col in span {
             let x = col * W;
             for (i, s) in samples[..W * H].iter_mut().enumerate() {
                 *s = lines[i / W][x + i % W];
             }
-            // Most cells are one colour (or all background): in the modes
-            // that draw such a cell as a blank, no split, no glyph table.
-            let first = samples[0];
-            *cell = if blank_when_uniform && samples[1..W * H].iter().all(|&s| s == first) {
-                blank(first.or(background))
-            } else {
-                mode.cell_split(&samples[..W * H], depth, background, split)
-            };
+            out[col] = cell(&samples[..W * H]);
         }
-    }
+    });
+    fill
 }
 
 #[cfg(test)]
@@ -681,7 +752,7 @@ mod tests {
             for depth in [ColorDepth::TrueColor, ColorDepth::Ansi256] {
                 blit_band(&fb, GlyphMode::Half, depth, background, Split::Exhaustive, &mut fast);
                 let args = (&fb, GlyphMode::Half, depth, background.map(Lin::from_srgb), Split::Exhaustive, true);
-                blit_cells::<1, 2>(args, &mut general);
+                blit_cells::<1, 2>(args, Rect::all(4, 3), &mut general);
                 proptest::prop_assert_eq!(&fast, &general);
             }
         }

@@ -185,7 +185,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub roll: f32,
     /// How the rasterizer walks samples (all give the same picture)
-    #[arg(long, value_enum, default_value_t = Traversal::Incremental)]
+    #[arg(long, value_enum, default_value_t = Traversal::Spans)]
     pub traversal: Traversal,
     /// Anti-aliasing: 4 or 16 sub-samples per sample, or each triangle's
     /// exact area in the sample's square

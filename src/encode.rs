@@ -57,6 +57,7 @@ use std::io::{self, Write};
 
 use crate::color::{ColorDepth, Dither, Ink, Metric, Palette, Quantizer, Rgb};
 use crate::frame::{Cell, Frame};
+use crate::transform::Rect;
 
 /// Synchronized output: begin and end.
 pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
@@ -172,6 +173,8 @@ fn glyph(ch: u32) -> char {
 
 const SPACE: u32 = ' ' as u32;
 const FULL_BLOCK: u32 = FULL as u32;
+const UPPER_HALF: u32 = '▀' as u32;
+const LOWER_HALF: u32 = '▄' as u32;
 
 impl Packed {
     /// A space in the default colours.
@@ -275,7 +278,12 @@ impl Packed {
         if shown_default {
             return None;
         }
-        let ch = complement(glyph(self.ch))? as u32;
+        // The half blocks, most of all, without the general look-up.
+        let ch = match self.ch {
+            UPPER_HALF => LOWER_HALF,
+            LOWER_HALF => UPPER_HALF,
+            ch => complement(glyph(ch))? as u32,
+        };
         let (fg, bg) = match self.ch {
             SPACE => (self.bg, DEFAULT),
             FULL_BLOCK => (DEFAULT, self.fg),
@@ -298,14 +306,24 @@ impl Packed {
     }
 
     /// [`Packed::same_picture`] for cells that are not equal.
+    #[inline(always)]
     fn differs_only_in_form(&self, other: &Packed) -> bool {
-        match (self.ch, other.ch) {
-            (SPACE, SPACE) => self.bg == other.bg,
-            (FULL_BLOCK, FULL_BLOCK) => self.fg == other.fg,
-            // The same glyph, not equal: a different picture.
-            (a, b) if a == b => false,
-            _ => self.flipped() == Some(other.normalized()),
+        if self.ch == other.ch {
+            // The same glyph, not equal: a different picture, but for the
+            // colour a blank or a full block does not show.
+            return match self.ch {
+                SPACE => self.bg == other.bg,
+                FULL_BLOCK => self.fg == other.fg,
+                _ => false,
+            };
         }
+        self.flips_to(other)
+    }
+
+    /// Whether `other` is this cell drawn the other way round.
+    #[inline(never)]
+    fn flips_to(&self, other: &Packed) -> bool {
+        self.flipped() == Some(other.normalized())
     }
 
     /// The form of this cell (itself or [`Packed::flipped`]) that costs the
@@ -330,22 +348,52 @@ impl Packed {
         let Some(f) = self.flipped() else {
             return *self;
         };
-        // Glyphs of one length cost the same however many are written.
-        let count = if f.len() == self.len() {
-            // Two glyphs of two colours, neither keeping a colour of the
-            // pen: both forms set both colours (the same bytes, but for a
-            // bright palette colour's one digit as a background), so the
-            // cell stays as it is without counting.
-            let keeps = |c: &Packed| c.fg == pen.fg || c.bg == pen.bg;
-            if ![SPACE, FULL_BLOCK].contains(&self.ch) && !keeps(self) && !keeps(&f) {
-                return *self;
-            }
-            1
-        } else {
-            count()
-        };
+        if f.len() == self.len() {
+            // Two glyphs of two colours (a blank and a full block differ in
+            // length).
+            return self.cheaper_of_two_colours(f, pen);
+        }
+        // Glyphs of different lengths: the copies count.
+        let count = count();
         let cost = |c: &Packed| sgr_cost(pen, c.pen(pen)) + count * c.len();
         if cost(&f) < cost(self) { f } else { *self }
+    }
+
+    /// [`Packed::cheapest_from`] for a glyph of two colours whose flip `f`
+    /// is another: both are the same length, so only the SGR counts, and
+    /// each form sets whichever of its two colours the pen lacks. A form
+    /// that keeps more of the pen's colours costs fewer bytes (one colour
+    /// written costs at least 5 bytes, two at least 8, and a colour's
+    /// parameters differ in length between the planes by at most one);
+    /// when each keeps one, the lengths of the one colour each sets decide.
+    /// On a tie, or when neither keeps a colour, the cell stays as it is.
+    #[inline(always)]
+    fn cheaper_of_two_colours(&self, f: Packed, pen: Inks) -> Packed {
+        let kept = |c: &Packed| (c.fg == pen.fg) as u8 + (c.bg == pen.bg) as u8;
+        match (kept(self), kept(&f)) {
+            (a, b) if a != b => {
+                if b > a {
+                    f
+                } else {
+                    *self
+                }
+            }
+            (1, 1) => {
+                // The one colour each form writes, in its plane.
+                let set = |c: &Packed| {
+                    if c.fg != pen.fg {
+                        ink_cost(30, c.fg)
+                    } else {
+                        ink_cost(40, c.bg)
+                    }
+                };
+                if set(&f) < set(self) { f } else { *self }
+            }
+            // Both set both colours: the same bytes, but for a bright
+            // palette colour's one digit more as a background; the cell
+            // stays as it is without counting.
+            _ => *self,
+        }
     }
 
     /// The form of this cell that can be written with `pen` as it is, if
@@ -461,14 +509,24 @@ static BYTE_DIGITS: [([u8; 4], u8); 256] = {
     t
 };
 
-/// An SGR being assembled on the stack (the longest, two 24-bit colours,
-/// is 36 bytes), appended to the buffer in one copy.
+/// What one run of cells appends, an SGR and its first glyph, assembled
+/// on the stack (the longest, two 24-bit colours and a four-byte glyph, is
+/// 40 bytes) and appended to the buffer in one copy of constant length.
 struct SgrBytes {
     bytes: [u8; 48],
     len: usize,
 }
 
 impl SgrBytes {
+    /// Nothing yet.
+    #[inline(always)]
+    fn new() -> SgrBytes {
+        SgrBytes {
+            bytes: [0; 48],
+            len: 0,
+        }
+    }
+
     /// Appends a byte's digits and a `;`.
     #[inline(always)]
     fn byte(&mut self, v: u8) {
@@ -508,6 +566,49 @@ impl SgrBytes {
                 self.byte(b);
             }
         }
+    }
+
+    /// Appends the shortest SGR taking the terminal from `from` to `to`;
+    /// nothing when they are equal.
+    #[inline(always)]
+    fn inks(&mut self, from: Inks, to: Inks) {
+        if from == to {
+            return;
+        }
+        if to == Inks::default() {
+            // `CSI m` resets both planes in three bytes.
+            self.bytes[self.len..self.len + 3].copy_from_slice(b"\x1b[m");
+            self.len += 3;
+            return;
+        }
+        self.bytes[self.len..self.len + 2].copy_from_slice(b"\x1b[");
+        self.len += 2;
+        if from.fg != to.fg {
+            self.ink(true, to.fg);
+        }
+        if from.bg != to.bg {
+            self.ink(false, to.bg);
+        }
+        // Each plane ended with `;`: the last becomes the final `m`.
+        self.bytes[self.len - 1] = b'm';
+    }
+
+    /// Appends a packed cell's glyph in UTF-8.
+    #[inline(always)]
+    fn glyph(&mut self, ch: u32) {
+        self.len += glyph(ch)
+            .encode_utf8(&mut self.bytes[self.len..self.len + 4])
+            .len();
+    }
+
+    /// Appends what was assembled to `buf`.
+    #[inline(always)]
+    fn append_to(&self, buf: &mut Vec<u8>) {
+        // A copy of constant length (stores, not a call to `memcpy`), cut
+        // back.
+        let end = buf.len() + self.len;
+        buf.extend_from_slice(&self.bytes);
+        buf.truncate(end);
     }
 }
 
@@ -553,31 +654,9 @@ pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
 /// [`push_sgr`] for packed pens.
 #[inline(always)]
 fn push_inks(buf: &mut Vec<u8>, from: Inks, to: Inks) {
-    if from == to {
-        return;
-    }
-    if to == Inks::default() {
-        // `CSI m` resets both planes in three bytes.
-        buf.extend_from_slice(b"\x1b[m");
-        return;
-    }
-    let mut sgr = SgrBytes {
-        bytes: [0; 48],
-        len: 2,
-    };
-    sgr.bytes[..2].copy_from_slice(b"\x1b[");
-    if from.fg != to.fg {
-        sgr.ink(true, to.fg);
-    }
-    if from.bg != to.bg {
-        sgr.ink(false, to.bg);
-    }
-    // Each plane ended with `;`: the last becomes the final `m`.
-    sgr.bytes[sgr.len - 1] = b'm';
-    // A copy of constant length (stores, not a call to `memcpy`), cut back.
-    let end = buf.len() + sgr.len;
-    buf.extend_from_slice(&sgr.bytes);
-    buf.truncate(end);
+    let mut sgr = SgrBytes::new();
+    sgr.inks(from, to);
+    sgr.append_to(buf);
 }
 
 /// Appends a character as UTF-8.
@@ -596,25 +675,39 @@ pub fn push_char(buf: &mut Vec<u8>, ch: char) {
 
 /// Maps a frame's cells to terminal cells for one depth, into `out`.
 fn quantize(frame: &Frame, q: &mut Quantizer, out: &mut Vec<Packed>) {
-    out.clear();
-    if q.depth() == ColorDepth::TrueColor {
-        // No palette, no dithering: where a cell is does not matter.
-        out.extend(frame.cells().iter().map(Packed::truecolor));
-        return;
-    }
-    let cols = frame.cols().max(1) as usize;
-    for (y, row) in frame.cells().chunks(cols).enumerate() {
-        out.extend(
-            row.iter()
-                .enumerate()
-                .map(|(x, c)| Packed::of(TermCell::of(c, q, x as u16, y as u16))),
+    let all = Rect::all(frame.cols() as u32, frame.rows() as u32);
+    quantize_in(frame, q, out, all);
+}
+
+/// [`quantize`] of the cells of `region` only (`out` holds every cell).
+fn quantize_in(frame: &Frame, q: &mut Quantizer, out: &mut Vec<Packed>, region: Rect) {
+    out.resize(frame.cells().len(), Packed::BLANK);
+    let cols = frame.cols() as usize;
+    let truecolor = q.depth() == ColorDepth::TrueColor;
+    for y in region.y0..region.y1 {
+        let span = region.columns(y);
+        let row = y as usize * cols;
+        let (cells, out) = (
+            &frame.cells()[row..][span.clone()],
+            &mut out[row..][span.clone()],
         );
+        if truecolor {
+            // No palette, no dithering: where a cell is does not matter.
+            for (o, c) in out.iter_mut().zip(cells) {
+                *o = Packed::truecolor(c);
+            }
+            continue;
+        }
+        for ((o, c), x) in out.iter_mut().zip(cells).zip(span) {
+            *o = Packed::of(TermCell::of(c, q, x as u16, y as u16));
+        }
     }
 }
 
 /// Appends `cell` written `count` times (at least once) from pen `pen`,
 /// with the SGR it needs (when `color`) and, when allowed and shorter, REP
 /// for the repeats. Returns the pen afterwards.
+#[inline(always)]
 fn push_run(
     buf: &mut Vec<u8>,
     pen: Inks,
@@ -623,15 +716,17 @@ fn push_run(
     rep: Rep,
     color: bool,
 ) -> Inks {
+    let mut sgr = SgrBytes::new();
     let pen = if color {
         let want = cell.pen(pen);
-        push_inks(buf, pen, want);
+        sgr.inks(pen, want);
         want
     } else {
         pen
     };
+    sgr.glyph(cell.ch);
+    sgr.append_to(buf);
     let ch = glyph(cell.ch);
-    push_char(buf, ch);
     let repeats = count.saturating_sub(1);
     if repeats > 0 && rep == Rep::On && csi_cost(repeats as u32) < repeats * cell.len() {
         push_csi(buf, repeats as u32, b'b');
@@ -816,6 +911,43 @@ fn push_move(buf: &mut Vec<u8>, plan: Option<(Vertical, Horizontal)>, to: Cursor
     }
 }
 
+/// Takes the cursor from `from` to `to`, cell `i` of `next`, in the fewest
+/// bytes: the cheapest move, or, on the same row, the unchanged cells in
+/// between written again where that is shorter (they must fit the pen as
+/// they are or turned round). `next` holds the cells of its row from
+/// index `lo` on; those before are blanks in the default colours.
+#[inline(never)]
+fn move_to(
+    buf: &mut Vec<u8>,
+    (next, lo, i): (&[Packed], usize, usize),
+    cols: u16,
+    from: Option<Cursor>,
+    to: Cursor,
+    pen: Inks,
+) {
+    let (move_cost, plan) = plan_move(from, to, cols);
+    let cell = |k: usize| if k >= lo { next[k] } else { Packed::BLANK };
+    let gap = match from {
+        Some(c) if c.row == to.row && c.col < to.col && move_cost > 0 => {
+            // Each cell is at least a byte.
+            let gap = (to.col - c.col) as usize;
+            let cells = i - gap.min(move_cost)..i;
+            let cost: usize = cells.clone().map(|k| cell(k).len()).sum();
+            (gap < move_cost
+                && cost < move_cost
+                && cells.clone().all(|k| cell(k).fitting(pen).is_some()))
+            .then_some(cells)
+        }
+        _ => None,
+    };
+    match gap {
+        Some(cells) => cells
+            .filter_map(|k| cell(k).fitting(pen))
+            .for_each(|c| push_char(buf, glyph(c.ch))),
+        None => push_move(buf, plan, to),
+    }
+}
+
 /// The cells of `next` whose picture differs from `prev`'s (see
 /// [`TermCell::same_picture`]), as `(index, cell)`, in order. Allocates
 /// nothing.
@@ -830,41 +962,53 @@ pub fn diff<'a>(
         .map(|(i, (_, n))| (i, n))
 }
 
-/// Lists in `changes` the indices of the cells of `next` unequal to
-/// `shown`'s, in order, and returns how many. Eight equal cells, most of a
-/// large frame, cost one test; in a chunk with a difference, each cell
-/// costs a few word comparisons and no branch: every index is written, and
-/// the count advanced only past those that differ.
-fn unequal_cells(shown: &[Packed], next: &[Packed], changes: &mut Vec<u32>) -> usize {
+/// Lists in `changes` the indices of the cells of `region` (of a frame
+/// `cols` wide) unequal between `next` and `shown`, in order, and returns
+/// how many. Eight equal cells, most of a large frame, cost one test; in a
+/// chunk with a difference, each cell costs a few word comparisons and no
+/// branch: every index is written, and the count advanced only past those
+/// that differ.
+fn unequal_cells(
+    shown: &[Packed],
+    next: &[Packed],
+    changes: &mut Vec<u32>,
+    cols: usize,
+    region: Rect,
+) -> usize {
     let n = shown.len().min(next.len());
     if changes.len() < n {
         changes.resize(n, 0);
     }
     let slots = &mut changes[..n];
     let mut len = 0;
-    // Eight cells at a time: where all are equal, one test; otherwise each
-    // is listed if it differs.
-    let (shown, next) = (&shown[..n], &next[..n]);
-    for (k, (a, b)) in shown.chunks(8).zip(next.chunks(8)).enumerate() {
-        if a.len() == 8 && a.iter().zip(b).fold(0, |d, (p, q)| d | p.differs(q)) == 0 {
-            continue;
-        }
-        for (j, (p, q)) in a.iter().zip(b).enumerate() {
-            slots[len] = (k * 8 + j) as u32;
-            len += (p.differs(q) != 0) as usize;
+    for y in region.y0..region.y1 {
+        let span = region.columns(y);
+        let row = y as usize * cols + span.start;
+        let (shown, next) = (&shown[row..][..span.len()], &next[row..][..span.len()]);
+        // Eight cells at a time: where all are equal, one test; otherwise
+        // each is listed if it differs.
+        for (k, (a, b)) in shown.chunks(8).zip(next.chunks(8)).enumerate() {
+            if a.len() == 8 && a.iter().zip(b).fold(0, |d, (p, q)| d | p.differs(q)) == 0 {
+                continue;
+            }
+            for (j, (p, q)) in a.iter().zip(b).enumerate() {
+                slots[len] = (row + k * 8 + j) as u32;
+                len += (p.differs(q) != 0) as usize;
+            }
         }
     }
     len
 }
 
-/// [`quantize`] and [`unequal_cells`] in one pass for 24-bit colour, where
-/// a cell packs straight from its bytes (no palette, no dithering): each
-/// cell is compared with `shown`'s while it is in registers.
+/// [`quantize_in`] and [`unequal_cells`] in one pass for 24-bit colour,
+/// where a cell packs straight from its bytes (no palette, no dithering):
+/// each cell is compared with `shown`'s while it is in registers.
 fn quantize_truecolor(
     frame: &Frame,
     shown: &[Packed],
     next: &mut Vec<Packed>,
     changes: &mut Vec<u32>,
+    region: Rect,
 ) -> usize {
     let cells = frame.cells();
     let n = cells.len().min(shown.len());
@@ -873,12 +1017,23 @@ fn quantize_truecolor(
         changes.resize(n, 0);
     }
     let slots = &mut changes[..n];
+    let cols = frame.cols() as usize;
     let mut len = 0;
-    for (i, ((out, c), s)) in next.iter_mut().zip(cells).zip(shown).enumerate() {
-        let p = Packed::truecolor(c);
-        *out = p;
-        slots[len] = i as u32;
-        len += (p.differs(s) != 0) as usize;
+    for y in region.y0..region.y1 {
+        let span = region.columns(y);
+        let row = y as usize * cols + span.start;
+        let m = span.len();
+        let (cells, shown, next) = (
+            &cells[row..][..m],
+            &shown[row..][..m],
+            &mut next[row..][..m],
+        );
+        for (i, ((out, c), s)) in next.iter_mut().zip(cells).zip(shown).enumerate() {
+            let p = Packed::truecolor(c);
+            *out = p;
+            slots[len] = (row + i) as u32;
+            len += (p.differs(s) != 0) as usize;
+        }
     }
     len
 }
@@ -926,6 +1081,9 @@ pub struct Encoder {
     rows: u16,
     /// What the terminal shows, when `synced`.
     shown: Vec<Packed>,
+    /// Every cell of `shown` outside it is a blank in the default colours.
+    shown_drawn: Rect,
+    /// The frame being sent, in the cells compared with `shown`.
     next: Vec<Packed>,
     /// The indices of the cells that changed, in order (scratch space).
     changes: Vec<u32>,
@@ -949,6 +1107,7 @@ impl Encoder {
             cols: 0,
             rows: 0,
             shown: Vec::new(),
+            shown_drawn: Rect::EMPTY,
             next: Vec::new(),
             changes: Vec::new(),
             synced: false,
@@ -1078,32 +1237,58 @@ impl Encoder {
             self.rows = frame.rows();
             self.shown.clear();
             self.shown.resize(frame.cells().len(), Packed::BLANK);
+            self.shown_drawn = Rect::EMPTY;
             // Home, default colours, clear: the screen is now all blanks.
             self.buf.extend_from_slice(b"\x1b[H\x1b[m\x1b[2J");
             cursor = Some(Cursor { row: 0, col: 0 });
         }
-        let candidates = if self.quantizer.depth() == ColorDepth::TrueColor {
-            quantize_truecolor(frame, &self.shown, &mut self.next, &mut self.changes)
+        // Only the cells that are not blank in the frame or on the screen
+        // (as far as either knows) can differ.
+        let all = Rect::all(self.cols as u32, self.rows as u32);
+        let known = frame.known();
+        let drawn = if known.fill == Cell::BLANK {
+            known.rect.intersect(all)
         } else {
-            quantize(frame, &mut self.quantizer, &mut self.next);
-            unequal_cells(&self.shown, &self.next, &mut self.changes)
+            all
+        };
+        let region = drawn.union(self.shown_drawn).intersect(all);
+        let candidates = if self.quantizer.depth() == ColorDepth::TrueColor {
+            quantize_truecolor(
+                frame,
+                &self.shown,
+                &mut self.next,
+                &mut self.changes,
+                region,
+            )
+        } else {
+            quantize_in(frame, &mut self.quantizer, &mut self.next, region);
+            let cols = self.cols as usize;
+            unequal_cells(&self.shown, &self.next, &mut self.changes, cols, region)
         };
         let start = self.buf.len();
-        self.write_changes(candidates, cursor);
+        self.write_changes(candidates, cursor, region);
         if self.buf.len() == start && !full {
             // Nothing changed: nothing to send.
             self.buf.clear();
         } else if self.sync {
             self.buf.extend_from_slice(SYNC_END);
         }
-        std::mem::swap(&mut self.shown, &mut self.next);
+        // The terminal now shows the frame.
+        let cols = self.cols as usize;
+        for y in region.y0..region.y1 {
+            let span = region.columns(y);
+            let row = y as usize * cols;
+            self.shown[row..][span.clone()].copy_from_slice(&self.next[row..][span]);
+        }
+        self.shown_drawn = drawn;
         self.synced = true;
     }
 
     /// Appends the changed cells to the buffer, ending with the pen reset.
     /// `candidates`: the number of cells listed in `self.changes` as
-    /// unequal to the cell shown.
-    fn write_changes(&mut self, candidates: usize, mut cursor: Option<Cursor>) {
+    /// unequal to the cell shown, all in `region`, outside which no cell
+    /// changed (and `self.next` holds nothing).
+    fn write_changes(&mut self, candidates: usize, mut cursor: Option<Cursor>, region: Rect) {
         let cols = self.cols as usize;
         let buf = &mut self.buf;
         let changes = changed_cells(&self.shown, &self.next, &mut self.changes[..candidates]);
@@ -1124,30 +1309,14 @@ impl Encoder {
                 row: (i / cols) as u16,
                 col: (i % cols) as u16,
             };
-            let (move_cost, plan) = plan_move(cursor, to, self.cols);
-            // Rewriting a short gap of unchanged cells on the same row can be
-            // cheaper than moving over it.
-            let gap = match cursor {
-                Some(c) if c.row == to.row && c.col < to.col && move_cost > 0 => {
-                    // Each cell is at least a byte.
-                    let gap = (to.col - c.col) as usize;
-                    let cells = &next[i - gap.min(move_cost)..i];
-                    let cost: usize = cells.iter().map(Packed::len).sum();
-                    (gap < move_cost
-                        && cost < move_cost
-                        && cells.iter().all(|c| c.fitting(pen).is_some()))
-                    .then_some(cells)
-                }
-                _ => None,
-            };
-            match gap {
-                Some(cells) => cells
-                    .iter()
-                    .filter_map(|c| c.fitting(pen))
-                    .for_each(|c| push_char(buf, glyph(c.ch))),
-                None => push_move(buf, plan, to),
+            // Most often the next cell written is the one the cursor is on.
+            if cursor != Some(to) {
+                let lo = to.row as usize * cols + region.x0 as usize;
+                move_to(buf, (next, lo, i), self.cols, cursor, to, pen);
             }
-            let row_end = (to.row as usize + 1) * cols;
+            // The copies and REP runs end where the region does: no cell
+            // changed beyond it.
+            let row_end = to.row as usize * cols + region.x1 as usize;
             // With REP, identical cells that follow on the row are sent as
             // one run, up to the last changed one among them.
             let run = if self.rep == Rep::On {
@@ -1220,12 +1389,19 @@ mod tests {
         }
 
         /// The changed cells, found eight at a time, are exactly the cells
-        /// whose picture differs, in order, for frames of any length (not
-        /// only multiples of eight) and with changes anywhere in a chunk.
+        /// of the region compared whose picture differs, in order, for rows
+        /// of any length (not only multiples of eight) and with changes
+        /// anywhere in a chunk.
         #[test]
         fn changed_cells_are_the_cells_whose_picture_differs(
-            cells in prop::collection::vec((term_cell(), term_cell(), 0u8..4), 0..70),
+            (cols, rows) in (1usize..20, 1usize..5),
+            cells in prop::collection::vec((term_cell(), term_cell(), 0u8..4), 100),
+            corners in (0u32..20, 0u32..20, 0u32..5, 0u32..5),
         ) {
+            let cells = &cells[..cols * rows];
+            let (a, b, c, d) = corners;
+            let region = Rect { x0: a.min(b), x1: a.max(b), y0: c.min(d), y1: c.max(d) }
+                .intersect(Rect::all(cols as u32, rows as u32));
             // A quarter of the cells change; the rest are equal.
             let shown: Vec<TermCell> = cells.iter().map(|c| c.0).collect();
             let next: Vec<TermCell> =
@@ -1233,9 +1409,10 @@ mod tests {
             let pack = |v: &[TermCell]| v.iter().map(|&c| Packed::of(c)).collect::<Vec<_>>();
             let (shown_p, next_p) = (pack(&shown), pack(&next));
             let mut scratch = vec![7; 3];
-            let n = unequal_cells(&shown_p, &next_p, &mut scratch);
+            let n = unequal_cells(&shown_p, &next_p, &mut scratch, cols, region);
             let found = changed_cells(&shown_p, &next_p, &mut scratch[..n]).to_vec();
             let expected: Vec<u32> = (0..shown.len())
+                .filter(|&i| region.columns((i / cols) as u32).contains(&(i % cols)))
                 .filter(|&i| !shown[i].same_picture(&next[i]))
                 .map(|i| i as u32)
                 .collect();
@@ -1246,11 +1423,12 @@ mod tests {
     proptest! {
         /// Quantizing 24-bit colour and listing the unequal cells in one
         /// pass gives the cells and the list the two passes give, for any
-        /// frame shape and with changes anywhere.
+        /// frame shape, region compared and with changes anywhere.
         #[test]
         fn one_pass_in_truecolor_is_the_two_passes(
             (cols, rows) in (1u16..20, 1u16..5),
             seed in prop::collection::vec((0usize..5, 0u8..4, 0u8..4, 0u8..3), 100),
+            corners in (0u32..20, 0u32..20, 0u32..5, 0u32..5),
         ) {
             let rgb = |k: u8| (k > 0).then(|| Rgb([k, 0, 3 - k]));
             let mut frame = Frame::default();
@@ -1268,12 +1446,22 @@ mod tests {
                     p.bg = pack_ink(Ink::Indexed(fg));
                 }
             }
+            // A region of the frame, the rest left alone.
+            let (a, b, c, d) = corners;
+            let region = Rect { x0: a.min(b), x1: a.max(b), y0: c.min(d), y1: c.max(d) }
+                .intersect(Rect::all(cols as u32, rows as u32));
             let (mut two, mut two_list) = (Vec::new(), Vec::new());
-            quantize(&frame, &mut q, &mut two);
-            let n = unequal_cells(&shown, &two, &mut two_list);
+            quantize_in(&frame, &mut q, &mut two, region);
+            let n = unequal_cells(&shown, &two, &mut two_list, cols as usize, region);
             let (mut one, mut one_list) = (vec![Packed::BLANK; 3], vec![9; 2]);
-            let m = quantize_truecolor(&frame, &shown, &mut one, &mut one_list);
-            prop_assert_eq!(one, two);
+            let m = quantize_truecolor(&frame, &shown, &mut one, &mut one_list, region);
+            let inside = |v: &[Packed]| -> Vec<Packed> {
+                (0..v.len())
+                    .filter(|&i| region.columns((i / cols as usize) as u32).contains(&(i % cols as usize)))
+                    .map(|i| v[i])
+                    .collect()
+            };
+            prop_assert_eq!(inside(&one), inside(&two));
             prop_assert_eq!(&one_list[..m], &two_list[..n]);
         }
     }

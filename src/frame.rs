@@ -8,6 +8,7 @@
 use std::fmt;
 
 use crate::color::Rgb;
+use crate::transform::Rect;
 
 /// One terminal cell. `None` colours are the terminal's defaults.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,12 +37,44 @@ impl Default for Cell {
 }
 
 /// `cols × rows` cells, row 0 at the top of the terminal.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+///
+/// A frame also knows a rectangle outside which every cell is one and the
+/// same ([`Frame::known`]): the blitter knows it from where samples were
+/// drawn, and the encoder then compares only that rectangle's cells with
+/// what the terminal shows. Every way of writing cells keeps it true.
+#[derive(Clone, Debug, Default)]
 pub struct Frame {
     cols: u16,
     rows: u16,
     cells: Vec<Cell>,
+    known: Known,
 }
+
+/// Every cell of a [`Frame`] outside `rect` (columns and rows of cells,
+/// row 0 at the top) is `fill`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Known {
+    pub rect: Rect,
+    pub fill: Cell,
+}
+
+impl Default for Known {
+    fn default() -> Known {
+        Known {
+            rect: Rect::EMPTY,
+            fill: Cell::BLANK,
+        }
+    }
+}
+
+/// The same cells, whatever each frame knows of them.
+impl PartialEq for Frame {
+    fn eq(&self, o: &Frame) -> bool {
+        self.cols == o.cols && self.rows == o.rows && self.cells == o.cells
+    }
+}
+
+impl Eq for Frame {}
 
 impl Frame {
     /// A blank frame of `cols × rows` cells.
@@ -50,6 +83,7 @@ impl Frame {
             cols,
             rows,
             cells: vec![Cell::BLANK; cols as usize * rows as usize],
+            known: Known::default(),
         }
     }
 
@@ -61,6 +95,7 @@ impl Frame {
         self.cells.clear();
         self.cells
             .resize(cols as usize * rows as usize, Cell::BLANK);
+        self.known = Known::default();
     }
 
     /// Resizes to `cols × rows` keeping whatever cells are there (blank
@@ -70,6 +105,28 @@ impl Frame {
         self.rows = rows;
         self.cells
             .resize(cols as usize * rows as usize, Cell::BLANK);
+        self.known.rect = self.all();
+    }
+
+    /// Every cell.
+    fn all(&self) -> Rect {
+        Rect::all(self.cols as u32, self.rows as u32)
+    }
+
+    /// A rectangle outside which every cell is the same, and that cell.
+    pub(crate) fn known(&self) -> Known {
+        self.known
+    }
+
+    /// Says that every cell outside `known.rect` is `known.fill` (the
+    /// caller has made it so).
+    pub(crate) fn set_known(&mut self, known: Known) {
+        debug_assert!(self.cells.iter().enumerate().all(|(i, c)| {
+            let w = self.cols.max(1) as usize;
+            let (x, y) = (i % w, (i / w) as u32);
+            *c == known.fill || known.rect.columns(y).contains(&x)
+        }));
+        self.known = known;
     }
 
     /// Columns.
@@ -96,16 +153,27 @@ impl Frame {
     pub fn set(&mut self, col: u16, row: u16, cell: Cell) {
         let i = row as usize * self.cols as usize + col as usize;
         self.cells[i] = cell;
+        if cell != self.known.fill {
+            self.known.rect = self.known.rect.union(Rect::at(col as u32, row as u32));
+        }
     }
 
-    /// Every cell, row by row from the top, to write.
+    /// Every cell, row by row from the top, to write (the caller says what
+    /// it knows of them afterwards with [`Frame::set_known`]).
     pub(crate) fn cells_mut(&mut self) -> &mut [Cell] {
+        self.known.rect = self.all();
         &mut self.cells
     }
 
     /// Row `row` (0 at the top), to write.
     pub fn row_mut(&mut self, row: u16) -> &mut [Cell] {
         let w = self.cols as usize;
+        let whole_row = Rect {
+            y0: row as u32,
+            y1: row as u32 + 1,
+            ..self.all()
+        };
+        self.known.rect = self.known.rect.union(whole_row);
         &mut self.cells[row as usize * w..(row as usize + 1) * w]
     }
 

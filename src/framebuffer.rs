@@ -13,17 +13,40 @@
 //! A framebuffer may hold one [`Band`] of its grid's rows only: what one
 //! thread draws of a frame drawn in parallel. Its samples keep the grid's
 //! coordinates (an index subtracts the band's first row).
+//!
+//! It keeps the rectangle where anything was drawn since it was cleared
+//! ([`Framebuffer::drawn`]): every sample outside it is empty. A model
+//! seen small covers a corner of a large frame, and then clearing the
+//! framebuffer, blitting it and encoding its cells touch only that
+//! rectangle's samples; the rest is known to be background. The fills
+//! widen it once per triangle, by the triangle's bounding box, rather than
+//! once per sample.
 
 use crate::color::Lin;
-use crate::transform::{Band, Grid};
+use crate::transform::{Band, Grid, Rect};
 
 /// A `width × height` grid of samples, or one band of its rows.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Framebuffer {
     grid: Grid,
     band: Band,
     samples: Vec<Option<Lin>>,
     depth: Vec<f32>,
+    /// Every sample outside it is empty.
+    drawn: Rect,
+    /// Every depth outside it and `drawn` is −∞ (depths are written with
+    /// samples, and a frame without a depth test does not clear them).
+    depth_drawn: Rect,
+}
+
+/// Equal samples and depths, over the same rows of the same grid.
+impl PartialEq for Framebuffer {
+    fn eq(&self, o: &Framebuffer) -> bool {
+        self.grid == o.grid
+            && self.band == o.band
+            && self.samples == o.samples
+            && self.depth == o.depth
+    }
 }
 
 impl Framebuffer {
@@ -34,7 +57,22 @@ impl Framebuffer {
             band: grid.all_rows(),
             samples: vec![None; grid.len()],
             depth: vec![f32::NEG_INFINITY; grid.len()],
+            drawn: Rect::EMPTY,
+            depth_drawn: Rect::EMPTY,
         }
+    }
+
+    /// Where anything was drawn since the framebuffer was cleared: every
+    /// sample outside it is empty (it may hold empty samples too).
+    pub(crate) fn drawn(&self) -> Rect {
+        self.drawn
+    }
+
+    /// Widens [`Framebuffer::drawn`] by `r`: for a caller that writes the
+    /// samples of `r` by index ([`Framebuffer::write`]).
+    #[inline(always)]
+    pub(crate) fn touch(&mut self, r: Rect) {
+        self.drawn = self.drawn.union(r);
     }
 
     /// The sample grid.
@@ -58,33 +96,62 @@ impl Framebuffer {
     /// to the grid).
     pub fn reset_band(&mut self, grid: Grid, band: Band, depth: bool) {
         let y1 = band.y1.min(grid.height);
-        self.band = Band {
+        let band = Band {
             y0: band.y0.min(y1),
             y1,
         };
+        let len = grid.width as usize * band.height() as usize;
+        self.debug_assert_empty_outside_drawn();
+        let same = self.grid == grid && self.band == band;
+        self.band = band;
         self.grid = grid;
-        let len = grid.width as usize * self.band.height() as usize;
-        if self.samples.len() == len {
-            // Eight at a time: `fill` stores one tag at a time.
-            let mut chunks = self.samples.chunks_exact_mut(8);
-            for c in &mut chunks {
-                c.copy_from_slice(&[None; 8]);
-            }
-            chunks.into_remainder().fill(None);
-        } else {
+        if !same || self.samples.len() != len || self.depth.len() != len {
             self.samples.clear();
             self.samples.resize(len, None);
-        }
-        if self.depth.len() != len {
             self.depth.clear();
             self.depth.resize(len, f32::NEG_INFINITY);
-        } else if depth {
-            // Eight at a time: `fill` of one f32 stores one at a time.
-            let mut chunks = self.depth.chunks_exact_mut(8);
-            for c in &mut chunks {
-                c.copy_from_slice(&[f32::NEG_INFINITY; 8]);
+            self.depth_drawn = Rect::EMPTY;
+        } else {
+            // Only where anything was drawn.
+            let drawn = self.drawn;
+            self.rows_of(drawn, |s, _| clear(s, None));
+            self.depth_drawn = self.depth_drawn.union(drawn);
+            if depth {
+                let dirty = self.depth_drawn;
+                self.rows_of(dirty, |_, d| clear(d, f32::NEG_INFINITY));
+                self.depth_drawn = Rect::EMPTY;
             }
-            chunks.into_remainder().fill(f32::NEG_INFINITY);
+        }
+        self.drawn = Rect::EMPTY;
+    }
+
+    /// Calls `f` with the samples and depths of `r`'s part of each row held.
+    fn rows_of(&mut self, r: Rect, mut f: impl FnMut(&mut [Option<Lin>], &mut [f32])) {
+        let w = self.grid.width as usize;
+        let r = r.intersect(Rect::all(self.grid.width, self.band.y1));
+        for y in r.y0.max(self.band.y0)..r.y1 {
+            let start = (y - self.band.y0) as usize * w;
+            let span = start + r.x0 as usize..start + r.x1 as usize;
+            f(&mut self.samples[span.clone()], &mut self.depth[span]);
+        }
+    }
+
+    /// Checks, in debug builds, that every sample outside
+    /// [`Framebuffer::drawn`] is empty.
+    fn debug_assert_empty_outside_drawn(&self) {
+        if cfg!(debug_assertions)
+            && self.samples.len() == self.grid.width as usize * self.band.height() as usize
+        {
+            let w = self.grid.width.max(1) as usize;
+            for (i, s) in self.samples.iter().enumerate() {
+                let (x, y) = ((i % w) as u32, (i / w) as u32 + self.band.y0);
+                let inside = self.drawn.columns(y).contains(&(x as usize));
+                debug_assert!(
+                    inside || s.is_none(),
+                    "sample ({x}, {y}) drawn outside {:?}",
+                    self.drawn
+                );
+            }
         }
     }
 
@@ -94,6 +161,10 @@ impl Framebuffer {
     pub(crate) fn fit(&mut self, grid: Grid) {
         self.grid = grid;
         self.band = grid.all_rows();
+        // The bands' rectangles are put together by the caller
+        // ([`Framebuffer::set_drawn`]).
+        self.drawn = Rect::all(grid.width, grid.height);
+        self.depth_drawn = self.drawn;
         if self.samples.len() != grid.len() {
             self.samples.clear();
             self.samples.resize(grid.len(), None);
@@ -113,6 +184,13 @@ impl Framebuffer {
         }
     }
 
+    /// Says where the samples copied in from bands were drawn (the union of
+    /// the bands' [`Framebuffer::drawn`]).
+    pub(crate) fn set_drawn(&mut self, r: Rect) {
+        self.drawn = r;
+        self.depth_drawn = Rect::all(self.grid.width, self.grid.height);
+    }
+
     /// The samples and depths held, to write a band of rows each.
     pub(crate) fn parts_mut(&mut self) -> (&mut [Option<Lin>], &mut [f32]) {
         (&mut self.samples, &mut self.depth)
@@ -129,36 +207,21 @@ impl Framebuffer {
     /// Colours sample `(x, y)`.
     pub fn set(&mut self, x: u32, y: u32, c: Lin) {
         let i = self.index(x, y);
+        self.touch(Rect::at(x, y));
         self.samples[i] = Some(c);
     }
 
-    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
-    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
+    /// The samples and depths held, borrowed for one triangle's fill; the
+    /// caller widens [`Framebuffer::drawn`] by what it writes
+    /// ([`Framebuffer::touch`]) afterwards.
     #[inline(always)]
-    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
-        let i = self.index(x, y);
-        (z > self.depth[i]).then_some(i)
-    }
-
-    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
-    #[inline(always)]
-    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
-        let i = self.index(x, y);
-        self.samples[i].is_none().then_some(i)
-    }
-
-    /// Writes colour `c` and depth `z` at index `i` (from
-    /// [`Framebuffer::nearer`]).
-    #[inline(always)]
-    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
-        self.depth[i] = z;
-        self.samples[i] = Some(c);
-    }
-
-    /// Writes colour `c` at index `i` (from [`Framebuffer::empty`]).
-    #[inline(always)]
-    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
-        self.samples[i] = Some(c);
+    pub(crate) fn target(&mut self) -> Target<'_> {
+        Target {
+            width: self.grid.width as usize,
+            y0: self.band.y0,
+            samples: &mut self.samples,
+            depth: &mut self.depth,
+        }
     }
 
     /// Writes `c` at depth `z` if `z` is nearer than what the sample holds
@@ -168,6 +231,7 @@ impl Framebuffer {
     pub fn set_if_nearer(&mut self, x: u32, y: u32, z: f32, c: Lin) -> bool {
         let i = self.index(x, y);
         if z > self.depth[i] {
+            self.touch(Rect::at(x, y));
             self.depth[i] = z;
             self.samples[i] = Some(c);
             true
@@ -183,6 +247,7 @@ impl Framebuffer {
         let i = self.index(x, y);
         let empty = self.samples[i].is_none();
         if empty {
+            self.touch(Rect::at(x, y));
             self.samples[i] = Some(c);
         }
         empty
@@ -210,5 +275,59 @@ impl Framebuffer {
     /// All samples held, row by row from the bottom.
     pub fn samples(&self) -> &[Option<Lin>] {
         &self.samples
+    }
+}
+
+/// Sets every element of `s` to `v`, eight at a time (`fill` of an
+/// `Option` stores one tag at a time).
+#[inline(always)]
+fn clear<T: Copy>(s: &mut [T], v: T) {
+    let mut chunks = s.chunks_exact_mut(8);
+    for c in &mut chunks {
+        c.copy_from_slice(&[v; 8]);
+    }
+    chunks.into_remainder().fill(v);
+}
+
+/// A framebuffer's samples and depths borrowed for one triangle's fill
+/// ([`Framebuffer::target`]): slices and the layout the fill's loop keeps
+/// in registers, rather than reads again through the framebuffer at each
+/// sample it writes (the compiler cannot tell those writes leave the
+/// framebuffer's own fields alone).
+pub(crate) struct Target<'a> {
+    width: usize,
+    y0: u32,
+    samples: &'a mut [Option<Lin>],
+    depth: &'a mut [f32],
+}
+
+impl Target<'_> {
+    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
+    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
+    #[inline(always)]
+    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let i = (y - self.y0) as usize * self.width + x as usize;
+        (z > self.depth[i]).then_some(i)
+    }
+
+    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
+    #[inline(always)]
+    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
+        let i = (y - self.y0) as usize * self.width + x as usize;
+        self.samples[i].is_none().then_some(i)
+    }
+
+    /// Writes colour `c` and depth `z` at index `i` (from
+    /// [`Target::nearer`]).
+    #[inline(always)]
+    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
+        self.depth[i] = z;
+        self.samples[i] = Some(c);
+    }
+
+    /// Writes colour `c` at index `i` (from [`Target::empty`]).
+    #[inline(always)]
+    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
+        self.samples[i] = Some(c);
     }
 }

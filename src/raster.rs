@@ -56,7 +56,7 @@
 
 use crate::fixed::{Fixed, FixedPoint, MAX_COORD, ONE};
 use crate::scene::Cull;
-use crate::transform::{Band, Grid, MAX_GRID};
+use crate::transform::{Band, Grid, MAX_GRID, Rect};
 
 /// How the rasterizer walks the samples. All give identical coverage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -68,8 +68,14 @@ pub enum Traversal {
     /// afresh.
     BoundingBox,
     /// The bounding box with the edge values stepped by constant deltas.
-    #[default]
     Incremental,
+    /// Each row of the bounding box, only where it is covered: the run of
+    /// covered samples is found from the edge values at the row's start
+    /// (each edge bounds it from one side, by an exact integer division),
+    /// and the values are stepped along it. The samples the incremental
+    /// walk finds, with the same weights, visiting none it does not cover.
+    #[default]
+    Spans,
 }
 
 impl Traversal {
@@ -79,14 +85,16 @@ impl Traversal {
             Traversal::Scan => "scan",
             Traversal::BoundingBox => "bounding-box",
             Traversal::Incremental => "incremental",
+            Traversal::Spans => "spans",
         }
     }
 
     /// Every traversal.
-    pub const ALL: [Traversal; 3] = [
+    pub const ALL: [Traversal; 4] = [
         Traversal::Scan,
         Traversal::BoundingBox,
         Traversal::Incremental,
+        Traversal::Spans,
     ];
 }
 
@@ -103,7 +111,11 @@ pub struct RasterStats {
     pub dropped_degenerate: u64,
     /// Dropped by [`Cull`].
     pub culled: u64,
-    /// Samples whose edge functions were evaluated.
+    /// Samples whose coverage was decided: each sample of the grid
+    /// ([`Traversal::Scan`]) or of the triangle's bounding box (the
+    /// others; [`Traversal::Spans`] decides a row's samples at once, from
+    /// the edge values at its start). The same for every split of the frame
+    /// into bands.
     pub samples_tested: u64,
     /// Samples found inside.
     pub samples_covered: u64,
@@ -479,7 +491,58 @@ impl Setup {
                 }
                 self.bbox_samples()
             }
+            Traversal::Spans => {
+                if self.bbox_samples() == 0 {
+                    return 0;
+                }
+                let (px, py) = (
+                    Fixed::sample_centre(self.x0 as u32).0,
+                    Fixed::sample_centre(self.y0 as u32).0,
+                );
+                let mut row = self.edges.map(|e| e.at(px, py));
+                let sx = self.edges.map(|e| e.step_x());
+                let sy = self.edges.map(|e| e.step_y());
+                let last = self.x1 - self.x0;
+                for y in self.y0..=self.y1 {
+                    let (lo, hi) = self.span(row, sx, last);
+                    if lo <= hi {
+                        let mut e = [0, 1, 2].map(|k| row[k] + lo * sx[k]);
+                        for x in self.x0 + lo..=self.x0 + hi {
+                            hit(x as u32, y as u32, e);
+                            e = [e[0] + sx[0], e[1] + sx[1], e[2] + sx[2]];
+                        }
+                    }
+                    row = [row[0] + sy[0], row[1] + sy[1], row[2] + sy[2]];
+                }
+                // Every sample of the box was decided, those outside the
+                // runs without a test of their own.
+                self.bbox_samples()
+            }
         }
+    }
+
+    /// The covered samples of a row of the box, `[lo, hi]` counted from
+    /// its first (empty when `lo > hi`): `row` holds the edge values at the
+    /// first sample, `sx` their steps along the row, `last` the last
+    /// sample's offset. Edge `k` accepts offset `t` when `row[k] + t·sx[k]
+    /// ≥ min`, a bound on `t` from below (`sx[k] > 0`) or above
+    /// (`sx[k] < 0`), found exactly by integer division.
+    #[inline(always)]
+    fn span(&self, row: [i64; 3], sx: [i64; 3], last: i64) -> (i64, i64) {
+        let (mut lo, mut hi) = (0, last);
+        for k in 0..3 {
+            let (r, s, m) = (row[k], sx[k], self.edges[k].min);
+            if s > 0 {
+                // t ≥ ⌈(m − r) / s⌉
+                lo = lo.max(-(r - m).div_euclid(s));
+            } else if s < 0 {
+                // t ≤ ⌊(r − m) / −s⌋
+                hi = hi.min((r - m).div_euclid(-s));
+            } else if r < m {
+                hi = -1;
+            }
+        }
+        (lo, hi)
     }
 }
 
@@ -503,10 +566,11 @@ pub struct SmallSetup {
     order: [u8; 3],
     ccw: bool,
     area2: i64,
-    /// The box's first sample and its width.
+    /// The box's first sample, its width and height.
     x0: u32,
     y0: u32,
     w: u8,
+    h: u8,
     /// Samples in the clamped box, all tested.
     tested: u8,
     /// Bit k: the box's sample k (rows bottom to top, left to right) is
@@ -570,6 +634,7 @@ impl SmallSetup {
             x0: 0,
             y0: 0,
             w: 0,
+            h: 0,
             tested: 0,
             covered: 0,
         };
@@ -583,7 +648,8 @@ impl SmallSetup {
         let (edges, order) = oriented(&p, ccw);
         s.p = order.map(|i| p[i]);
         s.order = order.map(|i| i as u8);
-        (s.x0, s.y0, s.w, s.tested) = (x0 as u32, y0 as u32, w as u8, n as u8);
+        (s.x0, s.y0, s.w, s.h, s.tested) =
+            (x0 as u32, y0 as u32, w as u8, (y1 - y0 + 1) as u8, n as u8);
         let accepts = |x: i64, y: i64| {
             let (px, py) = (x * ONE + ONE / 2, y * ONE + ONE / 2);
             edges.iter().all(|e| e.at(px, py) >= e.min)
@@ -620,6 +686,16 @@ impl Coverage for SmallSetup {
         self.tested as u64
     }
 
+    #[inline(always)]
+    fn bounds(&self) -> Rect {
+        Rect {
+            x0: self.x0,
+            x1: self.x0 + self.w as u32,
+            y0: self.y0,
+            y1: self.y0 + self.h as u32,
+        }
+    }
+
     fn covers_any(&self) -> bool {
         self.covered != 0
     }
@@ -650,6 +726,22 @@ impl Coverage for SmallSetup {
             hit(x, y, edges.map(|e| e.at(px, py)));
         }
         self.tested as u64
+    }
+}
+
+/// An inclusive box of samples, `[x0, x1] × [y0, y1]` (clamped to the
+/// grid, so not negative where not empty), as a [`Rect`].
+#[inline(always)]
+fn box_rect(x0: i64, x1: i64, y0: i64, y1: i64) -> Rect {
+    if x0 > x1 || y0 > y1 {
+        Rect::EMPTY
+    } else {
+        Rect {
+            x0: x0 as u32,
+            x1: x1 as u32 + 1,
+            y0: y0 as u32,
+            y1: y1 as u32 + 1,
+        }
     }
 }
 
@@ -703,6 +795,8 @@ pub trait Coverage {
     fn ccw(&self) -> bool;
     /// Samples in the clamped bounding box.
     fn bbox_samples(&self) -> u64;
+    /// The clamped bounding box: every sample the walk hits lies in it.
+    fn bounds(&self) -> Rect;
     /// Whether any sample may be covered: `false` only when it is certain
     /// that none is (cheap to tell for a small box; a large box says
     /// `true`).
@@ -737,6 +831,11 @@ impl Coverage for Setup {
 
     fn bbox_samples(&self) -> u64 {
         Setup::bbox_samples(self)
+    }
+
+    #[inline(always)]
+    fn bounds(&self) -> Rect {
+        box_rect(self.x0, self.x1, self.y0, self.y1)
     }
 
     /// Each sample of a box of at most [`SMALL_BOX`] samples tested
@@ -903,6 +1002,10 @@ impl<T: Real> Coverage for FloatSetup<T> {
         }
     }
 
+    fn bounds(&self) -> Rect {
+        box_rect(self.x0, self.x1, self.y0, self.y1)
+    }
+
     fn f32(w: [T; 3]) -> [f32; 3] {
         w.map(|e| e.to_f64() as f32)
     }
@@ -1027,6 +1130,36 @@ mod tests {
                     proptest::prop_assert_eq!(found, (tested, hits));
                 }
                 (a, b) => proptest::prop_assert!(false, "{a:?} against {b:?}"),
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// The span walk hits the samples the incremental walk covers, with
+        /// the same weights, in the same order, and counts the same samples
+        /// decided: large
+        /// and thin triangles, edges through sample centres, huge
+        /// coordinates (edge values near 2^60), bands and culling.
+        #[test]
+        fn spans_hit_what_the_incremental_walk_covers(
+            c in proptest::array::uniform6(proptest::prop_oneof![
+                -3000i64..12000,
+                proptest::strategy::Strategy::prop_map(-20i64..90, |k| k * 128),
+                -(1i64 << 29)..(1i64 << 29),
+            ]),
+            rows in (0u32..40, 0u32..40),
+            cull in proptest::sample::select(vec![Cull::None, Cull::Back, Cull::Front]),
+        ) {
+            let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
+            let grid = Grid::new(37, 40);
+            let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
+            if let Ok(s) = Setup::from_fixed_in(p, grid, band, cull) {
+                let mut incremental = Vec::new();
+                s.walk(grid, Traversal::Incremental, |x, y, e| incremental.push((x, y, e)));
+                let mut spans = Vec::new();
+                let tested = s.walk(grid, Traversal::Spans, |x, y, e| spans.push((x, y, e)));
+                proptest::prop_assert_eq!(tested, s.bbox_samples());
+                proptest::prop_assert_eq!(spans, incremental);
             }
         }
     }

@@ -76,7 +76,7 @@ use crate::blit;
 use crate::clip::{ClipVertex, Clipped, Clipper, Polygon, Snapped};
 use crate::color::{Lin, Rgb};
 use crate::fixed::FixedPoint;
-use crate::frame::{Cell, Frame};
+use crate::frame::{Cell, Frame, Known};
 use crate::framebuffer::Framebuffer;
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
@@ -86,7 +86,7 @@ use crate::raster::{
 use crate::scene::{Camera, Cull, Mesh, Projection, Scene};
 use crate::shade::{Lights, Shading};
 use crate::texture::{Sampler, Texture};
-use crate::transform::{self, Band, Grid};
+use crate::transform::{self, Band, Grid, Rect};
 
 /// What one frame cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -323,6 +323,8 @@ pub struct Renderer {
     /// Where each mesh's vertices are in `verts`, and its matrices, for a
     /// frame drawn in bands.
     meshes: Vec<(std::ops::Range<usize>, Transforms)>,
+    /// What a band's blit knows of its cells (a frame drawn in bands).
+    known: Known,
 }
 
 impl Default for Renderer {
@@ -347,6 +349,7 @@ impl Renderer {
             bands: Vec::new(),
             camera: None,
             meshes: Vec::new(),
+            known: Known::default(),
         }
     }
 
@@ -600,7 +603,7 @@ impl Renderer {
             }
             band.loose(scene, opts, stage, vp, turn);
             band.fb.copy_into(samples, depth.then_some(depths));
-            blit::blit_band(
+            band.known = blit::blit_band(
                 &band.fb,
                 opts.glyphs,
                 opts.color,
@@ -635,9 +638,17 @@ impl Renderer {
             .zip(cells.rchunks_mut(band_cells))
             .enumerate()
             .for_each(|(k, (((band, s), d), c))| job(k, band, s, d, c));
+        let (mut drawn, mut known) = (
+            Rect::EMPTY,
+            bands.first().map_or(Known::default(), |b| b.known),
+        );
         for (k, band) in bands.iter().enumerate() {
             self.stats.add_band(&band.stats, k == 0);
+            drawn = drawn.union(band.fb.drawn());
+            known.rect = known.rect.union(band.known.rect);
         }
+        self.fb.set_drawn(drawn);
+        frame.set_known(known);
         self.bands = bands;
     }
 
@@ -1108,7 +1119,7 @@ impl Renderer {
         (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
     ) {
         let grid = self.fb.grid();
-        let fb = &mut self.fb;
+        let mut fb = self.fb.target();
         let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
@@ -1135,6 +1146,9 @@ impl Renderer {
                 }
             })
         };
+        if written > 0 {
+            self.fb.touch(setup.bounds());
+        }
         self.stats.textured_samples += written;
         // Texture coordinates are interpolated, whatever the colour.
         self.count_fill(stage, covered, written, tested);
@@ -1145,7 +1159,7 @@ impl Renderer {
     #[inline(always)]
     fn fill_colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool, stage: &Stage) {
         let grid = self.fb.grid();
-        let fb = &mut self.fb;
+        let mut fb = self.fb.target();
         let (mut covered, mut written) = (0u64, 0u64);
         let one = Lin::from_lanes(a.color[0]);
         let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
@@ -1182,6 +1196,9 @@ impl Renderer {
                 }
             }),
         };
+        if covered > 0 {
+            self.fb.touch(setup.bounds());
+        }
         self.count_fill(stage, covered, written, tested);
     }
 

@@ -381,6 +381,92 @@ impl Band {
     }
 }
 
+/// A rectangle of samples or of cells, `[x0, x1) × [y0, y1)`: where
+/// something was drawn. Empty when `x0 >= x1` or `y0 >= y1`; the empty
+/// rectangle [`Rect::EMPTY`] is the identity of [`Rect::union`], so that a
+/// union is four comparisons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Rect {
+    /// The first column.
+    pub x0: u32,
+    /// One past the last column.
+    pub x1: u32,
+    /// The first row.
+    pub y0: u32,
+    /// One past the last row.
+    pub y1: u32,
+}
+
+impl Rect {
+    /// Nothing.
+    pub const EMPTY: Rect = Rect {
+        x0: u32::MAX,
+        x1: 0,
+        y0: u32::MAX,
+        y1: 0,
+    };
+
+    /// Every column and row of a `width × height` grid.
+    pub const fn all(width: u32, height: u32) -> Rect {
+        Rect {
+            x0: 0,
+            x1: width,
+            y0: 0,
+            y1: height,
+        }
+    }
+
+    /// The one sample or cell `(x, y)`.
+    #[inline(always)]
+    pub const fn at(x: u32, y: u32) -> Rect {
+        Rect {
+            x0: x,
+            x1: x + 1,
+            y0: y,
+            y1: y + 1,
+        }
+    }
+
+    /// Whether it holds nothing.
+    pub const fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+
+    /// The smallest rectangle holding both.
+    #[inline(always)]
+    pub fn union(self, o: Rect) -> Rect {
+        Rect {
+            x0: self.x0.min(o.x0),
+            x1: self.x1.max(o.x1),
+            y0: self.y0.min(o.y0),
+            y1: self.y1.max(o.y1),
+        }
+    }
+
+    /// The part of it inside `o` (empty, though perhaps not
+    /// [`Rect::EMPTY`], when they do not meet).
+    #[inline(always)]
+    pub fn intersect(self, o: Rect) -> Rect {
+        Rect {
+            x0: self.x0.max(o.x0),
+            x1: self.x1.min(o.x1),
+            y0: self.y0.max(o.y0),
+            y1: self.y1.min(o.y1),
+        }
+    }
+
+    /// The columns `[x0, x1)` of row `y` it holds, as a range (empty when
+    /// the row is outside it).
+    #[inline(always)]
+    pub fn columns(&self, y: u32) -> std::ops::Range<usize> {
+        if self.is_empty() || y < self.y0 || y >= self.y1 {
+            0..0
+        } else {
+            self.x0 as usize..self.x1 as usize
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

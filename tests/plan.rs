@@ -12,7 +12,7 @@ use rastty::Cull;
 use rastty::Pipeline;
 use rastty::Shading;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Threads};
+use rastty::{ColorDepth, Encoder, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Threads};
 
 /// Renders both ways; returns the planned renderer's statistics.
 fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameStats, String> {
@@ -295,6 +295,49 @@ proptest! {
         // Anti-aliased frames are drawn on one thread (and checked to be).
         let opts = RenderOptions { aa: Aa::None, pipeline, ..opts };
         same_with_any_thread_count(&scene, &opts).map_err(TestCaseError::fail)?;
+    }
+
+    /// Only what was drawn is cleared, blitted and compared with what the
+    /// terminal shows: a renderer and an encoder used frame after frame,
+    /// on scenes of every kind and size (with and without depth or a
+    /// background, in bands or not), give every frame the samples, depths
+    /// and cells a fresh renderer gives, and the bytes an encoder gives
+    /// for the same cells written into a frame by hand (which then knows
+    /// nothing of where they were drawn).
+    #[test]
+    fn a_reused_renderer_and_encoder_give_what_fresh_ones_give(
+        frames in prop::collection::vec((scene(), options(), 1u16..4), 2..6),
+        depth in prop::sample::select(vec![ColorDepth::TrueColor, ColorDepth::Ansi256, ColorDepth::Ansi16]),
+    ) {
+        let mut reused = Renderer::new();
+        let (mut known, mut by_hand) = (Encoder::new(depth), Encoder::new(depth));
+        for (scene, opts, threads) in &frames {
+            let opts = RenderOptions { threads: Threads::Exactly(*threads), ..*opts };
+            let frame = reused.render(scene, &opts).clone();
+            let mut fresh = Renderer::new();
+            prop_assert_eq!(&frame, fresh.render(scene, &opts));
+            prop_assert_eq!(reused.framebuffer().samples(), fresh.framebuffer().samples());
+            if fresh.plan().unwrap().depth.run {
+                let depths = |r: &Renderer| -> Vec<u32> {
+                    let fb = r.framebuffer();
+                    let g = fb.grid();
+                    (0..g.height)
+                        .flat_map(|y| (0..g.width).map(move |x| fb.depth(x, y).to_bits()))
+                        .collect()
+                };
+                prop_assert_eq!(depths(&reused), depths(&fresh));
+            }
+            let mut copy = Frame::new(frame.cols(), frame.rows());
+            for r in 0..frame.rows() {
+                copy.row_mut(r).copy_from_slice(frame.row(r));
+            }
+            known.encode(&frame, &mut Vec::new()).unwrap();
+            by_hand.encode(&copy, &mut Vec::new()).unwrap();
+            prop_assert_eq!(
+                String::from_utf8_lossy(known.last_bytes()),
+                String::from_utf8_lossy(by_hand.last_bytes())
+            );
+        }
     }
 
     /// The depth-free path's favourite case, flat 2D scenes; and one
