@@ -28,7 +28,12 @@
 //!   of unchanged cells that need no SGR is rewritten instead when that is
 //!   shorter than any move.
 //! * **Only what changed** ([`Encoder`]): the frame the terminal shows is
-//!   kept, and a new frame sends only the cells that differ. The encoder
+//!   kept, and a new frame sends only the cells that differ. A frame from
+//!   the renderer knows a rectangle outside which every cell is the same
+//!   (the cells that show no drawn sample); where that cell is a blank in
+//!   the default colours, only the cells of that rectangle and of the last
+//!   frame's are compared: a model in a corner of a large terminal costs
+//!   its own cells. The encoder
 //!   keeps cells packed, a word for the glyph and one for each ink, so
 //!   that finding the changes in a large frame is integer comparisons,
 //!   eight cells at a time where all eight are equal; the choices for a

@@ -39,7 +39,7 @@ impl Default for Cell {
 /// `cols × rows` cells, row 0 at the top of the terminal.
 ///
 /// A frame also knows a rectangle outside which every cell is one and the
-/// same ([`Frame::known`]): the blitter knows it from where samples were
+/// same: the blitter knows it from where samples were
 /// drawn, and the encoder then compares only that rectangle's cells with
 /// what the terminal shows. Every way of writing cells keeps it true.
 #[derive(Clone, Debug, Default)]

@@ -211,17 +211,35 @@ impl Framebuffer {
         self.samples[i] = Some(c);
     }
 
-    /// The samples and depths held, borrowed for one triangle's fill; the
-    /// caller widens [`Framebuffer::drawn`] by what it writes
-    /// ([`Framebuffer::touch`]) afterwards.
+    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
+    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
     #[inline(always)]
-    pub(crate) fn target(&mut self) -> Target<'_> {
-        Target {
-            width: self.grid.width as usize,
-            y0: self.band.y0,
-            samples: &mut self.samples,
-            depth: &mut self.depth,
-        }
+    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let i = self.index(x, y);
+        (z > self.depth[i]).then_some(i)
+    }
+
+    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
+    #[inline(always)]
+    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
+        let i = self.index(x, y);
+        self.samples[i].is_none().then_some(i)
+    }
+
+    /// Writes colour `c` and depth `z` at index `i` (from
+    /// [`Framebuffer::nearer`]); the caller widens [`Framebuffer::drawn`]
+    /// to hold it ([`Framebuffer::touch`]).
+    #[inline(always)]
+    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
+        self.depth[i] = z;
+        self.samples[i] = Some(c);
+    }
+
+    /// Writes colour `c` at index `i` (from [`Framebuffer::empty`]); the
+    /// caller widens [`Framebuffer::drawn`] to hold it.
+    #[inline(always)]
+    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
+        self.samples[i] = Some(c);
     }
 
     /// Writes `c` at depth `z` if `z` is nearer than what the sample holds
@@ -287,47 +305,4 @@ fn clear<T: Copy>(s: &mut [T], v: T) {
         c.copy_from_slice(&[v; 8]);
     }
     chunks.into_remainder().fill(v);
-}
-
-/// A framebuffer's samples and depths borrowed for one triangle's fill
-/// ([`Framebuffer::target`]): slices and the layout the fill's loop keeps
-/// in registers, rather than reads again through the framebuffer at each
-/// sample it writes (the compiler cannot tell those writes leave the
-/// framebuffer's own fields alone).
-pub(crate) struct Target<'a> {
-    width: usize,
-    y0: u32,
-    samples: &'a mut [Option<Lin>],
-    depth: &'a mut [f32],
-}
-
-impl Target<'_> {
-    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
-    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
-    #[inline(always)]
-    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
-        let i = (y - self.y0) as usize * self.width + x as usize;
-        (z > self.depth[i]).then_some(i)
-    }
-
-    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
-    #[inline(always)]
-    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
-        let i = (y - self.y0) as usize * self.width + x as usize;
-        self.samples[i].is_none().then_some(i)
-    }
-
-    /// Writes colour `c` and depth `z` at index `i` (from
-    /// [`Target::nearer`]).
-    #[inline(always)]
-    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
-        self.depth[i] = z;
-        self.samples[i] = Some(c);
-    }
-
-    /// Writes colour `c` at index `i` (from [`Target::empty`]).
-    #[inline(always)]
-    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
-        self.samples[i] = Some(c);
-    }
 }

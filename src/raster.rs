@@ -37,11 +37,22 @@
 //! coverage: `Scan` tests every sample of the grid (the notes' first method),
 //! `BoundingBox` only those in the triangle's bounding box (the second),
 //! `Incremental` steps the three edge values by constant deltas over the
-//! bounding box (the third, and the default: two additions per edge per
-//! sample instead of two multiplications).
+//! bounding box (the third: two additions per edge per sample instead of
+//! two multiplications), and `Spans`, the default, visits only the covered
+//! samples of each row: along a row each edge value is linear in the
+//! column, so each edge bounds the covered run from one side, found exactly
+//! by one integer division per edge and row, and the values are stepped
+//! along the run. A large triangle's box is mostly outside it (the torus at
+//! 1000×300 cells tests 2.7 samples for each it covers), which `Spans`
+//! costs a division a row instead of a test a sample. Every traversal
+//! counts the samples whose coverage it decided: those of the grid for
+//! `Scan`, of the bounding box for the others, so that the counts do not
+//! depend on the traversal of a triangle's part in a band.
 //!
 //! **Small triangles.** Most triangles of a detailed model seen small have
-//! a bounding box of a few samples and cover none of them. [`SmallSetup`]
+//! a bounding box of a few samples and cover none of them; about half hold
+//! no sample centre at all, which the vertices' centre keys (computed once
+//! per vertex) tell in a few comparisons before anything else. [`SmallSetup`]
 //! tests each sample of a box of at most [`SMALL_BOX`] once, at set-up,
 //! and keeps only the vertices and a bit per covered sample: a triangle
 //! that covers nothing is known without a [`Setup`] built (a couple of
@@ -54,7 +65,7 @@
 //! covered sample, with its three edge values (the unnormalised barycentric
 //! weights), to a closure.
 
-use crate::fixed::{Fixed, FixedPoint, MAX_COORD, ONE};
+use crate::fixed::{FRAC_BITS, Fixed, FixedPoint, MAX_COORD, ONE};
 use crate::scene::Cull;
 use crate::transform::{Band, Grid, MAX_GRID, Rect};
 
@@ -213,6 +224,41 @@ fn last_sample(hi: i64) -> i64 {
 pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
     let [x0, x1, y0, y1] = clamped_box(&extent(p), grid, band);
     x0 > x1 || y0 > y1
+}
+
+/// Where a snapped point lies among the sample centres, for telling at
+/// once that a triangle's bounding box holds none, before its extent or
+/// area is looked at (about half the triangles of a detailed model seen
+/// small). On each axis, twice the index of the last centre at or before
+/// the point, plus one if the point is on it: three vertices whose keys
+/// on an axis are equal and even lie strictly between two neighbouring
+/// centres there, so their box holds no centre (nor does it once clamped to
+/// a grid or a band). Computed once per vertex by the vertex stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct CentreKey(u64);
+
+impl CentreKey {
+    /// The key of a snapped point.
+    #[inline(always)]
+    pub(crate) fn of(p: FixedPoint) -> CentreKey {
+        let axis = |v: i64| {
+            let d = v - ONE / 2;
+            // An arithmetic shift is a division rounding down.
+            ((d >> FRAC_BITS) * 2 + (d & (ONE - 1) == 0) as i64) as u32
+        };
+        CentreKey((axis(p.x.0) as u64) << 32 | axis(p.y.0) as u64)
+    }
+
+    /// Whether the keys of a triangle's vertices show that its bounding box
+    /// holds no sample centre (`false` says nothing).
+    #[inline(always)]
+    pub(crate) fn box_is_empty(k: [CentreKey; 3]) -> bool {
+        let [a, b, c] = k.map(|k| k.0);
+        // Zero in an axis's half exactly when the three are equal there and
+        // even.
+        let m = (a ^ b) | (a ^ c) | (a & (1 << 32 | 1));
+        m >> 32 == 0 || m as u32 == 0
+    }
 }
 
 /// A snapped triangle's extent in fixed point: `[min x, max x, min y,
@@ -394,7 +440,7 @@ impl Setup {
     /// [`Setup::signed_area2`] of a triangle whose coordinates are known to
     /// be within ±[`MAX_COORD`] samples.
     #[inline(always)]
-    fn signed_area2_in_range(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
+    pub(crate) fn signed_area2_in_range(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
         let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
         if area2 == 0 {
             return Err(Rejected::Degenerate);
@@ -448,49 +494,6 @@ impl Setup {
         mut hit: F,
     ) -> u64 {
         match traversal {
-            Traversal::Scan => {
-                for y in 0..grid.height {
-                    for x in 0..grid.width {
-                        if let Some(e) = self.inside(x, y) {
-                            hit(x, y, e);
-                        }
-                    }
-                }
-                grid.len() as u64
-            }
-            Traversal::BoundingBox => {
-                for y in self.y0..=self.y1 {
-                    for x in self.x0..=self.x1 {
-                        if let Some(e) = self.inside(x as u32, y as u32) {
-                            hit(x as u32, y as u32, e);
-                        }
-                    }
-                }
-                self.bbox_samples()
-            }
-            Traversal::Incremental => {
-                if self.bbox_samples() == 0 {
-                    return 0;
-                }
-                let (px, py) = (
-                    Fixed::sample_centre(self.x0 as u32).0,
-                    Fixed::sample_centre(self.y0 as u32).0,
-                );
-                let mut row = self.edges.map(|e| e.at(px, py));
-                let sx = self.edges.map(|e| e.step_x());
-                let sy = self.edges.map(|e| e.step_y());
-                for y in self.y0..=self.y1 {
-                    let mut e = row;
-                    for x in self.x0..=self.x1 {
-                        if self.accepts(e) {
-                            hit(x as u32, y as u32, e);
-                        }
-                        e = [e[0] + sx[0], e[1] + sx[1], e[2] + sx[2]];
-                    }
-                    row = [row[0] + sy[0], row[1] + sy[1], row[2] + sy[2]];
-                }
-                self.bbox_samples()
-            }
             Traversal::Spans => {
                 if self.bbox_samples() == 0 {
                     return 0;
@@ -516,6 +519,65 @@ impl Setup {
                 }
                 // Every sample of the box was decided, those outside the
                 // runs without a test of their own.
+                self.bbox_samples()
+            }
+            // The others are comparison modes: a function of their own, so
+            // that `hit` is inlined into the default walk alone.
+            _ => self.walk_other(grid, traversal, &mut hit),
+        }
+    }
+
+    /// [`Setup::walk`] for the traversals but [`Traversal::Spans`].
+    #[inline(never)]
+    fn walk_other<F: FnMut(u32, u32, [i64; 3])>(
+        &self,
+        grid: Grid,
+        traversal: Traversal,
+        hit: &mut F,
+    ) -> u64 {
+        match traversal {
+            Traversal::Scan => {
+                for y in 0..grid.height {
+                    for x in 0..grid.width {
+                        if let Some(e) = self.inside(x, y) {
+                            hit(x, y, e);
+                        }
+                    }
+                }
+                grid.len() as u64
+            }
+            Traversal::BoundingBox => {
+                for y in self.y0..=self.y1 {
+                    for x in self.x0..=self.x1 {
+                        if let Some(e) = self.inside(x as u32, y as u32) {
+                            hit(x as u32, y as u32, e);
+                        }
+                    }
+                }
+                self.bbox_samples()
+            }
+            // (`walk` takes the spans itself.)
+            Traversal::Incremental | Traversal::Spans => {
+                if self.bbox_samples() == 0 {
+                    return 0;
+                }
+                let (px, py) = (
+                    Fixed::sample_centre(self.x0 as u32).0,
+                    Fixed::sample_centre(self.y0 as u32).0,
+                );
+                let mut row = self.edges.map(|e| e.at(px, py));
+                let sx = self.edges.map(|e| e.step_x());
+                let sy = self.edges.map(|e| e.step_y());
+                for y in self.y0..=self.y1 {
+                    let mut e = row;
+                    for x in self.x0..=self.x1 {
+                        if self.accepts(e) {
+                            hit(x as u32, y as u32, e);
+                        }
+                        e = [e[0] + sx[0], e[1] + sx[1], e[2] + sx[2]];
+                    }
+                    row = [row[0] + sy[0], row[1] + sy[1], row[2] + sy[2]];
+                }
                 self.bbox_samples()
             }
         }
@@ -1161,6 +1223,35 @@ mod tests {
                 proptest::prop_assert_eq!(tested, s.bbox_samples());
                 proptest::prop_assert_eq!(spans, incremental);
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// Where the vertices' keys say a box holds no sample centre, it
+        /// holds none, clamped to any grid and band; and for a box inside
+        /// the grid they say so of every box that holds none (vertices on a
+        /// centre's column or row, or half a sample short of one, included).
+        #[test]
+        fn keys_tell_boxes_without_a_sample_centre(
+            c in proptest::array::uniform6(proptest::prop_oneof![
+                -700i64..2200,
+                proptest::strategy::Strategy::prop_map(-3i64..18, |k| k * 128),
+                proptest::strategy::Strategy::prop_map(-3i64..18, |k| k * 256 + 127),
+            ]),
+            rows in (0u32..8, 0u32..8),
+        ) {
+            let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
+            let keys = p.map(CentreKey::of);
+            let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
+            let (grid, big) = (Grid::new(7, 8), Grid::new(1 << 12, 1 << 12));
+            let empty = CentreKey::box_is_empty(keys);
+            if empty {
+                proptest::prop_assert!(box_is_empty(&p, grid, band));
+            }
+            // Moved well inside a large grid: the box is not clamped.
+            let far = p.map(|q| FixedPoint { x: Fixed(q.x.0 + (1 << 18)), y: Fixed(q.y.0 + (1 << 18)) });
+            proptest::prop_assert_eq!(CentreKey::box_is_empty(far.map(CentreKey::of)), empty);
+            proptest::prop_assert_eq!(empty, box_is_empty(&far, big, big.all_rows()));
         }
     }
 

@@ -81,7 +81,8 @@ use crate::framebuffer::Framebuffer;
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
 use crate::raster::{
-    self, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, SmallSetup, Traversal,
+    self, CentreKey, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, SmallSetup,
+    Traversal,
 };
 use crate::scene::{Camera, Cull, Mesh, Projection, Scene};
 use crate::shade::{Lights, Shading};
@@ -212,6 +213,9 @@ struct Vert {
     xy: [f32; 2],
     /// `xy` snapped, once per vertex rather than once per triangle.
     fixed: FixedPoint,
+    /// Where `fixed` lies among sample centres, for the face loop's first
+    /// test.
+    key: CentreKey,
     z: f32,
     inv_w: f32,
 }
@@ -670,6 +674,16 @@ impl Renderer {
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
+                if inside && lean && CentreKey::box_is_empty(v.map(|v| v.key)) {
+                    // No sample centre in its box, known from its vertices'
+                    // keys: counted as its set-up would count it.
+                    self.stats.triangles_in += 1;
+                    match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
+                        Ok(_) => self.stats.raster.triangles_drawn += 1,
+                        Err(r) => self.stats.raster.count_rejected(r),
+                    }
+                    continue;
+                }
                 if inside
                     && !lean
                     && f.pretest
@@ -1119,7 +1133,7 @@ impl Renderer {
         (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
     ) {
         let grid = self.fb.grid();
-        let mut fb = self.fb.target();
+        let fb = &mut self.fb;
         let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
@@ -1147,7 +1161,7 @@ impl Renderer {
             })
         };
         if written > 0 {
-            self.fb.touch(setup.bounds());
+            fb.touch(setup.bounds());
         }
         self.stats.textured_samples += written;
         // Texture coordinates are interpolated, whatever the colour.
@@ -1159,7 +1173,7 @@ impl Renderer {
     #[inline(always)]
     fn fill_colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool, stage: &Stage) {
         let grid = self.fb.grid();
-        let mut fb = self.fb.target();
+        let fb = &mut self.fb;
         let (mut covered, mut written) = (0u64, 0u64);
         let one = Lin::from_lanes(a.color[0]);
         let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
@@ -1197,7 +1211,7 @@ impl Renderer {
             }),
         };
         if covered > 0 {
-            self.fb.touch(setup.bounds());
+            fb.touch(setup.bounds());
         }
         self.count_fill(stage, covered, written, tested);
     }
@@ -1488,7 +1502,7 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
         v.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
         v.z = clip.z * v.inv_w;
         match FixedPoint::snap(v.xy) {
-            Some(f) => v.fixed = f,
+            Some(f) => (v.fixed, v.key) = (f, CentreKey::of(f)),
             // Cannot happen inside the guard band; if it did, the clip path
             // deals with it.
             None => v.code = F64_PATH,

@@ -30,6 +30,7 @@ use glam::{Vec3, Vec4};
 
 use super::{Stage, Transforms, Vert, vertex};
 use crate::fixed::FixedPoint;
+use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
 
@@ -129,6 +130,7 @@ fn four(
         code: 0,
         xy: [xs[i], ys[i]],
         fixed: fixed[i],
+        key: CentreKey::of(fixed[i]),
         z: zs[i],
         inv_w: ws[i],
     };
