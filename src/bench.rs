@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | coverage | samples per cell (1, 2, 4, 6, 8) × `--aa none, 4x, 16x`, and `--aa exact` | mean and largest absolute error of each cell's coverage against the analytic area (`src/accuracy.rs`), over random triangles |
 //! | precision | unsnapped f32 and f64 edge functions, the exact i64 fixed point | cracks and double hits on random tilings of the screen |
-//! | traversal | scan, bounding box, incremental | samples that differ from incremental (must be 0) |
+//! | traversal | scan, bounding box, incremental, spans | samples that differ from spans, the default (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
 //! | texture filtering | nearest, bilinear, trilinear | largest and mean colour error (0–255) against an f64 reference supersampled 16×16 per sample, on a textured floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
@@ -215,7 +215,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
                 ..base()
             }),
             errors: vec![(
-                "samples unlike incremental",
+                "samples unlike spans (the default)",
                 traversal_mismatch(workloads, traversal) as f64,
             )],
         });
@@ -563,7 +563,7 @@ fn gcd(a: u32, b: u32) -> u32 {
 }
 
 /// Samples of every workload's frame drawn differently by `traversal` than
-/// by the incremental one.
+/// by the default one (spans).
 fn traversal_mismatch(workloads: &[Workload], traversal: Traversal) -> u64 {
     let opts = RenderOptions {
         cols: 80,

@@ -155,40 +155,28 @@ impl Framebuffer {
         }
     }
 
-    /// Holds every row of `grid`, its contents left as they are (or, where
-    /// it grows, cleared): for a frame whose every row is about to be
-    /// copied in from bands.
-    pub(crate) fn fit(&mut self, grid: Grid) {
-        self.grid = grid;
-        self.band = grid.all_rows();
-        // The bands' rectangles are put together by the caller
-        // ([`Framebuffer::set_drawn`]).
-        self.drawn = Rect::all(grid.width, grid.height);
-        self.depth_drawn = self.drawn;
-        if self.samples.len() != grid.len() {
-            self.samples.clear();
-            self.samples.resize(grid.len(), None);
+    /// Copies the samples of [`Framebuffer::drawn`] into `samples` and,
+    /// where given, their depths into `depths` (each laid out as what is
+    /// held, and cleared outside that rectangle: a band's rows of a
+    /// framebuffer that was reset).
+    pub(crate) fn copy_drawn_into(&self, samples: &mut [Option<Lin>], depths: Option<&mut [f32]>) {
+        let w = self.grid.width as usize;
+        let r = self
+            .drawn
+            .intersect(Rect::all(self.grid.width, self.band.y1));
+        let rows = r.y0.max(self.band.y0)..r.y1;
+        let span = |y: u32| {
+            let start = (y - self.band.y0) as usize * w;
+            start + r.x0 as usize..start + r.x1 as usize
+        };
+        for y in rows.clone() {
+            samples[span(y)].copy_from_slice(&self.samples[span(y)]);
         }
-        if self.depth.len() != grid.len() {
-            self.depth.clear();
-            self.depth.resize(grid.len(), f32::NEG_INFINITY);
-        }
-    }
-
-    /// Copies the samples held into `samples` and, where given, the
-    /// depths into `depths` (each as long as what is held).
-    pub(crate) fn copy_into(&self, samples: &mut [Option<Lin>], depths: Option<&mut [f32]>) {
-        samples.copy_from_slice(&self.samples);
         if let Some(d) = depths {
-            d.copy_from_slice(&self.depth);
+            for y in rows {
+                d[span(y)].copy_from_slice(&self.depth[span(y)]);
+            }
         }
-    }
-
-    /// Says where the samples copied in from bands were drawn (the union of
-    /// the bands' [`Framebuffer::drawn`]).
-    pub(crate) fn set_drawn(&mut self, r: Rect) {
-        self.drawn = r;
-        self.depth_drawn = Rect::all(self.grid.width, self.grid.height);
     }
 
     /// The samples and depths held, to write a band of rows each.

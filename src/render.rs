@@ -583,7 +583,9 @@ impl Renderer {
         self.times.vertices += lap();
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, Renderer::new);
-        self.fb.fit(grid);
+        // Cleared where the last frame drew; each band copies in only
+        // where it drew.
+        self.fb.reset(grid, depth);
         frame.resize(cols as u16, rows as u16);
         let (verts, meshes) = (&self.verts, &self.meshes);
         let job = |k: usize,
@@ -606,7 +608,7 @@ impl Renderer {
                 band.faces(stage, &faces, &verts[range.clone()]);
             }
             band.loose(scene, opts, stage, vp, turn);
-            band.fb.copy_into(samples, depth.then_some(depths));
+            band.fb.copy_drawn_into(samples, depth.then_some(depths));
             band.known = blit::blit_band(
                 &band.fb,
                 opts.glyphs,
@@ -651,7 +653,7 @@ impl Renderer {
             drawn = drawn.union(band.fb.drawn());
             known.rect = known.rect.union(band.known.rect);
         }
-        self.fb.set_drawn(drawn);
+        self.fb.touch(drawn);
         frame.set_known(known);
         self.bands = bands;
     }
