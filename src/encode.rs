@@ -1383,6 +1383,37 @@ mod tests {
     }
 
     proptest! {
+        // The cases where the plane decides are rare: many cases, each fast.
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// A glyph of two colours and its complement of the same length are
+        /// chosen between by the colours of the pen each keeps, as the
+        /// bytes each would cost choose (a tie, or two forms that set both
+        /// colours, keeps the cell as it is): over inks of every kind,
+        /// bright palette colours (one digit longer as a background)
+        /// included, and glyphs whose complement is longer or shorter.
+        #[test]
+        fn the_form_kept_is_the_one_of_fewer_bytes(
+            inks in prop::array::uniform4(prop_oneof![
+                Just(Ink::Default),
+                (0u8..20).prop_map(Ink::Indexed),
+                (0u8..3).prop_map(|v| Ink::Rgb(Rgb([v * 100, 7, 250 - v]))),
+            ]),
+            ch in prop::sample::select(vec!['▀', '▄', '▌', '▐', '▖', '▜', '\u{1FB00}', '\u{1FB3B}', '\u{1CD00}', '\u{1CDE5}', '\u{1FBE6}']),
+        ) {
+            let [fg, bg, pf, pb] = inks;
+            let cell = Packed::of(TermCell { ch, fg, bg });
+            let pen = Inks::of(Pen { fg: pf, bg: pb });
+            if let Some(f) = cell.flipped().filter(|f| f.len() == cell.len() && !cell.fits(pen)) {
+                let cost = |c: &Packed| sgr_cost(pen, c.pen(pen));
+                let keeps = |c: &Packed| c.fg == pen.fg || c.bg == pen.bg;
+                let cheaper = if !keeps(&cell) && !keeps(&f) || cost(&f) >= cost(&cell) { cell } else { f };
+                prop_assert_eq!(cell.cheaper_of_two_colours(f, pen), cheaper);
+            }
+        }
+    }
+
+    proptest! {
         /// Two inks pack to the same word exactly when they are equal, and
         /// cells compare equal packed exactly when they do unpacked.
         #[test]
