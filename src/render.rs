@@ -1527,8 +1527,24 @@ fn front_facing(v: [&Vert; 3]) -> bool {
 /// exact, and the same weights for a scene and that scene scaled by any
 /// power of two (a scene 1e-30 across has `1/w` near 1e30, whose products
 /// with the edge values would overflow f32).
+#[inline(always)]
 fn unit_scale(v: [f32; 3]) -> [f32; 3] {
     let max = v[0].max(v[1]).max(v[2]);
+    if max.is_normal() {
+        // 2^−e for the exponent e of `max`, the factor `pow2_unit` brings it
+        // into [1, 2) with, read from its bits: an f32 exactly (2^−127, for
+        // the largest exponents, is subnormal but exact).
+        let e = ((max.to_bits() >> 23) & 0xff) as i32 - 127;
+        if e == 0 {
+            return v;
+        }
+        let k = if e == 127 {
+            f32::from_bits(1 << 22)
+        } else {
+            f32::from_bits(((127 - e) as u32) << 23)
+        };
+        return v.map(|x| x * k);
+    }
     let scaled = transform::pow2_unit(Vec3::new(max, 0.0, 0.0)).x;
     if scaled == max {
         return v;
@@ -1542,4 +1558,32 @@ fn unit_scale(v: [f32; 3]) -> [f32; 3] {
 #[must_use]
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
     Renderer::new().render(scene, opts).clone()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The power of two read from the largest weight's bits is the
+        /// factor `pow2_unit` brings it into [1, 2) with: the same three
+        /// weights, bit for bit, in every binade (the largest and the
+        /// smallest exponents included), for zero, subnormal, infinite and
+        /// NaN weights as well.
+        #[test]
+        fn unit_scale_is_pow2_units_factor(
+            bits in prop::array::uniform3(prop_oneof![
+                any::<u32>(),
+                (0u32..256, 0u32..1 << 23).prop_map(|(e, m)| e << 23 | m),
+                prop::sample::select(vec![0, 1, 0x7f80_0000, 0x7fc0_0000, 0x3f80_0000, 0x7f7f_ffff, 0x0080_0000]),
+            ]),
+        ) {
+            let v = bits.map(f32::from_bits);
+            let max = v[0].max(v[1]).max(v[2]);
+            let scaled = transform::pow2_unit(Vec3::new(max, 0.0, 0.0)).x;
+            let expected = if scaled == max { v } else { v.map(|x| x * (scaled / max)) };
+            prop_assert_eq!(unit_scale(v).map(f32::to_bits), expected.map(f32::to_bits));
+        }
+    }
 }
