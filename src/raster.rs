@@ -499,13 +499,7 @@ impl Setup {
                 if self.bbox_samples() == 0 {
                     return 0;
                 }
-                let (px, py) = (
-                    Fixed::sample_centre(self.x0 as u32).0,
-                    Fixed::sample_centre(self.y0 as u32).0,
-                );
-                let mut row = self.edges.map(|e| e.at(px, py));
-                let sx = self.edges.map(|e| e.step_x());
-                let sy = self.edges.map(|e| e.step_y());
+                let (mut row, sx, sy) = self.steps();
                 let last = self.x1 - self.x0;
                 for y in self.y0..=self.y1 {
                     let (lo, hi) = self.span(row, sx, last);
@@ -562,13 +556,7 @@ impl Setup {
                 if self.bbox_samples() == 0 {
                     return 0;
                 }
-                let (px, py) = (
-                    Fixed::sample_centre(self.x0 as u32).0,
-                    Fixed::sample_centre(self.y0 as u32).0,
-                );
-                let mut row = self.edges.map(|e| e.at(px, py));
-                let sx = self.edges.map(|e| e.step_x());
-                let sy = self.edges.map(|e| e.step_y());
+                let (mut row, sx, sy) = self.steps();
                 for y in self.y0..=self.y1 {
                     let mut e = row;
                     for x in self.x0..=self.x1 {
@@ -582,6 +570,21 @@ impl Setup {
                 self.bbox_samples()
             }
         }
+    }
+
+    /// The edge values at the box's first sample, and their steps along x
+    /// and y: what the stepping walks start from.
+    #[inline(always)]
+    fn steps(&self) -> ([i64; 3], [i64; 3], [i64; 3]) {
+        let (px, py) = (
+            Fixed::sample_centre(self.x0 as u32).0,
+            Fixed::sample_centre(self.y0 as u32).0,
+        );
+        (
+            self.edges.map(|e| e.at(px, py)),
+            self.edges.map(|e| e.step_x()),
+            self.edges.map(|e| e.step_y()),
+        )
     }
 
     /// The covered samples of a row of the box, `[lo, hi]` counted from
