@@ -53,7 +53,8 @@
 //! **Small triangles.** Most triangles of a detailed model seen small have
 //! a bounding box of a few samples and cover none of them; many hold
 //! no sample centre at all, which the vertices' centre keys (computed once
-//! per vertex) tell in a few comparisons before anything else. [`SmallSetup`]
+//! per vertex) tell in a few comparisons, once the signed area (culling,
+//! zero area) is known. [`SmallSetup`]
 //! tests each sample of a box of at most [`SMALL_BOX`] once, at set-up,
 //! and keeps only the vertices and a bit per covered sample: a triangle
 //! that covers nothing is known without a [`Setup`] built (a couple of
@@ -388,13 +389,34 @@ impl Setup {
         // and drop degenerates before anything else.
         let extent = extent(&p);
         let area2 = Setup::signed_area2_in(&p, &extent, cull)?;
+        Ok(Setup::with_area(p, &extent, area2, grid, band))
+    }
+
+    /// [`Setup::from_fixed_in`] of a triangle the vertex stage snapped
+    /// (every coordinate within ±[`MAX_COORD`] samples), whose
+    /// [`Setup::signed_area2`] is `area2`: the same set-up.
+    #[inline(always)]
+    pub(crate) fn from_snapped(p: [FixedPoint; 3], area2: i64, grid: Grid, band: Band) -> Setup {
+        Setup::with_area(p, &extent(&p), area2, grid, band)
+    }
+
+    /// The set-up of a triangle whose extent and signed area (not zero) are
+    /// known.
+    #[inline(always)]
+    fn with_area(
+        p: [FixedPoint; 3],
+        extent: &[i64; 4],
+        area2: i64,
+        grid: Grid,
+        band: Band,
+    ) -> Setup {
         let ccw = area2 > 0;
-        let [x0, x1, y0, y1] = clamped_box(&extent, grid, band);
+        let [x0, x1, y0, y1] = clamped_box(extent, grid, band);
         if x0 > x1 || y0 > y1 {
             // A return of its own rather than one `Ok(Setup { .. })` below
             // with the edges chosen by an `if`: 3 % fewer instructions on a
             // Tux frame (callgrind).
-            return Ok(Setup {
+            return Setup {
                 edges: [Edge::NONE; 3],
                 order: [0, 1, 2],
                 area2: area2.abs(),
@@ -403,10 +425,10 @@ impl Setup {
                 x1,
                 y0,
                 y1,
-            });
+            };
         }
         let (edges, order) = oriented(&p, ccw);
-        Ok(Setup {
+        Setup {
             edges,
             order,
             area2: area2.abs(),
@@ -415,7 +437,7 @@ impl Setup {
             x1,
             y0,
             y1,
-        })
+        }
     }
 
     /// Twice the signed area of a snapped triangle (positive when
@@ -656,80 +678,85 @@ impl SmallSetup {
         band: Band,
         cull: Cull,
     ) -> Result<Option<SmallSetup>, Rejected> {
-        SmallSetup::set_up::<true>(p, grid, band, cull)
+        let extent = extent(&p);
+        let area2 = Setup::signed_area2_in(&p, &extent, cull)?;
+        Ok(SmallSetup::with_area(p, &extent, area2, grid, band))
     }
 
-    /// [`SmallSetup::new`] for vertices the vertex stage snapped: each
-    /// coordinate is within ±[`MAX_COORD`] samples (`Fixed::snap` accepts no
-    /// other), so the range is not tested again.
+    /// [`SmallSetup::new`] for vertices the vertex stage snapped (each
+    /// coordinate is within ±[`MAX_COORD`] samples: `Fixed::snap` accepts no
+    /// other), whose [`Setup::signed_area2`] is `area2`, found by the caller
+    /// before anything else: `None` when its box holds more than
+    /// [`SMALL_BOX`] samples.
     #[inline(always)]
     pub(crate) fn new_snapped(
         p: [FixedPoint; 3],
+        area2: i64,
         grid: Grid,
         band: Band,
-        cull: Cull,
-    ) -> Result<Option<SmallSetup>, Rejected> {
+    ) -> Option<SmallSetup> {
         let limit = (MAX_COORD as i64) * ONE;
         debug_assert!(
             p.iter()
                 .all(|q| q.x.0.abs() <= limit && q.y.0.abs() <= limit)
         );
-        SmallSetup::set_up::<false>(p, grid, band, cull)
+        SmallSetup::with_area(p, &extent(&p), area2, grid, band)
     }
 
     #[inline(always)]
-    fn set_up<const CHECK_RANGE: bool>(
+    fn with_area(
         p: [FixedPoint; 3],
+        extent: &[i64; 4],
+        area2: i64,
         grid: Grid,
         band: Band,
-        cull: Cull,
-    ) -> Result<Option<SmallSetup>, Rejected> {
-        let extent = extent(&p);
-        let area2 = if CHECK_RANGE {
-            Setup::signed_area2_in(&p, &extent, cull)?
-        } else {
-            Setup::signed_area2_in_range(&p, cull)?
-        };
+    ) -> Option<SmallSetup> {
         let ccw = area2 > 0;
-        let [x0, x1, y0, y1] = clamped_box(&extent, grid, band);
-        let mut s = SmallSetup {
-            p,
-            order: [0, 1, 2],
-            ccw,
-            area2: area2.abs(),
-            x0: 0,
-            y0: 0,
-            w: 0,
-            h: 0,
-            tested: 0,
-            covered: 0,
-        };
+        let [x0, x1, y0, y1] = clamped_box(extent, grid, band);
         if x0 > x1 || y0 > y1 {
-            return Ok(Some(s));
+            return Some(SmallSetup {
+                p,
+                order: [0, 1, 2],
+                ccw,
+                area2: area2.abs(),
+                x0: 0,
+                y0: 0,
+                w: 0,
+                h: 0,
+                tested: 0,
+                covered: 0,
+            });
         }
         let (w, n) = (x1 - x0 + 1, (x1 - x0 + 1) * (y1 - y0 + 1));
         if n as u64 > SMALL_BOX {
-            return Ok(None);
+            return None;
         }
         let (edges, order) = oriented(&p, ccw);
-        s.p = order.map(|i| p[i]);
-        s.order = order.map(|i| i as u8);
-        (s.x0, s.y0, s.w, s.h, s.tested) =
-            (x0 as u32, y0 as u32, w as u8, (y1 - y0 + 1) as u8, n as u8);
         let accepts = |x: i64, y: i64| {
             let (px, py) = (x * ONE + ONE / 2, y * ONE + ONE / 2);
             edges.iter().all(|e| e.at(px, py) >= e.min)
         };
-        let mut bit = 1;
+        let (mut covered, mut bit) = (0, 1);
         for y in y0..=y1 {
             for x in x0..=x1 {
                 if accepts(x, y) {
-                    s.covered |= bit;
+                    covered |= bit;
                 }
                 bit <<= 1;
             }
         }
-        Ok(Some(s))
+        Some(SmallSetup {
+            p: order.map(|i| p[i]),
+            order: order.map(|i| i as u8),
+            ccw,
+            area2: area2.abs(),
+            x0: x0 as u32,
+            y0: y0 as u32,
+            w: w as u8,
+            h: (y1 - y0 + 1) as u8,
+            tested: n as u8,
+            covered,
+        })
     }
 }
 
@@ -1175,8 +1202,14 @@ mod tests {
             let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
             // In range, the snapped vertices' set-up is the same.
             proptest::prop_assert_eq!(
-                format!("{:?}", SmallSetup::new_snapped(p, grid, band, cull)),
+                format!("{:?}", Setup::signed_area2_in_range(&p, cull)
+                    .map(|a| SmallSetup::new_snapped(p, a, grid, band))),
                 format!("{:?}", SmallSetup::new(p, grid, band, cull))
+            );
+            proptest::prop_assert_eq!(
+                format!("{:?}", Setup::signed_area2_in_range(&p, cull)
+                    .map(|a| Setup::from_snapped(p, a, grid, band))),
+                format!("{:?}", Setup::from_fixed_in(p, grid, band, cull))
             );
             match (SmallSetup::new(p, grid, band, cull), Setup::from_fixed_in(p, grid, band, cull)) {
                 (Err(a), Err(b)) => proptest::prop_assert_eq!(a, b),

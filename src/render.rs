@@ -20,7 +20,8 @@
 //! homogeneous space first ([`crate::clip`]). Culling is decided on the
 //! snapped screen-space winding, exactly. Most triangles of a model take a
 //! lean path (inside every plane, no texture, the planned pipeline's fixed
-//! point): no clip-path arguments are gathered, a bounding box of at most
+//! point): no clip-path arguments are gathered, the signed area (culled,
+//! no area) is found first and handed on, a bounding box of at most
 //! eight samples is tested sample by sample at set-up
 //! ([`crate::raster::SmallSetup`]), and a triangle that covers no sample is
 //! neither lit nor filled, nor are its colours read. The trade-off: a
@@ -676,13 +677,28 @@ impl Renderer {
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
-                if inside && lean && CentreKey::box_is_empty(v.map(|v| v.key)) {
-                    // No sample centre in its box, known from its vertices'
-                    // keys: counted as its set-up would count it.
+                let base = || match &mesh.colors {
+                    Some(c) => face.map(|i| c[i as usize]),
+                    None => [run.color; 3],
+                };
+                if inside && lean {
+                    // Culled or without area: rejected before anything
+                    // else, as its set-up would reject it (snapped, so in
+                    // range).
                     self.stats.triangles_in += 1;
-                    match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
-                        Ok(_) => self.stats.raster.triangles_drawn += 1,
-                        Err(r) => self.stats.raster.count_rejected(r),
+                    let area2 = match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
+                        Ok(a) => a,
+                        Err(r) => {
+                            self.stats.raster.count_rejected(r);
+                            continue;
+                        }
+                    };
+                    self.stats.raster.triangles_drawn += 1;
+                    // No sample centre in its box, known from its vertices'
+                    // keys: nothing more to count. The colours are read
+                    // only if it covers a sample.
+                    if !CentreKey::box_is_empty(v.map(|v| v.key)) {
+                        self.inside_triangle(stage, v, base, area2);
                     }
                     continue;
                 }
@@ -696,15 +712,6 @@ impl Renderer {
                         Ok(_) => self.stats.raster.triangles_drawn += 1,
                         Err(r) => self.stats.raster.count_rejected(r),
                     }
-                    continue;
-                }
-                let base = || match &mesh.colors {
-                    Some(c) => face.map(|i| c[i as usize]),
-                    None => [run.color; 3],
-                };
-                if inside && lean {
-                    // The colours are read only if it covers a sample.
-                    self.inside_triangle(stage, v, base, f.cull);
                     continue;
                 }
                 let base = base();
@@ -966,31 +973,24 @@ impl Renderer {
 
     /// What [`Renderer::triangle`] does for a triangle inside every clip
     /// plane without a texture, in the planned pipeline's fixed point (not
-    /// the full pipeline, nor exact coverage, nor the full-grid scan):
-    /// set it up, and light and fill it only if it covers a sample.
+    /// the full pipeline, nor exact coverage, nor the full-grid scan), once
+    /// it is counted as drawn with signed area `area2`: set it up, and
+    /// light and fill it only if it covers a sample.
     #[inline(always)]
     fn inside_triangle(
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
         base: impl Fn() -> [Lin; 3],
-        cull: Cull,
+        area2: i64,
     ) {
-        self.stats.triangles_in += 1;
         let (grid, band) = (self.fb.grid(), self.fb.band());
         let fixed = v.map(|v| v.fixed);
-        // Inside every clip plane: snapped, so in range.
-        match SmallSetup::new_snapped(fixed, grid, band, cull) {
-            Err(r) => self.stats.raster.count_rejected(r),
-            Ok(Some(s)) => {
-                self.stats.raster.triangles_drawn += 1;
+        match SmallSetup::new_snapped(fixed, area2, grid, band) {
+            Some(s) => self.inside_fill(stage, v, &base, &s),
+            None => {
+                let s = Setup::from_snapped(fixed, area2, grid, band);
                 self.inside_fill(stage, v, &base, &s);
-            }
-            Ok(None) => {
-                let setup = Setup::from_fixed_in(fixed, grid, band, cull);
-                if let Some(s) = self.setup(&setup, false) {
-                    self.inside_fill(stage, v, &base, s);
-                }
             }
         }
     }
