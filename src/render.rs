@@ -674,12 +674,13 @@ impl Renderer {
                 && !stage.exact
                 && stage.precision == Precision::Fixed
                 && stage.traversal != Traversal::Scan;
+            let run_color = lanes(run.color);
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
                 let base = || match &mesh.colors {
-                    Some(c) => face.map(|i| c[i as usize]),
-                    None => [run.color; 3],
+                    Some(c) => face.map(|i| lanes(c[i as usize])),
+                    None => [run_color; 3],
                 };
                 if inside && lean {
                     // Culled or without area: rejected before anything
@@ -756,7 +757,7 @@ impl Renderer {
             self.triangle(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
-                tri.color.at_vertices().map(Lin::from_srgb),
+                tri.color.at_vertices().map(|c| lanes(Lin::from_srgb(c))),
                 cull,
                 Model {
                     positions: &tri.vertices,
@@ -831,7 +832,7 @@ impl Renderer {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: [Lin; 3],
+        base: [Vec3A; 3],
         cull: Cull,
         model: Model<'_>,
         tex: Option<Tex<'_>>,
@@ -981,7 +982,7 @@ impl Renderer {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: impl Fn() -> [Lin; 3],
+        base: impl Fn() -> [Vec3A; 3],
         area2: i64,
     ) {
         let (grid, band) = (self.fb.grid(), self.fb.band());
@@ -1002,7 +1003,7 @@ impl Renderer {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: &impl Fn() -> [Lin; 3],
+        base: &impl Fn() -> [Vec3A; 3],
         s: &C,
     ) {
         if !s.covers_any() {
@@ -1027,7 +1028,13 @@ impl Renderer {
     /// that interpolating three equal colours gives back exactly that
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
-    fn shade(&mut self, stage: &Stage<'_>, v: [&Vert; 3], base: [Lin; 3], back: bool) -> [Vec3; 3] {
+    fn shade(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Vec3A; 3],
+        back: bool,
+    ) -> [Vec3; 3] {
         let round = |c: Vec3A| Vec3::from(Lin::round_lanes(c));
         let c = self.light(stage, v, base, back);
         [round(c[0]), round(c[1]), round(c[2])]
@@ -1040,10 +1047,10 @@ impl Renderer {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: [Lin; 3],
+        base: [Vec3A; 3],
         back: bool,
     ) -> [Vec3A; 3] {
-        let b = |i: usize| Vec3A::from_array(base[i].to_f32());
+        let b = |i: usize| base[i];
         match stage.plan.shading {
             Shading::None => [b(0), b(1), b(2)],
             Shading::Flat => {
@@ -1514,6 +1521,13 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
         v.code |= BAD_NORMAL;
     }
     v
+}
+
+/// A colour's channels in SIMD lanes, as the shading multiplies them
+/// (converted once per run of faces, not once per face).
+#[inline(always)]
+fn lanes(c: Lin) -> Vec3A {
+    Vec3A::from_array(c.to_f32())
 }
 
 /// Whether the snapped screen triangle is counter-clockwise (the same
