@@ -675,6 +675,8 @@ impl Renderer {
                 && stage.precision == Precision::Fixed
                 && stage.traversal != Traversal::Scan;
             let run_color = lanes(run.color);
+            // Every face is handed to the pipeline: counted once a run.
+            self.stats.triangles_in += run.faces.len() as u64;
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
@@ -686,7 +688,6 @@ impl Renderer {
                     // Culled or without area: rejected before anything
                     // else, as its set-up would reject it (snapped, so in
                     // range).
-                    self.stats.triangles_in += 1;
                     let area2 = match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
                         Ok(a) => a,
                         Err(r) => {
@@ -708,7 +709,6 @@ impl Renderer {
                     && f.pretest
                     && raster::box_is_empty(&v.map(|v| v.fixed), grid, band)
                 {
-                    self.stats.triangles_in += 1;
                     match Setup::signed_area2(&v.map(|v| v.fixed), f.cull) {
                         Ok(_) => self.stats.raster.triangles_drawn += 1,
                         Err(r) => self.stats.raster.count_rejected(r),
@@ -748,6 +748,7 @@ impl Renderer {
         let cull = opts.cull.unwrap_or(Cull::None);
         let loose = Transforms::new(vp, turn);
         let loose_tests = p.clip_tests(scene.meshes.len());
+        self.stats.triangles_in += scene.triangles.len() as u64;
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
@@ -827,7 +828,8 @@ impl Renderer {
 
     /// Sets up, lights, clips if it must, and rasterizes one triangle;
     /// `model` is its vertices' model-space positions and the matrix taking
-    /// them to clip space, for the clip path.
+    /// them to clip space, for the clip path. The caller counts it in
+    /// [`FrameStats::triangles_in`].
     fn triangle(
         &mut self,
         stage: &Stage<'_>,
@@ -837,7 +839,6 @@ impl Renderer {
         model: Model<'_>,
         tex: Option<Tex<'_>>,
     ) {
-        self.stats.triangles_in += 1;
         let (texture, uv) = match tex {
             Some(t) => (Some((t.texture, t.sampler)), t.uv),
             None => (None, [Vec2::ZERO; 3]),
