@@ -1029,6 +1029,7 @@ impl Renderer {
     /// that interpolating three equal colours gives back exactly that
     /// colour (the full pipeline's interpolation of a one-colour triangle
     /// then matches the planned pipeline's plain write, bit for bit).
+    #[inline(always)]
     fn shade(
         &mut self,
         stage: &Stage<'_>,
