@@ -282,6 +282,27 @@ proptest! {
         }
     }
 
+    /// Every triangle handed to the pipeline is counted once a pass in
+    /// `triangles_in` (anti-aliasing draws the scene once per sub-sample):
+    /// every mesh's faces and the loose triangles, whatever the path each
+    /// takes (lean, general, clipped), the pipeline and the number of
+    /// bands.
+    #[test]
+    fn every_triangle_handed_in_is_counted_once(
+        scene in scene(),
+        opts in options(),
+        full in any::<bool>(),
+        threads in 1u16..4,
+    ) {
+        let pipeline = if full { Pipeline::Full } else { Pipeline::Planned };
+        let opts = RenderOptions { pipeline, threads: Threads::Exactly(threads), ..opts };
+        let mut r = Renderer::new();
+        r.render(&scene, &opts);
+        let handed_in = scene.meshes.iter().map(|m| m.faces.len()).sum::<usize>()
+            + scene.triangles.len();
+        prop_assert_eq!(r.stats().triangles_in, handed_in as u64 * opts.aa.passes());
+    }
+
     /// Promise 11: the same frame, bit for bit, drawn by one thread or in
     /// bands by several, in every glyph mode, with clipping, depth,
     /// culling, lighting and the full pipeline.
