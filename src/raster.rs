@@ -736,15 +736,21 @@ impl SmallSetup {
             let (px, py) = (x * ONE + ONE / 2, y * ONE + ONE / 2);
             edges.iter().all(|e| e.at(px, py) >= e.min)
         };
-        let (mut covered, mut bit) = (0, 1);
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                if accepts(x, y) {
-                    covered |= bit;
+        let covered = if n == 1 {
+            // Most boxes of a detailed model seen small: one sample.
+            u8::from(accepts(x0, y0))
+        } else {
+            let (mut covered, mut bit) = (0, 1);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if accepts(x, y) {
+                        covered |= bit;
+                    }
+                    bit <<= 1;
                 }
-                bit <<= 1;
             }
-        }
+            covered
+        };
         Some(SmallSetup {
             p: order.map(|i| p[i]),
             order: order.map(|i| i as u8),
