@@ -147,17 +147,34 @@ fn directions(k: &glam::Mat3, nx: Vec4, ny: Vec4, nz: Vec4) -> Option<[Vec4; 3]>
     if !(x.is_finite_mask() & y.is_finite_mask() & z.is_finite_mask()).all() {
         return None;
     }
-    // `pow2_unit`: each lane by the powers of two of its largest entry.
-    let max = x.abs().max(y.abs()).max(z.abs()).to_array();
-    let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
-    for i in 0..4 {
-        (a[i], b[i]) = transform::pow2_factors(max[i])?;
-    }
-    let (a, b) = (Vec4::from_array(a), Vec4::from_array(b));
-    let (x, y, z) = (x * a * b, y * a * b, z * a * b);
+    let (x, y, z) = pow2_units(x, y, z)?;
     // `normalize_or_zero`: never zero here, the largest entry is in [1, 2).
     let rcp = Vec4::ONE / (x * x + y * y + z * z).sqrt();
     Some([x * rcp, y * rcp, z * rcp])
+}
+
+/// `transform::pow2_unit` of four vectors in lanes (each lane times the
+/// powers of two that bring its largest entry into [1, 2)), or `None` when
+/// one of them is zero or subnormal at its largest, or not finite.
+#[inline(always)]
+fn pow2_units(x: Vec4, y: Vec4, z: Vec4) -> Option<(Vec4, Vec4, Vec4)> {
+    let max = x.abs().max(y.abs()).max(z.abs());
+    // Most often all four are in one binade, the first's: its factors
+    // serve all four (`lo` and `2·lo` are exact powers of two; a NaN fails
+    // both comparisons). Otherwise each lane's own.
+    let (a0, b0) = transform::pow2_factors(max.x)?;
+    let lo = 1.0 / (a0 * b0);
+    let (a, b) = if (max.cmpge(Vec4::splat(lo)) & max.cmplt(Vec4::splat(2.0 * lo))).all() {
+        (Vec4::splat(a0), Vec4::splat(b0))
+    } else {
+        let max = max.to_array();
+        let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
+        for i in 0..4 {
+            (a[i], b[i]) = transform::pow2_factors(max[i])?;
+        }
+        (Vec4::from_array(a), Vec4::from_array(b))
+    };
+    Some((x * a * b, y * a * b, z * a * b))
 }
 
 #[cfg(test)]
@@ -304,6 +321,84 @@ mod tests {
             prop_assert_eq!(four.len(), one.len());
             for (i, (a, b)) in four.iter().zip(&one).enumerate() {
                 prop_assert_eq!(bits(a), bits(b), "vertex {}: {:?} {:?}", i, a, b);
+            }
+        }
+    }
+    /// Four vectors scaled in lanes are each scaled as `pow2_unit` scales
+    /// one: all four in one binade (the shared factors), across binades,
+    /// at their edges (exact powers of two and the floats below them), at
+    /// the largest and smallest normal exponents, and `None` exactly when a
+    /// lane is zero, subnormal or not finite at its largest.
+    #[test]
+    fn four_scaled_in_lanes_are_each_scaled_alone() {
+        let edges = |e: i32| {
+            let p = 2f32.powi(e);
+            [
+                p,
+                f32::from_bits(p.to_bits() - 1),
+                f32::from_bits(p.to_bits() + 1),
+            ]
+        };
+        let mut values: Vec<f32> = [-126, -64, -1, 0, 1, 2, 63, 127]
+            .into_iter()
+            .flat_map(edges)
+            .collect();
+        values.extend([
+            0.7,
+            -0.9,
+            1.5,
+            3.0,
+            f32::MAX,
+            0.0,
+            1e-40,
+            f32::NAN,
+            f32::INFINITY,
+        ]);
+        let n = values.len();
+        // Lanes drawn from the values (the same one in many lanes, so that
+        // shared binades are common), each vector's largest in x, y or z.
+        let mut seed = 0x9e37_79b9u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed as usize
+        };
+        for _ in 0..20_000 {
+            let base = next() % n;
+            let v: [Vec3; 4] = std::array::from_fn(|_| {
+                // Two lanes in three share the draw's binade, on average.
+                let k = next();
+                let big = if k % 3 != 0 {
+                    values[base]
+                } else {
+                    values[k % n]
+                };
+                let small = values[next() % n] * 0.25;
+                match next() % 3 {
+                    0 => Vec3::new(big, small, -small),
+                    1 => Vec3::new(small, -big, small),
+                    _ => Vec3::new(-small, small, big),
+                }
+            });
+            let lane = |c: usize| Vec4::new(v[0][c], v[1][c], v[2][c], v[3][c]);
+            let got = pow2_units(lane(0), lane(1), lane(2));
+            let alone: Vec<Option<Vec3>> = v
+                .iter()
+                .map(|v| {
+                    transform::pow2_factors(v.abs().max_element()).map(|_| transform::pow2_unit(*v))
+                })
+                .collect();
+            match got {
+                None => assert!(alone.iter().any(Option::is_none), "{v:?}"),
+                Some((x, y, z)) => {
+                    let (x, y, z) = (x.to_array(), y.to_array(), z.to_array());
+                    for (i, one) in alone.iter().enumerate() {
+                        let one = one.expect("every lane scales");
+                        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                        assert_eq!(bits(Vec3::new(x[i], y[i], z[i])), bits(one), "{v:?}");
+                    }
+                }
             }
         }
     }
