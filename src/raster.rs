@@ -263,6 +263,15 @@ impl CentreKey {
     }
 }
 
+/// Whether every coordinate is within ±[`MAX_COORD`] samples, as the
+/// vertex stage's snapped vertices are (checked in debug builds where a
+/// set-up relies on it).
+fn snapped_in_range(p: &[FixedPoint; 3]) -> bool {
+    let limit = (MAX_COORD as i64) * ONE;
+    p.iter()
+        .all(|q| q.x.0.abs() <= limit && q.y.0.abs() <= limit)
+}
+
 /// A snapped triangle's extent in fixed point: `[min x, max x, min y,
 /// max y]`.
 #[inline(always)]
@@ -397,6 +406,7 @@ impl Setup {
     /// [`Setup::signed_area2`] is `area2`: the same set-up.
     #[inline(always)]
     pub(crate) fn from_snapped(p: [FixedPoint; 3], area2: i64, grid: Grid, band: Band) -> Setup {
+        debug_assert!(snapped_in_range(&p));
         Setup::with_area(p, &extent(&p), area2, grid, band)
     }
 
@@ -695,11 +705,7 @@ impl SmallSetup {
         grid: Grid,
         band: Band,
     ) -> Option<SmallSetup> {
-        let limit = (MAX_COORD as i64) * ONE;
-        debug_assert!(
-            p.iter()
-                .all(|q| q.x.0.abs() <= limit && q.y.0.abs() <= limit)
-        );
+        debug_assert!(snapped_in_range(&p));
         SmallSetup::with_area(p, &extent(&p), area2, grid, band)
     }
 
