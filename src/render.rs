@@ -1379,8 +1379,13 @@ impl Attributes {
         let z = order.map(|i| z[i]);
         Attributes {
             z,
-            z_lo: z[0].min(z[1]).min(z[2]),
-            z_hi: z[0].max(z[1]).max(z[2]),
+            // Plain comparisons rather than `f32::min` and `max`, whose
+            // rule for a NaN costs a few instructions each: the depths
+            // here are finite (inside the clip volume, or cut to it), where
+            // the two agree (up to the sign of a zero, which no depth test
+            // tells apart).
+            z_lo: lesser(lesser(z[0], z[1]), z[2]),
+            z_hi: greater(greater(z[0], z[1]), z[2]),
             inv_area,
             // Weights e_i, or e_i / w_i for perspective correction,
             // renormalised.
@@ -1397,7 +1402,15 @@ impl Attributes {
     #[inline(always)]
     fn depth(&self, e: [f32; 3]) -> f32 {
         let z = (e[0] * self.z[0] + e[1] * self.z[1] + e[2] * self.z[2]) * self.inv_area;
-        z.clamp(self.z_lo, self.z_hi)
+        // `f32::clamp` without its assertion that the range is ordered
+        // (it is: see `new`), so nothing here can panic.
+        if z < self.z_lo {
+            self.z_lo
+        } else if z > self.z_hi {
+            self.z_hi
+        } else {
+            z
+        }
     }
 
     /// The colour at a sample of weights `e`.
@@ -1408,6 +1421,18 @@ impl Attributes {
         let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
         (ca * wa + cb * wb + cc * wc) / (wa + wb + wc)
     }
+}
+
+/// The lesser of two finite floats (the second when they are equal).
+#[inline(always)]
+fn lesser(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// The greater of two finite floats (the second when they are equal).
+#[inline(always)]
+fn greater(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
 }
 
 /// A triangle's texture coordinates as functions of the sample position:
@@ -1600,6 +1625,28 @@ mod tests {
             let scaled = transform::pow2_unit(Vec3::new(max, 0.0, 0.0)).x;
             let expected = if scaled == max { v } else { v.map(|x| x * (scaled / max)) };
             prop_assert_eq!(unit_scale(v).map(f32::to_bits), expected.map(f32::to_bits));
+        }
+
+        /// A sample's depth is the interpolated depth clamped to the
+        /// vertices' range as `f32::clamp` clamps it (the same number; a
+        /// zero's sign aside), for finite depths of any order, zeros of
+        /// either sign and equal depths among them, and weights that
+        /// overshoot the triangle.
+        #[test]
+        fn depth_is_clamped_to_the_vertices_range(
+            z in prop::array::uniform3(prop_oneof![
+                -1f32..1.0,
+                prop::sample::select(vec![0.0f32, -0.0, 1.0, -1.0, 0.5]),
+            ]),
+            e in prop::array::uniform3(-3f32..4.0),
+            inv_area in 0.01f32..2.0,
+        ) {
+            let a = Attributes::new([0, 1, 2], inv_area, [z, [1.0; 3]], [Vec3::ZERO; 3], false);
+            let raw = (e[0] * z[0] + e[1] * z[1] + e[2] * z[2]) * inv_area;
+            let (lo, hi) = (z[0].min(z[1]).min(z[2]), z[0].max(z[1]).max(z[2]));
+            let got = a.depth(e);
+            prop_assert!(got == raw.clamp(lo, hi), "{} against {}", got, raw.clamp(lo, hi));
+            prop_assert!(lo <= got && got <= hi);
         }
     }
 }
