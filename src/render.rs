@@ -1404,13 +1404,7 @@ impl Attributes {
         let z = (e[0] * self.z[0] + e[1] * self.z[1] + e[2] * self.z[2]) * self.inv_area;
         // `f32::clamp` without its assertion that the range is ordered
         // (it is: see `new`), so nothing here can panic.
-        if z < self.z_lo {
-            self.z_lo
-        } else if z > self.z_hi {
-            self.z_hi
-        } else {
-            z
-        }
+        greater(lesser(z, self.z_hi), self.z_lo)
     }
 
     /// The colour at a sample of weights `e`.
