@@ -674,14 +674,15 @@ impl Renderer {
                 && !stage.exact
                 && stage.precision == Precision::Fixed
                 && stage.traversal != Traversal::Scan;
-            let run_color = lanes(run.color);
+            // Converted to lanes once a run, not once a face.
+            let run_color = run.color.to_lanes();
             // Every face is handed to the pipeline: counted once a run.
             self.stats.triangles_in += run.faces.len() as u64;
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
                 let base = || match &mesh.colors {
-                    Some(c) => face.map(|i| lanes(c[i as usize])),
+                    Some(c) => face.map(|i| c[i as usize].to_lanes()),
                     None => [run_color; 3],
                 };
                 if inside && lean {
@@ -758,7 +759,9 @@ impl Renderer {
             self.triangle(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
-                tri.color.at_vertices().map(|c| lanes(Lin::from_srgb(c))),
+                tri.color
+                    .at_vertices()
+                    .map(|c| Lin::from_srgb(c).to_lanes()),
                 cull,
                 Model {
                     positions: &tri.vertices,
@@ -1542,13 +1545,6 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
         v.code |= BAD_NORMAL;
     }
     v
-}
-
-/// A colour's channels in SIMD lanes, as the shading multiplies them
-/// (converted once per run of faces, not once per face).
-#[inline(always)]
-fn lanes(c: Lin) -> Vec3A {
-    Vec3A::from_array(c.to_f32())
 }
 
 /// Whether the snapped screen triangle is counter-clockwise (the same

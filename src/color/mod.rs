@@ -128,6 +128,13 @@ impl Lin {
         Lin([r, g, b].map(|v| v.to_bits() as u16))
     }
 
+    /// [`Lin::to_f32`] in SIMD lanes, as the renderer lights and
+    /// interpolates colours.
+    #[inline(always)]
+    pub(crate) fn to_lanes(self) -> glam::Vec3A {
+        glam::Vec3A::from_array(self.to_f32())
+    }
+
     /// `Lin::from_f32(c).to_f32()` in SIMD lanes, bit for bit: each lane
     /// rounded (halves up) and clamped to a whole number in [0, 65535], a
     /// NaN lane 0.

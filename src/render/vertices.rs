@@ -329,6 +329,7 @@ mod tests {
             }
         }
     }
+
     /// Four vectors scaled in lanes are each scaled as `pow2_unit` scales
     /// one: all four in one binade (the shared factors), across binades,
     /// at their edges (exact powers of two and the floats below them), at
