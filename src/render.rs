@@ -1393,7 +1393,7 @@ impl Attributes {
             // Weights e_i, or e_i / w_i for perspective correction,
             // renormalised.
             w: if perspective {
-                unit_scale(order.map(|i| inv_w[i]))
+                perspective_weights(order.map(|i| inv_w[i]))
             } else {
                 [1.0; 3]
             },
@@ -1585,6 +1585,31 @@ fn unit_scale(v: [f32; 3]) -> [f32; 3] {
     v.map(|x| x * k)
 }
 
+/// The bits of the least and just above the greatest `1/w` that
+/// [`perspective_weights`] takes as they are: 2^−40 and 2^40.
+const PLAIN_W: (u32, u32) = ((127 - 40) << 23, (127 + 40) << 23);
+
+/// The perspective weights `[a, b, c]` of [`Attributes::lit`]: `v` as it
+/// is where each entry is in [2^−40, 2^40), else [`unit_scale`] of it. The
+/// same colours either way: a power of two scales every product and sum
+/// in `lit` exactly unless one leaves f32's normal range, and in that
+/// range none does, scaled or not (edge values are below 2^61, colours
+/// below 2^16; the scaled entries stay above 2^−81). Most triangles of
+/// most scenes are in range, and skip `unit_scale`'s few dozen
+/// instructions.
+#[inline(always)]
+fn perspective_weights(v: [f32; 3]) -> [f32; 3] {
+    let (lo, hi) = PLAIN_W;
+    // As u32, a positive finite f32's bits order as its value does; a
+    // negative, NaN or infinite one falls outside (and is scaled).
+    let plain = |x: f32| x.to_bits().wrapping_sub(lo) < hi - lo;
+    if plain(v[0]) & plain(v[1]) & plain(v[2]) {
+        v
+    } else {
+        unit_scale(v)
+    }
+}
+
 /// Renders one frame of `scene`.
 #[must_use]
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
@@ -1615,6 +1640,42 @@ mod tests {
             let scaled = transform::pow2_unit(Vec3::new(max, 0.0, 0.0)).x;
             let expected = if scaled == max { v } else { v.map(|x| x * (scaled / max)) };
             prop_assert_eq!(unit_scale(v).map(f32::to_bits), expected.map(f32::to_bits));
+        }
+
+        /// Weights of `1/w` in [2^−40, 2^40) are taken as they are, and
+        /// give the colours `unit_scale`'s give, bit for bit: at the ends
+        /// of the range together, with edge values up to 2^61 and colours
+        /// up to 65,535.
+        #[test]
+        fn plain_weights_colour_as_scaled_ones(
+            w in prop::array::uniform3(prop_oneof![
+                (PLAIN_W.0..PLAIN_W.1).prop_map(f32::from_bits),
+                0.01f32..1.0,
+                prop::sample::select(vec![
+                    f32::from_bits(PLAIN_W.0),
+                    f32::from_bits(PLAIN_W.1 - 1),
+                    1.0,
+                ]),
+            ]),
+            e in prop::array::uniform3(prop_oneof![
+                0i64..=1 << 61,
+                0i64..1000,
+                prop::sample::select(vec![0i64, 1, 1 << 61]),
+            ]),
+            c in prop::array::uniform3(prop::array::uniform3(prop_oneof![
+                0u16..=u16::MAX,
+                prop::sample::select(vec![0u16, 1, u16::MAX]),
+            ])),
+        ) {
+            prop_assert_eq!(perspective_weights(w).map(f32::to_bits), w.map(f32::to_bits));
+            let color = c.map(|c| Vec3::from(c.map(f32::from)));
+            let plain = Attributes::new([0, 1, 2], 1.0, [[0.0; 3], w], color, true);
+            let scaled = Attributes { w: unit_scale(w), ..plain };
+            let e = e.map(|e| e as f32);
+            prop_assert_eq!(
+                plain.lit(e).to_array().map(f32::to_bits),
+                scaled.lit(e).to_array().map(f32::to_bits)
+            );
         }
 
         /// A sample's depth is the interpolated depth clamped to the
