@@ -34,7 +34,10 @@
 //! per sample: larger is nearer, and of equal depths the first drawn wins.
 //! Colours are linear light ([`crate::color`]), lit and interpolated
 //! perspective-correctly: the rasterizer's screen-space weights `e_i` are
-//! divided by each vertex's `w` and renormalised. A camera that frames a
+//! divided by each vertex's `w` and renormalised. The three `1/w` are
+//! scaled by a power of two so that the largest is in [1, 2) only when one
+//! lies outside [2^−40, 2^40): within it, scaling changes no bit of a
+//! colour, and most triangles skip it. A camera that frames a
 //! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
 //! interpolation, and a sample's colour is computed only where the depth
 //! test lets it be written. Colours are added and multiplied in SIMD lanes
@@ -1360,8 +1363,8 @@ struct Attributes {
     z_lo: f32,
     z_hi: f32,
     inv_area: f32,
-    /// `1/w` scaled to [1, 2) at its largest where the plan corrects for
-    /// perspective, else 1.
+    /// `1/w` where the plan corrects for perspective (scaled to [1, 2) at
+    /// its largest where one is outside [2^−40, 2^40)), else 1.
     w: [f32; 3],
     /// In SIMD lanes: the same operations on each channel as three f32s,
     /// so the same results, in fewer instructions.
