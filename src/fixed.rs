@@ -8,6 +8,7 @@
 //! rasterizer's `i64` bit-width argument is kept (see [`crate::raster`]).
 
 use glam::Vec4;
+use wide::{bytemuck::cast, f32x4, i32x4};
 
 /// Fractional bits of a snapped coordinate.
 pub const FRAC_BITS: u32 = 8;
@@ -70,6 +71,42 @@ fn round_half_away(s: f32) -> i64 {
     t + (frac >= 0.5) as i64 - (frac <= -0.5) as i64
 }
 
+/// [`round_half_away`] of `v · 256` in four integer lanes, for `|v|` at
+/// most [`MAX_COORD`] (so that each fits in an `i32`, and the fast
+/// truncation, SSE2's where there is SSE2, is exact).
+#[inline(always)]
+fn round4(v: Vec4) -> i32x4 {
+    let s = f32x4::from((v * Vec4::splat(ONE as f32)).to_array());
+    let t = s.fast_trunc_int();
+    let frac = s - t.round_float();
+    // All ones (−1) in a lane whose fraction takes it one up (down).
+    let up: i32x4 = cast(frac.simd_ge(f32x4::splat(0.5)));
+    let down: i32x4 = cast(frac.simd_le(f32x4::splat(-0.5)));
+    t - up + down
+}
+
+/// Four snapped points, in fixed-point units, their x and y each in the
+/// lanes of an `i32` vector: what [`FixedPoint::snap4`] gives, for the
+/// vertex stage to read both the points and their centre keys from
+/// (`raster::CentreKey::of4`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SnappedLanes {
+    pub(crate) x: i32x4,
+    pub(crate) y: i32x4,
+}
+
+impl SnappedLanes {
+    /// The four points.
+    #[inline(always)]
+    pub(crate) fn points(&self) -> [FixedPoint; 4] {
+        let (x, y) = (self.x.to_array(), self.y.to_array());
+        std::array::from_fn(|i| FixedPoint {
+            x: Fixed(i64::from(x[i])),
+            y: Fixed(i64::from(y[i])),
+        })
+    }
+}
+
 /// A snapped point on the sample grid.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FixedPoint {
@@ -93,32 +130,19 @@ impl FixedPoint {
     /// lanes of a vector; `None` when any of them cannot be snapped. The
     /// same numbers: `v · 256` is exact, truncation in lanes is exact (the
     /// magnitudes are below 2^29, and from 2^23 on a float has no fraction),
-    /// and so are the fraction and the sum with ±1 where there is one.
+    /// and so are the fraction and the step of one where there is one
+    /// (below 2^23, in integer lanes).
     #[inline(always)]
-    pub(crate) fn snap4(x: Vec4, y: Vec4) -> Option<[FixedPoint; 4]> {
+    pub(crate) fn snap4(x: Vec4, y: Vec4) -> Option<SnappedLanes> {
         let limit = Vec4::splat(MAX_COORD);
         // NaN and the infinities fail the comparison too.
         if !(x.abs().cmple(limit) & y.abs().cmple(limit)).all() {
             return None;
         }
-        let round = |v: Vec4| {
-            let s = v * Vec4::splat(ONE as f32);
-            let t = s.trunc();
-            let frac = s - t;
-            let (one, zero) = (Vec4::ONE, Vec4::ZERO);
-            let r = t + Vec4::select(frac.cmpge(Vec4::splat(0.5)), one, zero)
-                - Vec4::select(frac.cmple(Vec4::splat(-0.5)), one, zero);
-            r.to_array()
-        };
-        let (xs, ys) = (round(x), round(y));
-        let mut out = [FixedPoint::default(); 4];
-        for (i, p) in out.iter_mut().enumerate() {
-            *p = FixedPoint {
-                x: Fixed(xs[i] as i64),
-                y: Fixed(ys[i] as i64),
-            };
-        }
-        Some(out)
+        Some(SnappedLanes {
+            x: round4(x),
+            y: round4(y),
+        })
     }
 
     /// Snaps a point given in samples, in f64.
@@ -184,7 +208,8 @@ mod tests {
             xs[i % 4] = special[i % special.len()];
             let alone: [Option<FixedPoint>; 4] =
                 std::array::from_fn(|k| FixedPoint::snap([xs[k], ys[k]]));
-            let lanes = FixedPoint::snap4(Vec4::from_array(xs), Vec4::from_array(ys));
+            let lanes =
+                FixedPoint::snap4(Vec4::from_array(xs), Vec4::from_array(ys)).map(|l| l.points());
             assert_eq!(
                 lanes,
                 alone
@@ -198,11 +223,11 @@ mod tests {
         // Beyond the range or not finite in one lane: none of the four.
         for bad in [MAX_COORD * 1.01, f32::NAN, f32::INFINITY] {
             assert_eq!(
-                FixedPoint::snap4(Vec4::new(0.0, bad, 0.0, 0.0), Vec4::ZERO),
+                FixedPoint::snap4(Vec4::new(0.0, bad, 0.0, 0.0), Vec4::ZERO).map(|l| l.points()),
                 None
             );
             assert_eq!(
-                FixedPoint::snap4(Vec4::ZERO, Vec4::new(0.0, 0.0, 0.0, -bad)),
+                FixedPoint::snap4(Vec4::ZERO, Vec4::new(0.0, 0.0, 0.0, -bad)).map(|l| l.points()),
                 None
             );
         }

@@ -67,9 +67,10 @@
 //! covered sample, with its three edge values (the unnormalised barycentric
 //! weights), to a closure.
 
-use crate::fixed::{FRAC_BITS, Fixed, FixedPoint, MAX_COORD, ONE};
+use crate::fixed::{FRAC_BITS, Fixed, FixedPoint, MAX_COORD, ONE, SnappedLanes};
 use crate::scene::Cull;
 use crate::transform::{Band, Grid, MAX_GRID, Rect};
+use wide::i32x4;
 
 /// How the rasterizer walks the samples. All give identical coverage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -249,6 +250,21 @@ impl CentreKey {
             ((d >> FRAC_BITS) * 2 + (d & (ONE - 1) == 0) as i64) as u32
         };
         CentreKey((axis(p.x.0) as u64) << 32 | axis(p.y.0) as u64)
+    }
+
+    /// The keys of four snapped points, computed in integer lanes: the
+    /// same as [`CentreKey::of`] of each (the coordinates fit in an `i32`,
+    /// and an arithmetic shift is the same division in either width).
+    #[inline(always)]
+    pub(crate) fn of4(p: &SnappedLanes) -> [CentreKey; 4] {
+        let axis = |v: i32x4| -> i32x4 {
+            let d = v - i32x4::splat((ONE / 2) as i32);
+            // All ones (−1) where the point is on a centre.
+            let on = (d & i32x4::splat((ONE - 1) as i32)).simd_eq(i32x4::ZERO);
+            ((d >> FRAC_BITS) << 1) - on
+        };
+        let (x, y) = (axis(p.x).to_array(), axis(p.y).to_array());
+        std::array::from_fn(|i| CentreKey((x[i] as u32 as u64) << 32 | y[i] as u32 as u64))
     }
 
     /// Whether the keys of a triangle's vertices show that its bounding box
@@ -1300,6 +1316,30 @@ mod tests {
             let far = p.map(|q| FixedPoint { x: Fixed(q.x.0 + (1 << 18)), y: Fixed(q.y.0 + (1 << 18)) });
             proptest::prop_assert_eq!(CentreKey::box_is_empty(far.map(CentreKey::of)), empty);
             proptest::prop_assert_eq!(empty, box_is_empty(&far, big, big.all_rows()));
+        }
+    }
+
+    proptest::proptest! {
+        /// The keys computed in lanes from four snapped points are each
+        /// point's own key: points on a sample centre's column or row, a
+        /// 256th either side of one, at both ends of the range and either
+        /// side of zero.
+        #[test]
+        fn keys_in_lanes_are_each_points_key(
+            c in proptest::array::uniform8(proptest::prop_oneof![
+                -MAX_COORD..=MAX_COORD,
+                -40f32..40.0,
+                proptest::strategy::Strategy::prop_map(
+                    (-6000i32..6000, -1i32..=1),
+                    |(k, d)| k as f32 * 0.5 + d as f32 / 256.0,
+                ),
+                proptest::sample::select(vec![MAX_COORD, -MAX_COORD, 0.0, -0.0, 0.5, -0.5]),
+            ]),
+        ) {
+            let (x, y) = ([c[0], c[1], c[2], c[3]], [c[4], c[5], c[6], c[7]]);
+            let lanes = FixedPoint::snap4(glam::Vec4::from_array(x), glam::Vec4::from_array(y));
+            let lanes = lanes.expect("within the range");
+            proptest::prop_assert_eq!(CentreKey::of4(&lanes), lanes.points().map(CentreKey::of));
         }
     }
 

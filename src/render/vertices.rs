@@ -115,7 +115,8 @@ fn four(
     }
     let inv_w = Vec4::ONE / cw;
     let [x, y] = stage.viewport.apply4(cx * inv_w, cy * inv_w);
-    let fixed = FixedPoint::snap4(x, y)?;
+    let snapped = FixedPoint::snap4(x, y)?;
+    let (fixed, keys) = (snapped.points(), CentreKey::of4(&snapped));
     let z = cz * inv_w;
     let (normal, light) = if smooth {
         let unit = directions(&t.normal, nx, ny, nz)?;
@@ -135,7 +136,7 @@ fn four(
         code: 0,
         xy: [xs[i], ys[i]],
         fixed: fixed[i],
-        key: CentreKey::of(fixed[i]),
+        key: keys[i],
         z: zs[i],
         inv_w: ws[i],
     };
