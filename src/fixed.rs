@@ -6,6 +6,10 @@
 //! library call and exactly (see [`Fixed::snap`]); a coordinate that is not
 //! finite or lies beyond [`MAX_COORD`] does not snap, which is how the
 //! rasterizer's `i64` bit-width argument is kept (see [`crate::raster`]).
+//! The vertex stage snaps four vertices at once (`FixedPoint::snap4`):
+//! truncation and the step of one in `i32` lanes (the `wide` crate, SSE2
+//! where there is SSE2), which the range allows, with the same results as
+//! one at a time (a test compares them).
 
 use glam::Vec4;
 use wide::{bytemuck::cast, f32x4, i32x4};

@@ -236,7 +236,8 @@ pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
 /// the point, plus one if the point is on it: three vertices whose keys
 /// on an axis are equal and even lie strictly between two neighbouring
 /// centres there, so their box holds no centre (nor does it once clamped to
-/// a grid or a band). Computed once per vertex by the vertex stage.
+/// a grid or a band). Computed once per vertex by the vertex stage, four
+/// at a time in integer lanes ([`CentreKey::of4`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct CentreKey(u64);
 

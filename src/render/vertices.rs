@@ -7,9 +7,11 @@
 //! vertices go through it together, structure of arrays: the x of four
 //! clip positions in one vector, their y in another, and so on, each
 //! operation done once for four. On Tux's 20,594 vertices the stage went
-//! from about 256 instructions a vertex to about 133 (callgrind); it is
-//! about 140 with the centre keys, found one vertex at a time after the
-//! lanes. The normals' scaling by powers of two (`pow2_unit`) is one pair
+//! from about 256 instructions a vertex to about 133 (callgrind); it was
+//! about 140 with the centre keys found one vertex at a time after the
+//! lanes, and is about 115 with the snap's rounding and the keys done in
+//! four `i32` lanes (the `wide` crate: SSE2's integer instructions, with
+//! no `unsafe` here, and plain code on targets without them). The normals' scaling by powers of two (`pow2_unit`) is one pair
 //! of factors for all four lanes when they share the first one's binade,
 //! and four scalar look-ups only otherwise: about 16 instructions a vertex
 //! less on Tux.
