@@ -311,8 +311,10 @@ impl Player {
 
 /// Writes `text` over the last row of `frame`, white on black; across the
 /// whole row with `full_row`, else over as many cells as the text needs.
+/// A notice may name what came from a file: it is escaped, never drawn raw.
 fn overlay(frame: &mut Frame, text: &str, full_row: bool) {
     let row = frame.rows().saturating_sub(1);
+    let text = crate::text::escape(text);
     let mut chars = text.chars();
     for col in 0..frame.cols() {
         let ch = match chars.next() {

@@ -1,14 +1,18 @@
 //! The library's errors: each says what went wrong and where (the file, and
-//! the line and column where the format has lines).
+//! the line and column where the format has lines). What an error shows
+//! is escaped ([`crate::text::escape`]): a path or a name from a file in
+//! it never reaches a terminal raw, whoever prints it.
 
 use std::io;
 use std::path::Path;
+
+use crate::text::escape;
 
 /// Everything the library can refuse.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A file could not be read.
-    #[error("{path}: {source}")]
+    #[error("{}: {source}", escape(path))]
     Io {
         /// The file.
         path: String,
@@ -17,7 +21,7 @@ pub enum Error {
         source: io::Error,
     },
     /// A file was read but its contents are wrong.
-    #[error("{path}:{line}:{column}: {message}")]
+    #[error("{}:{line}:{column}: {}", escape(path), escape(message))]
     Parse {
         /// The file.
         path: String,
@@ -29,7 +33,7 @@ pub enum Error {
         message: String,
     },
     /// A setting out of range.
-    #[error("{0}")]
+    #[error("{}", escape(.0))]
     Invalid(String),
 }
 

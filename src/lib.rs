@@ -73,6 +73,7 @@
 
 // Foundations: errors, colours, fixed point, matrices and the sample grid,
 // textures.
+pub mod text;
 mod error;
 pub mod color;
 pub mod fixed;

@@ -33,9 +33,26 @@ fn main() -> ExitCode {
         // A closed pipe (`rastty render | head`) is not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            say("error", &e.to_string());
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Writes `message` on stderr as one line after `label` (`error`,
+/// `note`), escaped and cut as [`rastty::text::line`] does: a name from a
+/// file never drives the terminal. A stderr that cannot be written (full,
+/// closed) is not a reason to panic: the exit status still tells.
+fn say(label: &str, message: &str) {
+    let _ = writeln!(io::stderr(), "{label}: {}", rastty::text::line(message));
+}
+
+/// Writes `text` on stderr line by line, each escaped (for messages of
+/// several lines: clap's, `--explain`'s).
+fn say_lines(text: &str) {
+    let mut err = io::stderr().lock();
+    for l in text.lines() {
+        let _ = writeln!(err, "{}", rastty::text::escape(l));
     }
 }
 
@@ -56,13 +73,16 @@ fn usage_error(e: clap::Error) -> ExitCode {
     if let Some(arg) = named {
         let path = std::path::Path::new(arg);
         if path.exists() || Scene::is_model(path) || arg.ends_with(".toml") {
-            eprintln!(
+            let arg = rastty::text::line(arg);
+            say_lines(&format!(
                 "error: '{arg}' is not a command; to show it, run\n\n  rastty spin {arg}\n\nor `rastty render {arg}` for one frame (rastty --help lists the commands)"
-            );
+            ));
             return ExitCode::from(2);
         }
     }
-    let _ = e.print();
+    // clap's message without its colours, each line escaped: it quotes
+    // the arguments it refuses.
+    say_lines(&e.render().to_string());
     ExitCode::from(2)
 }
 
@@ -114,7 +134,7 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     report
         .svg(&args.svg)
         .map_err(|e| rastty::Error::Invalid(format!("{}: {e}", args.svg.display())))?;
-    eprintln!("wrote {}", args.svg.display());
+    say_lines(&format!("wrote {}", rastty::text::line(&args.svg.display().to_string())));
     Ok(())
 }
 
@@ -135,7 +155,7 @@ fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
         None => rastty::default_scene(),
     };
     for note in &scene.notes {
-        eprintln!("note: {note}");
+        say("note", note);
     }
     Ok(scene)
 }
@@ -190,7 +210,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     }
     if args.explain {
         let encode = start.elapsed();
-        eprint!("{}", renderer.explain(&scene, &opts, encode, written));
+        say_lines(&renderer.explain(&scene, &opts, encode, written));
     }
     Ok(())
 }
@@ -277,7 +297,7 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         rec.flush().map_err(|e| rastty::Error::io(path, e))?;
     }
     for m in &outcome.messages {
-        eprintln!("note: {m}");
+        say("note", m);
     }
     Ok(match outcome.exit {
         Exit::Quit | Exit::Done => ExitCode::SUCCESS,

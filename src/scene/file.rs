@@ -1,4 +1,7 @@
 //! Opening model and scene files safely, and reading them line by line.
+//! Every file a model refers to (MTL libraries, textures, glTF buffers and
+//! images) is found by [`reference`] and opened here too, with the same
+//! checks as the model.
 //!
 //! A path is checked before a byte is read: a directory, a FIFO (which would
 //! block forever), a device (`/dev/zero`, which never ends), a socket are
@@ -12,7 +15,7 @@
 use std::fs::File;
 use std::io::Read;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 
@@ -47,14 +50,97 @@ pub fn open(path: &Path, max_bytes: u64) -> Result<(File, u64)> {
         )));
     }
     if meta.len() > max_bytes {
+        return Err(too_large(path, &human(meta.len()), max_bytes));
+    }
+    let file = File::open(path).map_err(io)?;
+    // What was opened is what was looked at: a regular file (not swapped
+    // for a pipe in between).
+    if !file.metadata().map_err(io)?.is_file() {
         return Err(Error::Invalid(format!(
-            "{}: {} is more than the limit of {} (--max-file-size raises it)",
-            path.display(),
-            human(meta.len()),
-            human(max_bytes)
+            "{}: changed while being opened",
+            path.display()
         )));
     }
-    Ok((File::open(path).map_err(io)?, meta.len()))
+    Ok((file, meta.len()))
+}
+
+/// Reads all of the file at `path`, opened as [`open`] opens it, holding
+/// the limit while reading: a file whose size says 0 but that goes on (as
+/// `/proc/self/pagemap` does) is cut off at `max_bytes` with an error,
+/// never read until memory runs out.
+pub fn read(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
+    let (file, size) = open(path, max_bytes)?;
+    let mut bytes = Vec::with_capacity(size as usize);
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large(path, "more", max_bytes));
+    }
+    Ok(bytes)
+}
+
+fn too_large(path: &Path, size: &str, max_bytes: u64) -> Error {
+    Error::Invalid(format!(
+        "{}: {size} is more than the limit of {} (--max-file-size raises it)",
+        path.display(),
+        human(max_bytes)
+    ))
+}
+
+/// A file a model refers to (an MTL library, a texture, a glTF buffer),
+/// found beside the model, and what to tell the user about where it was
+/// looked for.
+#[derive(Debug)]
+pub struct Reference {
+    /// Where to read it.
+    pub path: PathBuf,
+    /// Said in a `note:`: the name was absolute (or `file://`) and was
+    /// looked for beside the model instead, or it leads out of the
+    /// model's folder.
+    pub note: Option<String>,
+}
+
+/// Where the file that `owner` (a model or material file in `dir`, named
+/// so in messages) names as `name` is read: relative names in `dir` (`..`
+/// included: asset packs share folders, with a note when the path leaves
+/// the folder); an absolute name (`/x/y.png`, `C:\\x\\y.png`) is not read
+/// where it points, but its last part in `dir`, as common loaders do,
+/// with a note.
+pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
+    let shown = crate::text::name(name, 80);
+    let bytes = name.as_bytes();
+    let windows_absolute = bytes.len() >= 3
+        && bytes[0].is_ascii_alphabetic()
+        && bytes[1] == b':'
+        && matches!(bytes[2], b'/' | b'\\');
+    if name.starts_with('/') || name.starts_with('\\') || windows_absolute {
+        let last = name.rsplit(['/', '\\']).next().unwrap_or("");
+        let note = format!(
+            "{owner}: {shown} is an absolute path: {} beside it is read instead",
+            crate::text::name(last, 80)
+        );
+        return Reference {
+            path: dir.join(last),
+            note: Some(note),
+        };
+    }
+    // Lexically: whether the path climbs above the folder.
+    let mut depth: i64 = 0;
+    let mut outside = false;
+    for part in Path::new(name).components() {
+        match part {
+            std::path::Component::ParentDir => depth -= 1,
+            std::path::Component::Normal(_) => depth += 1,
+            _ => {}
+        }
+        outside |= depth < 0;
+    }
+    let note = outside.then(|| format!("{owner}: {shown} is read from outside its folder"));
+    Reference {
+        path: dir.join(name),
+        note,
+    }
 }
 
 /// A size in bytes, readably.

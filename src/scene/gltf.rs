@@ -28,7 +28,6 @@
 //! refused with the accessor named, never read out of bounds.
 
 use std::collections::BTreeMap;
-use std::io::Read as _;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -54,10 +53,7 @@ const MAX_DEPTH: usize = 256;
 
 /// Loads a `.gltf` (with the files it names, beside it) or `.glb` file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let (mut file, size) = file::open(path, options.max_bytes)?;
-    let mut bytes = Vec::with_capacity(size as usize);
-    file.read_to_end(&mut bytes)
-        .map_err(|e| Error::io(path, e))?;
+    let bytes = file::read(path, options.max_bytes)?;
     parse(&bytes, path.parent(), &path.display().to_string(), options)
 }
 
@@ -70,8 +66,10 @@ pub fn parse(
     options: &LoadOptions,
 ) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
-    let gltf = Gltf::from_slice(bytes).map_err(|e| bad(describe(&e)))?;
-    let required: Vec<&str> = gltf.extensions_required().collect();
+    let Gltf { document, blob } =
+        Gltf::from_slice_without_validation(bytes).map_err(|e| bad(describe(&e)))?;
+    let root = document.into_json();
+    let required = &root.extensions_required;
     if !required.is_empty() {
         return Err(bad(format!(
             "needs the extension{} {}, which rastty does not read",
@@ -79,42 +77,59 @@ pub fn parse(
             required.join(", ")
         )));
     }
-    let Gltf { document, blob } = gltf;
-    // Files it names, checked first so that the one missing is named.
-    for b in document.buffers() {
-        if let ::gltf::buffer::Source::Uri(uri) = b.source()
-            && !uri.starts_with("data:")
-        {
-            let file = base.unwrap_or(Path::new(".")).join(uri);
-            if let Err(e) = std::fs::metadata(&file) {
-                return Err(bad(format!(
-                    "buffer {}: {}: {e}",
-                    b.index(),
-                    file.display()
-                )));
+    // The crate's own validation indexes the accessor a POSITION names
+    // before it checks that it exists.
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &prim.attributes {
+                if index.value() >= root.accessors.len() {
+                    return Err(bad(format!(
+                        "mesh {m} primitive {p}: attribute {} names accessor {}, which does not exist",
+                        crate::text::name(&semantic_name(semantic), 40),
+                        index.value()
+                    )));
+                }
             }
         }
     }
-    let buffers = ::gltf::import_buffers(&document, base, blob).map_err(|e| bad(describe(&e)))?;
+    let document = ::gltf::Document::from_json(root).map_err(|e| bad(describe(&e)))?;
+    let mut notes = Vec::new();
+    let buffers = buffers(&document, blob, base, name, options.max_bytes, &mut notes)
+        .map_err(bad)?;
+
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or_else(|| bad("no scene to draw".into()))?;
+    let (placed, triangles) = placed(&document, &scene).map_err(bad)?;
+    if placed.max(triangles) > u128::from(options.max_triangles) {
+        return Err(bad(format!(
+            "its node tree places {} triangles in {} nodes, more than the budget of {} (--max-triangles raises it)",
+            shown(triangles),
+            shown(placed),
+            options.max_triangles
+        )));
+    }
 
     let mut ignored: BTreeMap<&str, usize> = BTreeMap::new();
     let mut out = Parts {
         images: Images {
             base,
+            owner: name,
+            max_bytes: options.max_bytes,
+            texels_left: options.max_texels,
+            root: Some(document.as_json()),
+            notes: Vec::new(),
             decoded: FxHashMap::default(),
         },
         ..Parts::default()
     };
-    let scene = document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-        .ok_or_else(|| bad("no scene to draw".into()))?;
     let mut stack: Vec<(::gltf::Node, Mat4, usize)> =
         scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     while let Some((node, parent, depth)) = stack.pop() {
         if depth > MAX_DEPTH {
             return Err(bad(format!(
-                "node {} is more than {MAX_DEPTH} levels deep (a cycle?)",
+                "node {} is more than {MAX_DEPTH} levels deep",
                 node.index()
             )));
         }
@@ -143,9 +158,13 @@ pub fn parse(
     if animations > 0 {
         ignored.insert("animations", animations);
     }
-    let mut notes = Vec::new();
+    notes.append(&mut out.images.notes);
     let mut what: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    what.extend(document.extensions_used().map(|e| format!("extension {e}")));
+    what.extend(
+        document
+            .extensions_used()
+            .map(|e| format!("extension {}", crate::text::name(e, 80))),
+    );
     if !what.is_empty() {
         notes.push(format!("{name}: not drawn: {}", what.join(", ")));
     }
@@ -156,6 +175,184 @@ pub fn parse(
         geometry: out.geometry(name, options.crease),
         notes,
     })
+}
+
+/// A count for a message: exact up to 2^64, a power of two beyond.
+fn shown(n: u128) -> String {
+    if n <= u128::from(u64::MAX) {
+        n.to_string()
+    } else {
+        format!("about 2^{}", 127 - n.leading_zeros())
+    }
+}
+
+/// An attribute's name as the file spells it.
+fn semantic_name(s: &::gltf::json::validation::Checked<::gltf::json::mesh::Semantic>) -> String {
+    match s {
+        ::gltf::json::validation::Checked::Valid(s) => s.to_string(),
+        ::gltf::json::validation::Checked::Invalid => "(unknown)".into(),
+    }
+}
+
+/// How many nodes the scene places and how many triangles they draw, a
+/// node counted as often as it is placed: a node's counts are found once
+/// and reused wherever it appears (a graph of 60 nodes each holding the
+/// next twice places 2^60 nodes, and is counted in 60 steps, not walked).
+/// A node that holds itself, directly or not, is an error.
+fn placed(document: &::gltf::Document, scene: &::gltf::Scene) -> std::result::Result<(u128, u128), String> {
+    let meshes: Vec<u128> = document
+        .meshes()
+        .map(|m| m.primitives().map(|p| triangles_of(&p)).sum())
+        .collect();
+    let nodes: Vec<::gltf::Node> = document.nodes().collect();
+    // Per node: None unvisited, Some(None) in progress, Some(Some(counts)).
+    let mut counts: Vec<Option<Option<(u128, u128)>>> = vec![None; nodes.len()];
+    let mut total = (0u128, 0u128);
+    for root in scene.nodes() {
+        // Post-order without recursion: (node, children pushed?).
+        let mut stack = vec![(root.index(), false)];
+        while let Some((i, expanded)) = stack.pop() {
+            if expanded {
+                let own = nodes[i].mesh().map_or(0, |m| meshes[m.index()]);
+                let mut c = (1u128, own);
+                for child in nodes[i].children() {
+                    let (n, t) = counts[child.index()].flatten().unwrap_or_default();
+                    c = (c.0.saturating_add(n), c.1.saturating_add(t));
+                }
+                counts[i] = Some(Some(c));
+                continue;
+            }
+            match counts[i] {
+                Some(Some(_)) => continue,
+                Some(None) => return Err(format!("node {i} holds itself (a cycle)")),
+                None => {}
+            }
+            counts[i] = Some(None);
+            stack.push((i, true));
+            for child in nodes[i].children() {
+                match counts[child.index()] {
+                    Some(None) => {
+                        return Err(format!("node {} holds itself (a cycle)", child.index()));
+                    }
+                    Some(Some(_)) => {}
+                    None => stack.push((child.index(), false)),
+                }
+            }
+        }
+        let (n, t) = counts[root.index()].flatten().unwrap_or_default();
+        total = (total.0.saturating_add(n), total.1.saturating_add(t));
+    }
+    Ok(total)
+}
+
+/// The triangles a primitive draws (0 for points and lines).
+fn triangles_of(p: &::gltf::Primitive) -> u128 {
+    let n = p
+        .indices()
+        .map_or_else(|| positions_count(p), |i| i.count()) as u128;
+    match p.mode() {
+        Mode::Triangles => n / 3,
+        Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
+        _ => 0,
+    }
+}
+
+/// The document's buffers, read as the model was read (data URIs decoded,
+/// files found beside the model with [`file::reference`]), each at least
+/// as long as it says; every buffer view is checked to lie inside its
+/// buffer.
+fn buffers(
+    document: &::gltf::Document,
+    mut blob: Option<Vec<u8>>,
+    base: Option<&Path>,
+    owner: &str,
+    max_bytes: u64,
+    notes: &mut Vec<String>,
+) -> std::result::Result<Vec<Data>, String> {
+    let mut out = Vec::new();
+    for b in document.buffers() {
+        let what = format!("buffer {}", b.index());
+        let mut data = match b.source() {
+            ::gltf::buffer::Source::Bin => blob
+                .take()
+                .ok_or_else(|| format!("{what}: the file has no binary chunk"))?,
+            ::gltf::buffer::Source::Uri(uri) => {
+                fetch(uri, base, owner, max_bytes, notes).map_err(|e| format!("{what}: {e}"))?
+            }
+        };
+        if data.len() < b.length() {
+            return Err(format!(
+                "{what} has {} bytes, fewer than its byteLength of {}",
+                data.len(),
+                b.length()
+            ));
+        }
+        while data.len() % 4 != 0 {
+            data.push(0);
+        }
+        out.push(Data(data));
+    }
+    for v in document.views() {
+        let len = v.buffer().length();
+        if v.offset().checked_add(v.length()).is_none_or(|end| end > len) {
+            return Err(format!(
+                "buffer view {} ({} bytes at offset {}) runs past the {len} bytes of buffer {}",
+                v.index(),
+                v.length(),
+                v.offset(),
+                v.buffer().index()
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// The bytes a buffer's or an image's URI names: a `data:` URI decoded, or
+/// the file it names beside the model (percent-encoding decoded, `file:`
+/// taken as a path), opened and read as the model itself was. Nothing is
+/// fetched from the network.
+fn fetch(
+    uri: &str,
+    base: Option<&Path>,
+    owner: &str,
+    max_bytes: u64,
+    notes: &mut Vec<String>,
+) -> std::result::Result<Vec<u8>, String> {
+    if uri.starts_with("data:") {
+        return Data::from_source(::gltf::buffer::Source::Uri(uri), None)
+            .map(|d| d.0)
+            .map_err(|e| describe(&e));
+    }
+    let shown = crate::text::name(uri, 80);
+    let path = if let Some(rest) = uri.strip_prefix("file://").or_else(|| uri.strip_prefix("file:")) {
+        rest
+    } else if let Some(scheme) = scheme(uri) {
+        return Err(if matches!(scheme.to_ascii_lowercase().as_str(), "http" | "https") {
+            format!("{shown} is on the network: rastty fetches nothing (download it beside the model)")
+        } else {
+            format!("{shown}: rastty reads data: URIs and files, not {} URIs", crate::text::name(scheme, 20))
+        });
+    } else {
+        uri
+    };
+    let path = urlencoding::decode(path)
+        .map_err(|_| format!("{shown}: its percent-encoding is not UTF-8"))?;
+    let Some(base) = base else {
+        return Err(format!("{shown} names a file, and the model was not read from one"));
+    };
+    let r = file::reference(base, owner, &path);
+    notes.extend(r.note);
+    file::read(&r.path, max_bytes).map_err(|e| e.to_string())
+}
+
+/// A URI's scheme (`http` of `http://…`), if it has one; a drive letter
+/// (`C:\x`) is not one.
+fn scheme(uri: &str) -> Option<&str> {
+    let (scheme, _) = uri.split_once(':')?;
+    let mut chars = scheme.chars();
+    let ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
+    (ok && scheme.len() > 1).then_some(scheme)
 }
 
 /// A `gltf` error in words (its own, with the JSON path for validation).
@@ -174,6 +371,15 @@ fn describe(e: &::gltf::Error) -> String {
 #[derive(Default)]
 struct Images<'a> {
     base: Option<&'a Path>,
+    /// The model's name, for messages.
+    owner: &'a str,
+    max_bytes: u64,
+    /// What is left of the texel budget.
+    texels_left: u64,
+    /// The document, for what the crate's `Image::source` would panic on.
+    root: Option<&'a ::gltf::json::Root>,
+    /// Notes on the files read.
+    notes: Vec<String>,
     /// The texture made of each glTF texture, as an index into `textures`.
     decoded: FxHashMap<usize, u32>,
 }
@@ -429,43 +635,62 @@ impl Parts<'_> {
         if let Some(&id) = self.images.decoded.get(&t.index()) {
             return Ok(id);
         }
-        let image = t.source();
-        let what = match image.source() {
-            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                format!("image {} ({uri})", image.index())
+        let index = t.source().index();
+        let json = self
+            .images
+            .root
+            .and_then(|r| r.images.get(index))
+            .ok_or("its image is missing")?;
+        let what = match (&json.uri, json.buffer_view) {
+            (Some(uri), None) if !uri.starts_with("data:") => {
+                format!("image {index} ({})", crate::text::name(uri, 80))
             }
-            _ => format!("image {}", image.index()),
+            _ => format!("image {index}"),
         };
         let bad = |e: String| format!("texture {}: {what}: {e}", t.index());
-        match image.source() {
-            ::gltf::image::Source::View { view, .. } => {
-                let len = buffers.get(view.buffer().index()).map_or(0, |b| b.len());
-                if view
-                    .offset()
-                    .checked_add(view.length())
-                    .is_none_or(|end| end > len)
-                {
-                    return Err(bad(format!(
-                        "buffer view {} ({} bytes at offset {}) is out of range of its {len}-byte buffer",
-                        view.index(),
-                        view.length(),
-                        view.offset()
-                    )));
-                }
+        let owned;
+        let bytes: &[u8] = match (&json.uri, json.buffer_view) {
+            (None, Some(view)) => {
+                let view = self
+                    .images
+                    .root
+                    .and_then(|r| r.buffer_views.get(view.value()))
+                    .ok_or_else(|| bad("its buffer view is missing".into()))?;
+                let buffer = buffers
+                    .get(view.buffer.value())
+                    .ok_or_else(|| bad("its buffer is missing".into()))?;
+                let offset = view.byte_offset.map_or(0, |o| o.0 as usize);
+                let range = offset
+                    .checked_add(view.byte_length.0 as usize)
+                    .filter(|&end| end <= buffer.len())
+                    .map(|end| offset..end)
+                    .ok_or_else(|| {
+                        bad(format!(
+                            "its buffer view ({} bytes at offset {offset}) is out of range of its {}-byte buffer",
+                            view.byte_length.0,
+                            buffer.len()
+                        ))
+                    })?;
+                &buffer[range]
             }
-            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                let file = self.images.base.unwrap_or(Path::new(".")).join(uri);
-                if let Err(e) = std::fs::metadata(&file) {
-                    return Err(bad(format!("{}: {e}", file.display())));
-                }
+            (Some(uri), None) => {
+                owned = fetch(
+                    uri,
+                    self.images.base,
+                    self.images.owner,
+                    self.images.max_bytes,
+                    &mut self.images.notes,
+                )
+                .map_err(bad)?;
+                &owned
             }
-            ::gltf::image::Source::Uri { .. } => {}
-        }
-        // The crate reads files only with a base directory.
-        let base = self.images.base.unwrap_or(Path::new("."));
-        let data = ::gltf::image::Data::from_source(image.source(), Some(base), buffers)
-            .map_err(|e| bad(describe(&e)))?;
-        let texture = texture(data, &what, sampler(&t.sampler())).map_err(bad)?;
+            (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
+            (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
+        };
+        let texture = super::image::decode(bytes, &what, sampler(&t.sampler()), self.images.texels_left)
+            .map_err(bad)?;
+        let (w, h) = texture.original_size();
+        self.images.texels_left -= u64::from(w) * u64::from(h);
         let id = self.textures.len() as u32;
         self.textures.push(Arc::new(texture));
         self.images.decoded.insert(t.index(), id);
@@ -529,39 +754,6 @@ fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
     }
 }
 
-/// Decoded image data as a texture (8-bit sRGB; 16-bit images are
-/// rounded to 8 bits).
-fn texture(
-    data: ::gltf::image::Data,
-    name: &str,
-    sampler: Sampler,
-) -> std::result::Result<Texture, String> {
-    use ::gltf::image::Format;
-    let (channels, wide) = match data.format {
-        Format::R8 => (1, false),
-        Format::R8G8 => (2, false),
-        Format::R8G8B8 => (3, false),
-        Format::R8G8B8A8 => (4, false),
-        Format::R16 => (1, true),
-        Format::R16G16 => (2, true),
-        Format::R16G16B16 => (3, true),
-        Format::R16G16B16A16 => (4, true),
-        other => return Err(format!("{other:?} pixels, which rastty does not read")),
-    };
-    let narrow: Vec<u8>;
-    let pixels = if wide {
-        narrow = data
-            .pixels
-            .chunks_exact(2)
-            .map(|b| ((u32::from(u16::from_ne_bytes([b[0], b[1]])) + 128) / 257) as u8)
-            .collect();
-        &narrow
-    } else {
-        &data.pixels
-    };
-    Texture::from_srgb8(name, data.width, data.height, channels, pixels, sampler)
-}
-
 /// Checks that `acc` has a type the reader expects and that every byte
 /// it names lies inside its buffer view and buffer.
 fn check(
@@ -590,7 +782,15 @@ fn check(
         .get(view.buffer().index())
         .ok_or_else(|| format!("{}: its buffer is missing", at()))?;
     let elem = acc.size();
-    let stride = view.stride().unwrap_or(elem).max(elem);
+    if view.stride().is_some_and(|s| s < elem) {
+        return Err(format!(
+            "{}: buffer view {} has a byteStride of {}, less than its {elem}-byte elements",
+            at(),
+            view.index(),
+            view.stride().unwrap_or(0)
+        ));
+    }
+    let stride = view.stride().unwrap_or(elem);
     let count = acc.count();
     let need = match count {
         0 => 0,

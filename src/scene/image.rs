@@ -2,13 +2,17 @@
 //! decoded by the `image` crate (feature `textures`) and turned into a
 //! [`Texture`] (linear texels and mipmaps).
 //!
-//! The format is told by the bytes, not the name. The decoder is held to
+//! The format is told by the bytes, not the name. An image's size is read
+//! from its header and held to the texel budget
+//! ([`super::LoadOptions::max_texels`]) before a pixel is decoded: a 33 KB
+//! PNG that says 16384² (268 million texels, 3 GB as linear light) is an
+//! error at once. The decoder is also held to
 //! [`MAX_IMAGE_SIDE`] pixels a side and [`MAX_DECODE_BYTES`] of memory, so
 //! a header that claims a huge image is refused before anything that size
 //! is allocated; an image that fits but is larger than
 //! [`crate::texture::MAX_SIDE`] is then reduced at load.
 
-use std::io::{Cursor, Read as _};
+use std::io::Cursor;
 use std::path::Path;
 
 use image::{ImageFormat, ImageReader, Limits};
@@ -21,19 +25,29 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// The most memory the decoder may take for one image.
 pub const MAX_DECODE_BYTES: u64 = 512 << 20;
 
-/// Reads and decodes the image at `path`; the error says what is wrong,
-/// naming the file.
-pub fn load(path: &Path, sampler: Sampler, max_bytes: u64) -> Result<Texture, String> {
+/// Reads and decodes the image at `path` (opened and read as the model
+/// itself is), within `max_texels`; the error says what is wrong, naming
+/// the file.
+pub fn load(
+    path: &Path,
+    sampler: Sampler,
+    max_bytes: u64,
+    max_texels: u64,
+) -> Result<Texture, String> {
     let name = path.display().to_string();
-    let (mut f, size) = file::open(path, max_bytes).map_err(|e| e.to_string())?;
-    let mut bytes = Vec::with_capacity(size as usize);
-    f.read_to_end(&mut bytes)
-        .map_err(|e| format!("{name}: {e}"))?;
-    decode(&bytes, &name, sampler).map_err(|e| format!("{name}: {e}"))
+    let bytes = file::read(path, max_bytes).map_err(|e| e.to_string())?;
+    decode(&bytes, &name, sampler, max_texels).map_err(|e| format!("{name}: {e}"))
 }
 
-/// Decodes PNG or JPEG bytes into a texture named `name`.
-pub fn decode(bytes: &[u8], name: &str, sampler: Sampler) -> Result<Texture, String> {
+/// Decodes PNG or JPEG bytes into a texture named `name`, refusing (from
+/// the header, before decoding) an image of more than `max_texels` pixels.
+pub fn decode(
+    bytes: &[u8],
+    name: &str,
+    sampler: Sampler,
+    max_texels: u64,
+) -> Result<Texture, String> {
+    use image::ImageDecoder as _;
     let format = match image::guess_format(bytes) {
         Ok(f @ (ImageFormat::Png | ImageFormat::Jpeg)) => f,
         Ok(other) => {
@@ -49,7 +63,15 @@ pub fn decode(bytes: &[u8], name: &str, sampler: Sampler) -> Result<Texture, Str
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
     limits.max_alloc = Some(MAX_DECODE_BYTES);
     reader.limits(limits);
-    let image = reader.decode().map_err(|e| e.to_string())?;
+    let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
+    let (w, h) = decoder.dimensions();
+    let texels = u64::from(w) * u64::from(h);
+    if texels > max_texels {
+        return Err(format!(
+            "a {w}×{h} image is {texels} texels, more than the {max_texels} left in the texel budget (--max-texels raises it)"
+        ));
+    }
+    let image = image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
     let rgb = image.into_rgb8();
     Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
 }

@@ -490,7 +490,23 @@ pub struct LoadOptions {
     /// For a model shown alone: which of its axes points up (`None`: the
     /// format's convention, y for OBJ, z for STL).
     pub up: Option<transform::Axis>,
+    /// The most texels decoded, across all of a scene's images
+    /// ([`DEFAULT_MAX_TEXELS`]); each costs its linear texel, its mipmaps'
+    /// share and, while it is decoded, its 8-bit pixel. An image's size is
+    /// read from its header and refused before it is decoded.
+    pub max_texels: u64,
+    /// The most triangles a scene may draw once every glTF node and every
+    /// scene mesh is counted as often as it is placed
+    /// ([`DEFAULT_MAX_TRIANGLES`]), counted before anything is expanded.
+    pub max_triangles: u64,
 }
+
+/// The default texel budget: 64 Mi texels (an 8192² image, or four of
+/// 4096²), about 1 GiB of linear texels with their mipmaps.
+pub const DEFAULT_MAX_TEXELS: u64 = 1 << 26;
+/// The default triangle budget: 64 Mi triangles (the largest shared model
+/// has 41 thousand), about 4.4 GiB of mesh.
+pub const DEFAULT_MAX_TRIANGLES: u64 = 1 << 26;
 
 impl Default for LoadOptions {
     fn default() -> Self {
@@ -499,6 +515,8 @@ impl Default for LoadOptions {
             mtl_colors: ColorSpace::Linear,
             crease: mesh::DEFAULT_CREASE,
             up: None,
+            max_texels: DEFAULT_MAX_TEXELS,
+            max_triangles: DEFAULT_MAX_TRIANGLES,
         }
     }
 }

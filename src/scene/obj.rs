@@ -139,6 +139,10 @@ struct Reader<'a> {
     /// The images decoded so far, and which file each came from.
     textures: Vec<Arc<Texture>>,
     texture_ids: FxHashMap<PathBuf, u32>,
+    /// What is left of the texel budget.
+    texels_left: u64,
+    /// Notes on the files named (absolute paths, paths out of the folder).
+    reference_notes: Vec<String>,
     /// Whether the faces now being read are textured (then their corners
     /// keep their `vt`).
     textured: bool,
@@ -176,6 +180,8 @@ fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) 
         library: FxHashMap::default(),
         textures: Vec::new(),
         texture_ids: FxHashMap::default(),
+        texels_left: options.max_texels,
+        reference_notes: Vec::new(),
         textured: false,
         unread_textures: 0,
         all_normals: true,
@@ -460,13 +466,20 @@ impl Reader<'_> {
         }
         #[cfg(feature = "textures")]
         {
-            let texture = super::image::load(&map.path, map.sampler, self.options.max_bytes)
-                .map_err(|message| Error::Parse {
-                    path: map.mtl.clone(),
-                    line: map.line,
-                    column: map.column,
-                    message,
-                })?;
+            let texture = super::image::load(
+                &map.path,
+                map.sampler,
+                self.options.max_bytes,
+                self.texels_left,
+            )
+            .map_err(|message| Error::Parse {
+                path: map.mtl.clone(),
+                line: map.line,
+                column: map.column,
+                message,
+            })?;
+            let (w, h) = texture.original_size();
+            self.texels_left -= u64::from(w) * u64::from(h);
             let id = self.textures.len() as u32;
             self.textures.push(Arc::new(texture));
             self.texture_ids.insert(map.path, id);
@@ -514,7 +527,8 @@ impl Reader<'_> {
         let whole = c.clone().rest();
         let mut each = c;
         let words: Vec<(&[u8], usize)> = std::iter::from_fn(|| each.word()).collect();
-        let each_exists = words.iter().all(|(w, _)| self.dir.join(lossy(w)).is_file());
+        let found = |w: &[u8]| file::reference(self.dir, self.name, &lossy(w)).path.exists();
+        let each_exists = words.iter().all(|(w, _)| found(w));
         let files: Vec<(&[u8], usize)> = if each_exists || words.is_empty() {
             words
         } else {
@@ -524,23 +538,28 @@ impl Reader<'_> {
             return Err(self.at(n, 1, "`mtllib` names no file"));
         }
         for (file, col) in files {
-            let path = self.dir.join(lossy(file));
-            if !path.is_file() {
+            let r = file::reference(self.dir, self.name, &lossy(file));
+            if !r.path.exists() {
                 return Err(self.at_byte(
                     line,
                     n,
                     col,
-                    format!("material library {:?} not found", lossy(file)),
+                    format!(
+                        "material library {} not found",
+                        crate::text::name(&lossy(file), 80)
+                    ),
                 ));
             }
-            let mtl = mtl(&path, self.options)?;
+            self.reference_notes.extend(r.note);
+            let (mtl, notes) = mtl(&r.path, self.options)?;
             self.library.extend(mtl);
+            self.reference_notes.extend(notes);
         }
         Ok(())
     }
 
     fn finish(mut self, last_line: usize) -> Result<Loaded> {
-        let mut notes = Vec::new();
+        let mut notes = std::mem::take(&mut self.reference_notes);
         if let Some(&first) = self.bad_pos.first() {
             notes.push(format!(
                 "{}:{first}: {} vertices are not finite numbers; the {} faces that use them are not drawn",
@@ -661,8 +680,13 @@ fn corner_offset(line: &[u8], k: usize) -> usize {
     c.word().map_or(0, |(_, at)| at)
 }
 
-/// A material library: each material's diffuse colour and texture.
-fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Material>> {
+/// A material library: each material's diffuse colour and texture, and
+/// notes on the files it names.
+#[allow(clippy::type_complexity)]
+fn mtl(
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<(FxHashMap<Vec<u8>, Material>, Vec<String>)> {
     let (file, _) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let at = |line: usize, column: usize, message: String| Error::Parse {
@@ -675,6 +699,7 @@ fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Material
         at(line, file::column(text, offset), message)
     };
     let mut out = FxHashMap::default();
+    let mut notes = Vec::new();
     let mut current: Option<Vec<u8>> = None;
     let mut lines = Lines::new(file);
     loop {
@@ -728,8 +753,14 @@ fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Material
                     ));
                 };
                 let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
+                let r = file::reference(
+                    path.parent().unwrap_or(Path::new(".")),
+                    &name,
+                    &lossy(file),
+                );
+                notes.extend(r.note);
                 let map = Map {
-                    path: path.parent().unwrap_or(Path::new(".")).join(lossy(file)),
+                    path: r.path,
                     sampler,
                     mtl: name.clone(),
                     line: n,
@@ -772,7 +803,7 @@ fn mtl(path: &Path, options: &LoadOptions) -> Result<FxHashMap<Vec<u8>, Material
             _ => {}
         }
     }
-    Ok(out)
+    Ok((out, notes))
 }
 
 /// The `k`th word of `line` (from 0) and its offset.
