@@ -64,8 +64,10 @@ pub struct Report {
 }
 
 /// The built-in scenes, and the models found in `models` (any of bunny,
-/// teapot, fox, shiba-inu, linux-mascot-tux).
-pub fn workloads(models: &Path) -> Vec<Workload> {
+/// teapot, fox, shiba-inu, linux-mascot-tux), with a note for each model
+/// that could not be read.
+pub fn workloads(models: &Path) -> (Vec<Workload>, Vec<String>) {
+    let mut notes = Vec::new();
     let mut w = vec![
         Workload {
             name: "torus (built-in)".into(),
@@ -88,14 +90,15 @@ pub fn workloads(models: &Path) -> Vec<Workload> {
         "shiba-inu.obj",
         "linux-mascot-tux.obj",
     ] {
-        if let Ok(scene) = Scene::of_model(&models.join(file)) {
-            w.push(Workload {
+        match Scene::of_model(&models.join(file)) {
+            Ok(scene) => w.push(Workload {
                 name: file.trim_end_matches(".obj").into(),
                 scene,
-            });
+            }),
+            Err(e) => notes.push(format!("left out: {e}")),
         }
     }
-    w
+    (w, notes)
 }
 
 /// One glyph mode for each number of samples per cell: 1, 2, 4, 6, 8.

@@ -47,9 +47,10 @@ pub enum Command {
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// Where to find models to time (bunny, teapot, fox, shiba-inu,
-    /// linux-mascot-tux; those missing are left out)
-    #[arg(long, value_name = "DIR", default_value = "../shared/models")]
-    pub models: PathBuf,
+    /// linux-mascot-tux; those missing are left out with a note) [default:
+    /// ../shared/models, or the built-in scenes alone when it is missing]
+    #[arg(long, value_name = "DIR")]
+    pub models: Option<PathBuf>,
     /// Where to write the plot of error against time
     #[arg(long, value_name = "PATH", default_value = "bench.svg")]
     pub svg: PathBuf,
@@ -127,6 +128,16 @@ pub struct InputArgs {
     /// G, T: powers of 1024) [default: 1G]
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_file_size: Option<u64>,
+    /// The most texels decoded across a scene's images, read from each
+    /// image's header and refused before it is decoded (an 8192² image is
+    /// 64M) [default: 64M]
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub max_texels: Option<u64>,
+    /// The most triangles a scene may place, each glTF node and scene mesh
+    /// counted as often as it is placed, before any is expanded [default:
+    /// 256M]
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub max_triangles: Option<u64>,
     /// A model's up axis [default: z for STL, y otherwise]
     #[arg(long, value_enum)]
     pub up: Option<Axis>,
@@ -154,6 +165,10 @@ pub struct ViewArgs {
     /// or ascii when TERM is dumb]
     #[arg(long, value_enum)]
     pub glyphs: Option<GlyphMode>,
+    /// The most sample tests a frame may make (cells × samples a cell ×
+    /// anti-aliasing passes), refused before any work [default: 64M]
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub max_samples: Option<u64>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -275,6 +290,25 @@ fn parse_size(s: &str) -> Result<u64, String> {
     let n: u64 = number
         .parse()
         .map_err(|_| format!("{s:?} is not a size (like 4096, 512M or 4G)"))?;
+    n.checked_mul(1 << shift)
+        .ok_or_else(|| format!("{s} is too large"))
+}
+
+/// A count, plain or with K, M or G (powers of 1024: 64M is 2^26).
+fn parse_count(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let digits = t.bytes().take_while(u8::is_ascii_digit).count();
+    let (number, unit) = t.split_at(digits);
+    let shift = match unit.trim().to_ascii_lowercase().as_str() {
+        "" => 0,
+        "k" => 10,
+        "m" => 20,
+        "g" => 30,
+        _ => return Err(format!("{s:?} is not a count (like 1000000, 64M or 1G)")),
+    };
+    let n: u64 = number
+        .parse()
+        .map_err(|_| format!("{s:?} is not a count (like 1000000, 64M or 1G)"))?;
     n.checked_mul(1 << shift)
         .ok_or_else(|| format!("{s} is too large"))
 }

@@ -47,13 +47,15 @@ impl Error {
     }
 
     /// A parse error at byte `offset` of `src`.
-    pub fn parse_at(path: &str, src: &str, offset: usize, message: impl Into<String>) -> Error {
+    pub fn parse_at(path: &str, src: &str, offset: usize, message: impl AsRef<str>) -> Error {
         let (line, column) = line_col(src, offset);
         Error::Parse {
             path: path.to_string(),
             line,
             column,
-            message: message.into(),
+            // A file's text in a message (a key, a value) may be
+            // megabytes: it is kept escaped and cut, as it will be shown.
+            message: crate::text::cut(message.as_ref(), 200),
         }
     }
 }

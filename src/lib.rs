@@ -122,7 +122,8 @@ pub use error::{Error, Result};
 pub use frame::{Cell, Frame};
 pub use framebuffer::Framebuffer;
 pub use options::{
-    Aa, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads,
+    Aa, DEFAULT_MAX_SAMPLES, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS, Pipeline,
+    RenderOptions, Threads,
 };
 pub use plan::{Bands, Decision, Plan};
 pub use raster::{Precision, Traversal};

@@ -7,6 +7,7 @@ use std::fs::File;
 use std::io::{self, Write};
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use clap::Parser as _;
@@ -28,7 +29,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
-    match try_main(cli) {
+    let code = match try_main(cli) {
         Ok(code) => code,
         // A closed pipe (`rastty render | head`) is not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
@@ -36,24 +37,47 @@ fn main() -> ExitCode {
             say("error", &e.to_string());
             ExitCode::FAILURE
         }
+    };
+    if UNSAID.load(Ordering::Relaxed) {
+        // Something to say was lost (stderr full or closed).
+        return ExitCode::FAILURE;
     }
+    code
 }
+
+/// Set when a line for stderr could not be written.
+static UNSAID: AtomicBool = AtomicBool::new(false);
 
 /// Writes `message` on stderr as one line after `label` (`error`,
 /// `note`), escaped and cut as [`rastty::text::line`] does: a name from a
 /// file never drives the terminal. A stderr that cannot be written (full,
-/// closed) is not a reason to panic: the exit status still tells.
+/// closed) is not a reason to panic, and not a success: the exit status
+/// is 1.
 fn say(label: &str, message: &str) {
-    let _ = writeln!(io::stderr(), "{label}: {}", rastty::text::line(message));
+    say_lines(&format!("{label}: {}", rastty::text::line(message)));
 }
 
 /// Writes `text` on stderr line by line, each escaped (for messages of
 /// several lines: clap's, `--explain`'s).
 fn say_lines(text: &str) {
     let mut err = io::stderr().lock();
+    let mut ok = terminal::is_open(2);
     for l in text.lines() {
-        let _ = writeln!(err, "{}", rastty::text::escape(l));
+        ok &= writeln!(err, "{}", rastty::text::escape(l)).is_ok();
     }
+    ok &= err.flush().is_ok();
+    if !ok {
+        UNSAID.store(true, Ordering::Relaxed);
+    }
+}
+
+/// Stdout, refused when it is closed (`>&-`): the standard library would
+/// take every write to it as done.
+fn stdout() -> rastty::Result<io::StdoutLock<'static>> {
+    if !terminal::is_open(1) {
+        return Err(stdout_error(io::Error::from_raw_os_error(libc::EBADF)));
+    }
+    Ok(io::stdout().lock())
 }
 
 /// `--help` and `--version` print as clap has them; a usage error prints
@@ -121,9 +145,32 @@ fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
 
 #[cfg(feature = "bench")]
 fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
-    let workloads = rastty::bench::workloads(&args.models);
+    let models = match &args.models {
+        Some(dir) if !dir.is_dir() => {
+            return Err(rastty::Error::Invalid(format!(
+                "{}: not a folder of models (--models)",
+                dir.display()
+            )));
+        }
+        Some(dir) => dir.clone(),
+        None => std::path::PathBuf::from("../shared/models"),
+    };
+    let (workloads, notes) = if models.is_dir() {
+        rastty::bench::workloads(&models)
+    } else {
+        (
+            rastty::bench::workloads(&models).0,
+            vec![format!(
+                "{}: not found: the built-in scenes alone are timed (--models names a folder)",
+                models.display()
+            )],
+        )
+    };
+    for note in &notes {
+        say("note", note);
+    }
+    let mut out = stdout()?;
     let report = rastty::bench::run(&workloads, args.reps as usize);
-    let mut out = io::stdout().lock();
     writeln!(
         out,
         "Time per frame at 200×60 cells (median of {} frames; rendering, or encoding for quantisation), and each knob's error.",
@@ -134,7 +181,10 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     report
         .svg(&args.svg)
         .map_err(|e| rastty::Error::Invalid(format!("{}: {e}", args.svg.display())))?;
-    say_lines(&format!("wrote {}", rastty::text::line(&args.svg.display().to_string())));
+    say_lines(&format!(
+        "wrote {}",
+        rastty::text::line(&args.svg.display().to_string())
+    ));
     Ok(())
 }
 
@@ -150,6 +200,12 @@ fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
     if let Some(max) = input.max_file_size {
         options.max_bytes = max;
     }
+    if let Some(max) = input.max_texels {
+        options.max_texels = max;
+    }
+    if let Some(max) = input.max_triangles {
+        options.max_triangles = max;
+    }
     let scene = match &input.scene {
         Some(p) => Scene::open_within(p, &options)?,
         None => rastty::default_scene(),
@@ -162,7 +218,6 @@ fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
     let format = args.output.as_deref().map(Format::of).transpose()?;
-    let scene = scene(&args.input)?;
     let mut opts = options(&args.view, 1);
     if let Some(format) = format {
         // A file is not the terminal: sizes and colours are its own.
@@ -174,7 +229,24 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         if matches!(format, Format::Png | Format::Svg) && args.view.cell_aspect.is_none() {
             opts.cell_aspect = args.cell_px.aspect();
         }
+        if matches!(format, Format::Png | Format::Svg) {
+            picture::check_size(opts.cols, opts.rows, args.cell_px)?;
+        }
     }
+    // Everything that can be refused is refused before the work: the
+    // frame's size, the files to write, then the scene.
+    opts.check_samples(max_samples(&args.view))?;
+    let mut record = args
+        .record
+        .as_deref()
+        .map(|p| Ok((create(p)?, p)))
+        .transpose()?;
+    let scene = scene(&args.input).inspect_err(|_| {
+        // No recording of a frame that was never drawn.
+        if let Some((_, path)) = &record {
+            let _ = std::fs::remove_file(path);
+        }
+    })?;
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
     let palette = rastty::color::Palette {
@@ -189,15 +261,14 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
             picture::save(frame, path, format, palette, Theme::default(), args.cell_px)?
         }
         _ => {
-            let mut stdout = io::stdout().lock();
+            let mut stdout = stdout()?;
             encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
                 .and_then(|()| stdout.flush())
                 .map_err(stdout_error)?;
             buf.len()
         }
     };
-    if let Some(path) = &args.record {
-        let file = create(path)?;
+    if let Some((file, path)) = record.take() {
         let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
         let mut rec = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
             .and_then(|mut rec| {
@@ -222,9 +293,15 @@ fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
         .map_err(|e| rastty::Error::io(path, e))
 }
 
+/// The frame budget `--max-samples` sets.
+fn max_samples(view: &ViewArgs) -> u64 {
+    view.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES)
+}
+
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
-    let scene = scene(&args.input)?;
     let opts = options(&args.view, 0);
+    opts.check_samples(max_samples(&args.view))?;
+    let scene = scene(&args.input)?;
     let spin = Spin {
         axis: args.axis,
         step: args.step,
@@ -265,7 +342,7 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
             .map(|()| ExitCode::SUCCESS)
             .map_err(|e| rastty::Error::io(path, e));
         }
-        let mut out = io::stdout().lock();
+        let mut out = stdout()?;
         animate::play(&scene, &opts, spin, frames, encoder, &mut out, |_| {})
             .map_err(stdout_error)?;
         return Ok(ExitCode::SUCCESS);

@@ -217,7 +217,39 @@ impl Default for RenderOptions {
     }
 }
 
+/// The default budget of sample tests in one frame (64 Mi): a 1,024 × 512
+/// octant frame at 16× anti-aliasing, far past any terminal; see
+/// [`RenderOptions::sample_tests`].
+pub const DEFAULT_MAX_SAMPLES: u64 = 1 << 26;
+
 impl RenderOptions {
+    /// The sample tests one frame makes: cells × samples a cell × the
+    /// anti-aliasing passes. Time grows with it, and memory with the
+    /// samples (about 12 bytes each, 28 with anti-aliasing).
+    pub fn sample_tests(&self) -> u64 {
+        u64::from(self.cols)
+            * u64::from(self.rows)
+            * self.glyphs.samples() as u64
+            * self.aa.passes()
+    }
+
+    /// Refuses, before any work, a frame of more than `max` sample tests,
+    /// with the error naming the budget and how to raise it.
+    pub fn check_samples(&self, max: u64) -> crate::error::Result<()> {
+        let n = self.sample_tests();
+        if n <= max {
+            return Ok(());
+        }
+        Err(crate::error::Error::Invalid(format!(
+            "a frame of {}×{} cells at {} samples a cell and {} pass(es) of --aa {} is {n} sample tests, more than the budget of {max} (--max-samples raises it)",
+            self.cols,
+            self.rows,
+            self.glyphs.samples(),
+            self.aa.passes(),
+            self.aa.name()
+        )))
+    }
+
     /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:
     /// what the projection is given.
     pub fn aspect(&self) -> f32 {

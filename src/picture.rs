@@ -242,15 +242,18 @@ fn cover(fg: Rgb, bg: Rgb, n: u8) -> Rgb {
 
 /// The picture's size in pixels, checked against [`MAX_PIXELS`].
 fn size(frame: &Frame, cell: CellPx) -> Result<(u32, u32)> {
-    let w = u32::from(frame.cols()) * u32::from(cell.w);
-    let h = u32::from(frame.rows()) * u32::from(cell.h);
+    check_size(frame.cols(), frame.rows(), cell)
+}
+
+/// The size in pixels of a picture of `cols`×`rows` cells, refused when
+/// over [`MAX_PIXELS`]: a program checks it before it renders the frame.
+pub fn check_size(cols: u16, rows: u16, cell: CellPx) -> Result<(u32, u32)> {
+    let w = u32::from(cols) * u32::from(cell.w);
+    let h = u32::from(rows) * u32::from(cell.h);
     if u64::from(w) * u64::from(h) > MAX_PIXELS {
         return Err(Error::Invalid(format!(
-            "a picture of {}×{} cells at {}×{} pixels a cell would be {w}×{h} pixels, more than {MAX_PIXELS}: use fewer cells or smaller ones (--cell-px)",
-            frame.cols(),
-            frame.rows(),
-            cell.w,
-            cell.h
+            "a picture of {cols}×{rows} cells at {}×{} pixels a cell would be {w}×{h} pixels, more than {MAX_PIXELS}: use fewer cells or smaller ones (--cell-px)",
+            cell.w, cell.h
         )));
     }
     Ok((w, h))

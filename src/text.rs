@@ -71,32 +71,65 @@ fn push_escaped(out: &mut String, c: char) {
 
 /// `s` as one safe line: escaped (newlines included) and, if longer than
 /// [`MAX_LINE_CHARS`] characters once escaped, cut in the middle with the
-/// number of characters cut said there.
+/// number of characters cut said there. Only what is kept is copied, so a
+/// 100 MB message costs a pass over it, not a second 100 MB.
 pub fn line(s: &str) -> String {
+    cut(s, MAX_LINE_CHARS)
+}
+
+/// [`line`] for a part of a line: escaped and cut to at most `max`
+/// characters (at least 40), keeping about two thirds from its start and
+/// a quarter from its end.
+pub fn cut(s: &str, max: usize) -> String {
+    let max = max.max(40);
+    let (head_max, tail_max) = (max * 5 / 8, max / 4);
+    let width = |c: char| if is_unsafe(c) { escaped_len(c) } else { 1 };
+    let n: usize = s.chars().map(width).sum();
     let mut out = String::new();
-    let total = s.chars().count();
-    // Escapes take at most 8 characters a character: a head and tail of
-    // that many characters each are enough to fill the line.
-    const HEAD: usize = 190;
-    const TAIL: usize = 70;
-    if total <= MAX_LINE_CHARS / 8 {
+    if n <= max {
         s.chars().for_each(|c| push_escaped(&mut out, c));
         return out;
     }
-    let escaped = escape(s);
-    let n = escaped.chars().count();
-    if n <= MAX_LINE_CHARS {
-        return escaped.into_owned();
+    // Whole escapes only: an escape is never cut in two.
+    let (mut head, mut head_len) = (String::new(), 0);
+    let mut escaped = String::new();
+    for c in s.chars() {
+        escaped.clear();
+        push_escaped(&mut escaped, c);
+        let w = escaped.chars().count();
+        if head_len + w > head_max {
+            break;
+        }
+        head.push_str(&escaped);
+        head_len += w;
     }
-    let head: String = escaped.chars().take(HEAD).collect();
-    let tail: Vec<char> = escaped.chars().skip(n - TAIL).collect();
+    let (mut back, mut tail_len) = (Vec::new(), 0);
+    for c in s.chars().rev() {
+        let w = width(c);
+        if tail_len + w > tail_max {
+            break;
+        }
+        back.push(c);
+        tail_len += w;
+    }
+    let mut tail = String::new();
+    back.iter().rev().for_each(|&c| push_escaped(&mut tail, c));
     let _ = write!(
         out,
-        "{head} … [{} characters cut] … {}",
-        n - HEAD - TAIL,
-        tail.into_iter().collect::<String>()
+        "{head} … [{} characters cut] … {tail}",
+        n - head_len - tail_len
     );
     out
+}
+
+/// The characters `c`'s escape takes.
+fn escaped_len(c: char) -> usize {
+    if (c as u32) < 0x80 {
+        4
+    } else {
+        // \u{ + hex digits + }
+        4 + (32 - (c as u32).leading_zeros() as usize).div_ceil(4)
+    }
 }
 
 /// `s` shown as a quoted name: escaped and, if long, cut to `max`
@@ -144,7 +177,7 @@ mod tests {
         assert!(l.chars().count() <= MAX_LINE_CHARS, "{}", l.chars().count());
         assert!(l.starts_with("file.toml:1:5: unknown key `kkk"), "{l}");
         assert!(l.ends_with("kkk` here"), "{l}");
-        assert!(l.contains(" … [99774 characters cut] … "), "{l}");
+        assert!(l.contains(" … [99772 characters cut] … "), "{l}");
         // Escapes count as what they show.
         let l = line(&"\x1b".repeat(1000));
         assert!(l.chars().count() <= MAX_LINE_CHARS);

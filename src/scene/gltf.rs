@@ -94,8 +94,8 @@ pub fn parse(
     }
     let document = ::gltf::Document::from_json(root).map_err(|e| bad(describe(&e)))?;
     let mut notes = Vec::new();
-    let buffers = buffers(&document, blob, base, name, options.max_bytes, &mut notes)
-        .map_err(bad)?;
+    let buffers =
+        buffers(&document, blob, base, name, options.max_bytes, &mut notes).map_err(bad)?;
 
     let scene = document
         .default_scene()
@@ -199,7 +199,10 @@ fn semantic_name(s: &::gltf::json::validation::Checked<::gltf::json::mesh::Seman
 /// and reused wherever it appears (a graph of 60 nodes each holding the
 /// next twice places 2^60 nodes, and is counted in 60 steps, not walked).
 /// A node that holds itself, directly or not, is an error.
-fn placed(document: &::gltf::Document, scene: &::gltf::Scene) -> std::result::Result<(u128, u128), String> {
+fn placed(
+    document: &::gltf::Document,
+    scene: &::gltf::Scene,
+) -> std::result::Result<(u128, u128), String> {
     let meshes: Vec<u128> = document
         .meshes()
         .map(|m| m.primitives().map(|p| triangles_of(&p)).sum())
@@ -294,7 +297,10 @@ fn buffers(
     }
     for v in document.views() {
         let len = v.buffer().length();
-        if v.offset().checked_add(v.length()).is_none_or(|end| end > len) {
+        if v.offset()
+            .checked_add(v.length())
+            .is_none_or(|end| end > len)
+        {
             return Err(format!(
                 "buffer view {} ({} bytes at offset {}) runs past the {len} bytes of buffer {}",
                 v.index(),
@@ -324,21 +330,33 @@ fn fetch(
             .map_err(|e| describe(&e));
     }
     let shown = crate::text::name(uri, 80);
-    let path = if let Some(rest) = uri.strip_prefix("file://").or_else(|| uri.strip_prefix("file:")) {
+    let path = if let Some(rest) = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+    {
         rest
     } else if let Some(scheme) = scheme(uri) {
-        return Err(if matches!(scheme.to_ascii_lowercase().as_str(), "http" | "https") {
-            format!("{shown} is on the network: rastty fetches nothing (download it beside the model)")
-        } else {
-            format!("{shown}: rastty reads data: URIs and files, not {} URIs", crate::text::name(scheme, 20))
-        });
+        return Err(
+            if matches!(scheme.to_ascii_lowercase().as_str(), "http" | "https") {
+                format!(
+                    "{shown} is on the network: rastty fetches nothing (download it beside the model)"
+                )
+            } else {
+                format!(
+                    "{shown}: rastty reads data: URIs and files, not {} URIs",
+                    crate::text::name(scheme, 20)
+                )
+            },
+        );
     } else {
         uri
     };
     let path = urlencoding::decode(path)
         .map_err(|_| format!("{shown}: its percent-encoding is not UTF-8"))?;
     let Some(base) = base else {
-        return Err(format!("{shown} names a file, and the model was not read from one"));
+        return Err(format!(
+            "{shown} names a file, and the model was not read from one"
+        ));
     };
     let r = file::reference(base, owner, &path);
     notes.extend(r.note);
@@ -687,8 +705,9 @@ impl Parts<'_> {
             (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
             (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
         };
-        let texture = super::image::decode(bytes, &what, sampler(&t.sampler()), self.images.texels_left)
-            .map_err(bad)?;
+        let texture =
+            super::image::decode(bytes, &what, sampler(&t.sampler()), self.images.texels_left)
+                .map_err(bad)?;
         let (w, h) = texture.original_size();
         self.images.texels_left -= u64::from(w) * u64::from(h);
         let id = self.textures.len() as u32;

@@ -504,9 +504,9 @@ pub struct LoadOptions {
 /// The default texel budget: 64 Mi texels (an 8192² image, or four of
 /// 4096²), about 1 GiB of linear texels with their mipmaps.
 pub const DEFAULT_MAX_TEXELS: u64 = 1 << 26;
-/// The default triangle budget: 64 Mi triangles (the largest shared model
-/// has 41 thousand), about 4.4 GiB of mesh.
-pub const DEFAULT_MAX_TRIANGLES: u64 = 1 << 26;
+/// The default triangle budget: 256 Mi triangles placed (the largest
+/// shared model has 41 thousand; a frame of that many takes seconds).
+pub const DEFAULT_MAX_TRIANGLES: u64 = 1 << 28;
 
 impl Default for LoadOptions {
     fn default() -> Self {
@@ -711,6 +711,27 @@ impl Scene {
         let mut scene = Scene::default();
         let mut camera_at: Option<usize> = None;
         let mut loaded: FxHashMap<std::path::PathBuf, Arc<Geometry>> = FxHashMap::default();
+        // The budgets are the scene's: each model loaded spends texels
+        // from what is left, each mesh placed spends its triangles.
+        let mut options = *options;
+        let mut placed: u64 = 0;
+        // TOML allows no control character but tab anywhere, not even in
+        // strings or comments: one scan refuses a binary file before the
+        // parser makes anything of it.
+        if let Some(at) = src
+            .bytes()
+            .position(|b| (b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r')) || b == 0x7f)
+        {
+            return Err(Error::parse_at(
+                name,
+                src,
+                at,
+                format!(
+                    "a control character ({}), which TOML does not allow: is this a scene file?",
+                    crate::text::escape(&src[at..at + 1])
+                ),
+            ));
+        }
         for (start, end) in chunks(src, CHUNK) {
             let text = &src[start..end];
             let def: SceneDef = toml::from_str(text).map_err(|e| {
@@ -736,7 +757,12 @@ impl Scene {
             for t in def.triangle {
                 let span = t.span();
                 let t = t.into_inner();
-                if t.vertices.iter().flatten().any(|c| !c.is_finite()) {
+                if t.vertices
+                    .0
+                    .iter()
+                    .flat_map(|v| v.0)
+                    .any(|c| !c.is_finite())
+                {
                     return Err(at(span, "triangle vertices must be finite numbers".into()));
                 }
                 let color = match (t.color, t.colors) {
@@ -747,11 +773,11 @@ impl Scene {
                         ));
                     }
                     (Some(c), None) => TriangleColor::Flat(c),
-                    (None, Some(c)) => TriangleColor::PerVertex(c),
+                    (None, Some(c)) => TriangleColor::PerVertex(c.0),
                     (None, None) => TriangleColor::Flat(Rgb::WHITE),
                 };
                 scene.triangles.push(Triangle {
-                    vertices: t.vertices.map(Vec3::from),
+                    vertices: t.vertices.0.map(Vec3::from),
                     color,
                 });
             }
@@ -783,7 +809,9 @@ impl Scene {
                         match loaded.get(&p) {
                             Some(g) => Arc::clone(g),
                             None => {
-                                let (g, notes) = load_geometry(&p, options)?;
+                                let (g, notes) = load_geometry(&p, &options)?;
+                                options.max_texels =
+                                    options.max_texels.saturating_sub(texels_of(&g));
                                 scene.notes.extend(notes);
                                 loaded.insert(p, Arc::clone(&g));
                                 g
@@ -807,6 +835,16 @@ impl Scene {
                         ));
                     }
                 };
+                placed += geometry.faces.len() as u64;
+                if placed > options.max_triangles {
+                    return Err(at(
+                        span,
+                        format!(
+                            "the scene places {placed} triangles by this mesh, more than the triangle budget of {} (--max-triangles raises it)",
+                            options.max_triangles
+                        ),
+                    ));
+                }
                 let mut mesh = Mesh::of(geometry, color);
                 mesh.model =
                     transform::model(m.scale.vec(), Vec3::from(m.rotate), Vec3::from(m.translate));
@@ -843,6 +881,18 @@ impl Scene {
         }
         Ok(scene)
     }
+}
+
+/// The texels a model's images held as decoded, as the texel budget counts
+/// them.
+fn texels_of(g: &Geometry) -> u64 {
+    g.textures
+        .iter()
+        .map(|t| {
+            let (w, h) = t.original_size();
+            u64::from(w) * u64::from(h)
+        })
+        .sum()
 }
 
 /// The scene `rastty render` draws when it is given none.
@@ -1022,6 +1072,33 @@ pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
     Ok(Mesh::of(geometry, color))
 }
 
+/// An array of exactly `N` (serde's own arrays ignore what follows the
+/// `N`th element, so `eye = [0, 0, 1, 2]` would pass unseen).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Exact<T, const N: usize>([T; N]);
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let v: Vec<T> = Vec::deserialize(d)?;
+        let n = v.len();
+        v.try_into()
+            .map(Exact)
+            .map_err(|_| serde::de::Error::invalid_length(n, &format!("an array of {N}").as_str()))
+    }
+}
+
+impl<T: Default + Copy, const N: usize> Default for Exact<T, N> {
+    fn default() -> Self {
+        Exact([T::default(); N])
+    }
+}
+
+impl From<Exact<f32, 3>> for Vec3 {
+    fn from(a: Exact<f32, 3>) -> Vec3 {
+        Vec3::from(a.0)
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneDef {
@@ -1042,9 +1119,9 @@ struct MeshDef {
     shape: Option<String>,
     color: Option<Rgb>,
     #[serde(default)]
-    translate: [f32; 3],
+    translate: Exact<f32, 3>,
     #[serde(default)]
-    rotate: [f32; 3],
+    rotate: Exact<f32, 3>,
     #[serde(default)]
     scale: ScaleDef,
     cull: Option<CullDef>,
@@ -1055,7 +1132,7 @@ struct MeshDef {
 #[serde(untagged)]
 enum ScaleDef {
     Uniform(f32),
-    Axes([f32; 3]),
+    Axes(Exact<f32, 3>),
 }
 
 impl Default for ScaleDef {
@@ -1094,7 +1171,7 @@ impl From<CullDef> for Cull {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightDef {
-    direction: [f32; 3],
+    direction: Exact<f32, 3>,
     #[serde(default = "white")]
     color: Rgb,
     #[serde(default = "default_ambient")]
@@ -1124,9 +1201,9 @@ struct CameraDef {
     fov_y: f32,
     near: f32,
     far: f32,
-    eye: [f32; 3],
-    target: [f32; 3],
-    up: [f32; 3],
+    eye: Exact<f32, 3>,
+    target: Exact<f32, 3>,
+    up: Exact<f32, 3>,
     height: f32,
 }
 
@@ -1137,9 +1214,9 @@ impl Default for CameraDef {
             fov_y: 45.0,
             near: 0.1,
             far: 100.0,
-            eye: [0.0, 0.0, 5.0],
-            target: [0.0; 3],
-            up: [0.0, 1.0, 0.0],
+            eye: Exact([0.0, 0.0, 5.0]),
+            target: Exact([0.0; 3]),
+            up: Exact([0.0, 1.0, 0.0]),
             height: 2.0,
         }
     }
@@ -1173,9 +1250,9 @@ impl CameraDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TriangleDef {
-    vertices: [[f32; 3]; 3],
+    vertices: Exact<Exact<f32, 3>, 3>,
     color: Option<Rgb>,
-    colors: Option<[Rgb; 3]>,
+    colors: Option<Exact<Rgb, 3>>,
 }
 
 #[cfg(test)]

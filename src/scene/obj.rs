@@ -527,7 +527,11 @@ impl Reader<'_> {
         let whole = c.clone().rest();
         let mut each = c;
         let words: Vec<(&[u8], usize)> = std::iter::from_fn(|| each.word()).collect();
-        let found = |w: &[u8]| file::reference(self.dir, self.name, &lossy(w)).path.exists();
+        let found = |w: &[u8]| {
+            file::reference(self.dir, self.name, &lossy(w))
+                .path
+                .exists()
+        };
         let each_exists = words.iter().all(|(w, _)| found(w));
         let files: Vec<(&[u8], usize)> = if each_exists || words.is_empty() {
             words
@@ -560,6 +564,7 @@ impl Reader<'_> {
 
     fn finish(mut self, last_line: usize) -> Result<Loaded> {
         let mut notes = std::mem::take(&mut self.reference_notes);
+        notes.extend(polygon::fallback_note(&self.name, self.cutter.fallbacks));
         if let Some(&first) = self.bad_pos.first() {
             notes.push(format!(
                 "{}:{first}: {} vertices are not finite numbers; the {} faces that use them are not drawn",
@@ -683,10 +688,7 @@ fn corner_offset(line: &[u8], k: usize) -> usize {
 /// A material library: each material's diffuse colour and texture, and
 /// notes on the files it names.
 #[allow(clippy::type_complexity)]
-fn mtl(
-    path: &Path,
-    options: &LoadOptions,
-) -> Result<(FxHashMap<Vec<u8>, Material>, Vec<String>)> {
+fn mtl(path: &Path, options: &LoadOptions) -> Result<(FxHashMap<Vec<u8>, Material>, Vec<String>)> {
     let (file, _) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let at = |line: usize, column: usize, message: String| Error::Parse {
@@ -753,11 +755,8 @@ fn mtl(
                     ));
                 };
                 let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
-                let r = file::reference(
-                    path.parent().unwrap_or(Path::new(".")),
-                    &name,
-                    &lossy(file),
-                );
+                let r =
+                    file::reference(path.parent().unwrap_or(Path::new(".")), &name, &lossy(file));
                 notes.extend(r.note);
                 let map = Map {
                     path: r.path,

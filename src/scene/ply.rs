@@ -12,12 +12,14 @@
 //! Other elements and properties are said in a note. A PLY file without
 //! faces (a point cloud) has nothing to draw and is refused.
 
-use std::io::{BufReader, Read};
+use std::cell::Cell;
+use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
+use std::rc::Rc;
 
 use glam::Vec3;
-use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, Property};
+use ply_rs_bw::parser::{Parser, Reader};
+use ply_rs_bw::ply::{Encoding, Property, PropertyAccess, PropertyAccessResult};
 
 use super::LoadOptions;
 use super::file;
@@ -42,81 +44,97 @@ pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
     read(bytes, name, LoadOptions::default().crease)
 }
 
-fn read(mut r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
+fn read(r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
-    let ply = Parser::<DefaultElement>::new()
-        .read_ply(&mut r)
-        .map_err(|e| bad(e.to_string()))?;
+    let ply_error = |e: ply_rs_bw::parser::ParseError| bad(one_line(&e.to_string()));
+    let ascii = Rc::new(Cell::new(true));
+    let mut reader = Reader::new(LineCap {
+        inner: BufReader::new(r),
+        run: 0,
+        lines: 0,
+        on: Rc::clone(&ascii),
+    });
+    let header = Parser::<Skip>::new()
+        .read_header(&mut reader)
+        .map_err(ply_error)?;
+    ascii.set(header.encoding == Encoding::Ascii);
     let mut notes = Vec::new();
-    let vertices = ply
-        .payload
-        .get("vertex")
-        .ok_or_else(|| bad("no vertex element".into()))?;
-    let scalar = |e: &DefaultElement, k: &str| e.get(k).and_then(Property::to_f32_lossy);
+    let (mut vertices, mut faces, mut others) = (None, None, Vec::new());
+    for (key, def) in &header.elements {
+        match key.as_str() {
+            "vertex" if vertices.is_none() => {
+                vertices = Some(
+                    Parser::<Vertex>::new()
+                        .read_payload_for_element(&mut reader, def, &header)
+                        .map_err(ply_error)?,
+                );
+            }
+            "face" if faces.is_none() => {
+                faces = Some(
+                    Parser::<Face>::new()
+                        .read_payload_for_element(&mut reader, def, &header)
+                        .map_err(ply_error)?,
+                );
+            }
+            other => {
+                Parser::<Skip>::new()
+                    .read_payload_for_element(&mut reader, def, &header)
+                    .map_err(ply_error)?;
+                others.push(other);
+            }
+        }
+    }
+    let vertices = vertices.ok_or_else(|| bad("no vertex element".into()))?;
     let mut positions = Vec::with_capacity(vertices.len());
     for (i, v) in vertices.iter().enumerate() {
-        let p = [scalar(v, "x"), scalar(v, "y"), scalar(v, "z")];
-        let [Some(x), Some(y), Some(z)] = p else {
+        if v.has & Vertex::POSITION != Vertex::POSITION {
             return Err(bad(format!("vertex {i} has no numeric x, y and z")));
-        };
-        positions.push(Vec3::new(x, y, z));
+        }
+        positions.push(Vec3::from(v.position));
     }
-    let all = |keys: [&str; 3]| {
-        vertices
-            .iter()
-            .map(|v| {
-                let [a, b, c] = keys.map(|k| v.get(k));
-                Some([a?, b?, c?])
-            })
-            .collect::<Option<Vec<[&Property; 3]>>>()
-    };
-    let normals: Option<Vec<Vec3>> = all(["nx", "ny", "nz"]).and_then(|ns| {
-        ns.into_iter()
-            .map(|n| {
-                Some(Vec3::from(
-                    n.map(Property::to_f32_lossy).map(|c| c.unwrap_or(f32::NAN)),
-                ))
-            })
-            .map(|n| n.filter(|n| n.is_finite()).map(Vec3::normalize_or_zero))
-            .collect()
-    });
-    let colors: Option<Vec<Lin>> = all(["red", "green", "blue"]).and_then(|cs| {
-        cs.into_iter()
-            .map(|c| {
-                let [r, g, b] = c.map(Property::to_u8_color_lossy);
-                Some(Lin::from_srgb(Rgb([r?, g?, b?])))
-            })
-            .collect()
-    });
-
-    let faces = ply
-        .payload
-        .get("face")
-        .ok_or_else(|| bad("no face element: a point cloud has nothing to draw".into()))?;
+    let normals: Option<Vec<Vec3>> = vertices
+        .iter()
+        .all(|v| v.has & Vertex::NORMAL == Vertex::NORMAL)
+        .then(|| {
+            vertices
+                .iter()
+                .map(|v| Vec3::from(v.normal))
+                .map(|n| {
+                    if n.is_finite() {
+                        n.normalize_or_zero()
+                    } else {
+                        Vec3::NAN
+                    }
+                })
+                .collect()
+        })
+        .filter(|ns: &Vec<Vec3>| ns.iter().all(|n| n.is_finite()));
+    let colors: Option<Vec<Lin>> = vertices
+        .iter()
+        .all(|v| v.has & Vertex::COLOR == Vertex::COLOR)
+        .then(|| {
+            vertices
+                .iter()
+                .map(|v| Lin::from_srgb(Rgb(v.color)))
+                .collect()
+        });
+    drop(vertices);
+    let faces =
+        faces.ok_or_else(|| bad("no face element: a point cloud has nothing to draw".into()))?;
     let n = positions.len();
     let mut colors = colors;
     let mut triangles = Vec::with_capacity(faces.len());
     let mut cutter = Triangulator::new();
     let (mut corners, mut corner_pos, mut cut) = (Vec::new(), Vec::new(), Vec::new());
     for (f, face) in faces.iter().enumerate() {
-        let list = face
-            .get("vertex_indices")
-            .or_else(|| face.get("vertex_index"));
-        corners.clear();
-        let ok = match list {
-            Some(Property::ListInt(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            Some(Property::ListUInt(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            Some(Property::ListShort(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            Some(Property::ListUShort(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            Some(Property::ListChar(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            Some(Property::ListUChar(v)) => v.iter().all(|&i| push(&mut corners, i64::from(i), n)),
-            _ => {
-                return Err(bad(format!(
-                    "face {f} has no vertex_indices list of integers"
-                )));
-            }
+        let Some(list) = &face.corners else {
+            return Err(bad(format!(
+                "face {f} has no vertex_indices list of integers"
+            )));
         };
-        if !ok {
+        corners.clear();
+        corners.extend_from_slice(list);
+        if corners.iter().any(|&i| i as usize >= n) {
             return Err(bad(format!(
                 "face {f} names a vertex out of range (there are {n} vertices)"
             )));
@@ -163,12 +181,6 @@ fn read(mut r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
             }
         }
     }
-    let others: Vec<&str> = ply
-        .payload
-        .keys()
-        .map(String::as_str)
-        .filter(|k| *k != "vertex" && *k != "face")
-        .collect();
     if !others.is_empty() {
         notes.push(format!(
             "{name}: not drawn: the element{} {}",
@@ -184,14 +196,193 @@ fn read(mut r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
         _ => g.compute_normals(crease),
     }
     g.analyze();
+    notes.extend(polygon::fallback_note(name, cutter.fallbacks));
     Ok(Loaded { geometry: g, notes })
 }
 
-/// Pushes index `i` when it names one of `n` vertices.
-fn push(corners: &mut Vec<u32>, i: i64, n: usize) -> bool {
-    let ok = i >= 0 && (i as u64) < n as u64;
-    if ok {
-        corners.push(i as u32);
+/// The longest line of an ASCII PLY file (header or element), 4 MiB: a
+/// face of about 500,000 corners. A longer one is refused as it is read,
+/// because the parser holds a line and its tokens at once (up to 11 times
+/// the line's bytes for one-digit tokens): this bounds what one line can
+/// cost to about 45 MiB whatever the file.
+pub const MAX_LINE: usize = 4 << 20;
+
+/// A reader that refuses a line longer than [`MAX_LINE`] while `on` (the
+/// header, and an ASCII body; a binary body has no lines).
+struct LineCap<R> {
+    inner: R,
+    /// Bytes since the last newline.
+    run: usize,
+    /// Newlines consumed, while `on`.
+    lines: usize,
+    on: Rc<Cell<bool>>,
+}
+
+impl<R: BufRead> Read for LineCap<R> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = {
+            let have = self.fill_buf()?;
+            let n = have.len().min(buf.len());
+            buf[..n].copy_from_slice(&have[..n]);
+            n
+        };
+        self.consume(n);
+        Ok(n)
     }
-    ok
+}
+
+impl<R: BufRead> BufRead for LineCap<R> {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        if self.on.get() && self.run > MAX_LINE {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("line {}: longer than {MAX_LINE} bytes", self.lines + 1),
+            ));
+        }
+        self.inner.fill_buf()
+    }
+
+    fn consume(&mut self, amt: usize) {
+        if let Ok(buf) = self.inner.fill_buf() {
+            let taken = &buf[..amt.min(buf.len())];
+            if self.on.get() {
+                self.lines += memchr::memchr_iter(b'\n', taken).count();
+            }
+            self.run = match memchr::memrchr(b'\n', taken) {
+                Some(k) => taken.len() - k - 1,
+                None => self.run + taken.len(),
+            };
+        }
+        self.inner.consume(amt);
+    }
+}
+
+/// The parser's message on one line, without the line it quotes (a
+/// `String: '…'` part, which may be megabytes of the file).
+fn one_line(message: &str) -> String {
+    let mut kept = String::new();
+    let mut rest = message;
+    while let Some(i) = rest.find("\n\tString: '") {
+        kept.push_str(&rest[..i]);
+        rest = rest[i..].find("\n\tError: ").map_or("", |j| &rest[i + j..]);
+    }
+    kept.push_str(rest);
+    kept.split('\n')
+        .map(|part| {
+            part.trim()
+                .trim_start_matches("Error: ")
+                .trim_end_matches('.')
+        })
+        .filter(|part| !part.is_empty())
+        .collect::<Vec<_>>()
+        .join(": ")
+}
+
+/// A `vertex` element as read: only what is drawn, 28 bytes.
+#[derive(Clone, Copy, Debug)]
+struct Vertex {
+    position: [f32; 3],
+    normal: [f32; 3],
+    color: [u8; 3],
+    /// Which coordinates were found, one bit each.
+    has: u16,
+}
+
+impl Vertex {
+    const POSITION: u16 = 0b111;
+    const NORMAL: u16 = 0b111 << 3;
+    const COLOR: u16 = 0b111 << 6;
+}
+
+impl PropertyAccess for Vertex {
+    fn new() -> Self {
+        Vertex {
+            position: [0.0; 3],
+            normal: [0.0; 3],
+            color: [0; 3],
+            has: 0,
+        }
+    }
+
+    fn set_property(&mut self, key: &str, p: Property) -> PropertyAccessResult {
+        let bit = match key {
+            "x" | "y" | "z" | "nx" | "ny" | "nz" => {
+                let Some(v) = p.to_f32_lossy() else {
+                    return PropertyAccessResult::Ignored;
+                };
+                let k = match key {
+                    "x" => 0,
+                    "y" => 1,
+                    "z" => 2,
+                    "nx" => 3,
+                    "ny" => 4,
+                    _ => 5,
+                };
+                if k < 3 {
+                    self.position[k] = v;
+                } else {
+                    self.normal[k - 3] = v;
+                }
+                k
+            }
+            "red" | "green" | "blue" => {
+                let Some(v) = p.to_u8_color_lossy() else {
+                    return PropertyAccessResult::Ignored;
+                };
+                let k = match key {
+                    "red" => 0,
+                    "green" => 1,
+                    _ => 2,
+                };
+                self.color[k] = v;
+                6 + k
+            }
+            _ => return PropertyAccessResult::Ignored,
+        };
+        self.has |= 1 << bit;
+        PropertyAccessResult::Set
+    }
+}
+
+/// A `face` element as read: its corners (`None` without a list of
+/// integers); a negative index is kept as `u32::MAX`, out of range.
+#[derive(Clone, Debug)]
+struct Face {
+    corners: Option<Vec<u32>>,
+}
+
+impl PropertyAccess for Face {
+    fn new() -> Self {
+        Face { corners: None }
+    }
+
+    fn set_property(&mut self, key: &str, p: Property) -> PropertyAccessResult {
+        if key != "vertex_indices" && key != "vertex_index" {
+            return PropertyAccessResult::Ignored;
+        }
+        fn list<T: Copy>(v: &[T], f: impl Fn(T) -> i64) -> Vec<u32> {
+            v.iter()
+                .map(|&i| u32::try_from(f(i)).unwrap_or(u32::MAX))
+                .collect()
+        }
+        self.corners = match &p {
+            Property::ListInt(v) => Some(list(v, i64::from)),
+            Property::ListUInt(v) => Some(list(v, i64::from)),
+            Property::ListShort(v) => Some(list(v, i64::from)),
+            Property::ListUShort(v) => Some(list(v, i64::from)),
+            Property::ListChar(v) => Some(list(v, i64::from)),
+            Property::ListUChar(v) => Some(list(v, i64::from)),
+            _ => return PropertyAccessResult::Ignored,
+        };
+        PropertyAccessResult::Set
+    }
+}
+
+/// An element that is not drawn: read past, nothing kept.
+struct Skip;
+
+impl PropertyAccess for Skip {
+    fn new() -> Self {
+        Skip
+    }
 }

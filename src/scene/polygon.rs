@@ -26,6 +26,19 @@
 //!
 //! Every triangle keeps the polygon's facing (its normal points the way the
 //! polygon's does).
+//!
+//! spade can fail on some degenerate outlines (corners far off one plane
+//! that project onto nearly the same point: "Failed to locate position.
+//! This is a bug in spade."). A file must never make rastty panic, so the
+//! triangulation runs under `catch_unwind`, with a panic hook installed
+//! once that stays quiet on the thread while it runs (and passes every
+//! other panic to the hook that was there); a polygon it fails on is cut
+//! as a fan from its first corner, and [`Triangulator::fallbacks`] counts
+//! them for the loader's note.
+
+use std::cell::Cell;
+use std::panic::{self, AssertUnwindSafe};
+use std::sync::Once;
 
 use glam::{DVec3, Vec3};
 use rustc_hash::FxHashMap;
@@ -59,6 +72,30 @@ pub fn quad(p: [Vec3; 4]) -> Option<usize> {
 #[derive(Debug, Default)]
 pub struct Triangulator {
     flat: Vec<[f64; 2]>,
+    /// Polygons spade failed on, cut as fans instead.
+    pub fallbacks: usize,
+}
+
+thread_local! {
+    /// Whether a panic on this thread is spade's, caught and answered.
+    static QUIET: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Runs `f`, catching a panic without a word from the panic hook.
+fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
+    static HOOK: Once = Once::new();
+    HOOK.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    QUIET.with(|q| q.set(true));
+    let r = panic::catch_unwind(AssertUnwindSafe(f));
+    QUIET.with(|q| q.set(false));
+    r.ok()
 }
 
 impl Triangulator {
@@ -86,8 +123,21 @@ impl Triangulator {
     }
 
     /// Projects and triangulates with the edges as constraints, keeping
-    /// the even-odd inside.
+    /// the even-odd inside; a fan where spade fails.
     fn general(&mut self, corners: &[Vec3], out: &mut Vec<[Point; 3]>) {
+        let before = out.len();
+        if quietly(|| self.cdt(corners, out)).is_none() {
+            out.truncate(before);
+            self.fallbacks += 1;
+            let n = corners.len() as u32;
+            out.extend(
+                (1..n - 1).map(|i| [Point::Corner(0), Point::Corner(i), Point::Corner(i + 1)]),
+            );
+        }
+    }
+
+    /// The constrained Delaunay triangulation of [`Triangulator::general`].
+    fn cdt(&mut self, corners: &[Vec3], out: &mut Vec<[Point; 3]>) {
         let n = corners.len();
         let Some(axes) = plane(corners) else {
             return; // every corner on one line: no area
@@ -200,6 +250,15 @@ impl Triangulator {
             }));
         }
     }
+}
+
+/// The loader's note for `n` polygons cut as fans, if any.
+pub fn fallback_note(name: &str, n: usize) -> Option<String> {
+    (n > 0).then(|| {
+        format!(
+            "{name}: {n} polygon(s) too degenerate to triangulate exactly (far off one plane) were cut as fans from their first corner"
+        )
+    })
 }
 
 /// Two axes spanning the polygon's plane, oriented so that the projected

@@ -39,6 +39,16 @@ pub fn stdout_is_terminal() -> bool {
     io::stdout().is_terminal()
 }
 
+/// Whether file descriptor `fd` is open. The standard library treats
+/// writes to a closed stdout or stderr as done (it ignores `EBADF`), so a
+/// program that must not report success having written nothing asks
+/// first.
+pub fn is_open(fd: i32) -> bool {
+    // SAFETY: F_GETFD reads the descriptor's flags and changes nothing;
+    // a closed descriptor gives -1 (EBADF).
+    unsafe { libc::fcntl(fd, libc::F_GETFD) != -1 }
+}
+
 /// A terminal's size: cells, and pixels where it reports them (0 if not).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct WindowSize {
