@@ -24,10 +24,17 @@
 //! within a second) is paced by the writes alone.
 //!
 //! **Signals and suspend.** SIGINT, SIGTERM, SIGHUP and SIGQUIT end the
-//! loop (the caller exits with 128 + the signal); Ctrl-Z and SIGTSTP restore
-//! the terminal and stop the process; SIGCONT takes the terminal over again
-//! and redraws in full; SIGWINCH resizes. The handlers are the loop's own
-//! and are given back when it returns.
+//! loop (the caller exits with 128 + the signal); so do SIGUSR1, SIGUSR2,
+//! SIGALRM, SIGPIPE, SIGXCPU and SIGXFSZ, whose default action would kill
+//! the process with the terminal left raw and on the alternate screen (the
+//! caller restores it, then takes the default action: see
+//! [`Exit::Signal`]). Ctrl-Z and SIGTSTP restore the terminal and stop the
+//! process; SIGCONT takes the terminal over again and redraws in full,
+//! unless a signal that ends the loop came while it was stopped (`kill %1`
+//! sends SIGTERM and SIGCONT to a stopped job): then the loop ends without
+//! taking the terminal back, which from the background would stop the
+//! process again. SIGWINCH resizes. The handlers are the loop's own and are
+//! given back when it returns.
 
 use std::collections::VecDeque;
 use std::io::Write;
@@ -65,7 +72,10 @@ pub enum Exit {
     /// The last of `--frames` was shown.
     Done,
     /// A signal (its number) asked to stop, or the terminal went away
-    /// (SIGHUP).
+    /// (SIGHUP). The terminal is restored by the time the caller sees it;
+    /// for the signals whose default action is not a plain ending (the
+    /// [`ENDING`] ones past SIGQUIT) the caller may then take that action
+    /// ([`crate::terminal::die_by`]).
     Signal(i32),
 }
 
@@ -316,12 +326,37 @@ impl Link {
     }
 }
 
-/// Signals the loop handles.
-const HANDLED: [libc::c_int; 7] = [
+/// Signals that end the loop.
+pub const ENDING: [libc::c_int; 10] = [
     libc::SIGINT,
     libc::SIGTERM,
     libc::SIGHUP,
     libc::SIGQUIT,
+    libc::SIGUSR1,
+    libc::SIGUSR2,
+    libc::SIGALRM,
+    libc::SIGPIPE,
+    libc::SIGXCPU,
+    libc::SIGXFSZ,
+];
+
+/// The first of [`ENDING`] in a mask of pending signals.
+fn ending(sigs: u64) -> Option<libc::c_int> {
+    ENDING.into_iter().find(|&sig| signals::has(sigs, sig))
+}
+
+/// Signals the loop handles.
+const HANDLED: [libc::c_int; 13] = [
+    libc::SIGINT,
+    libc::SIGTERM,
+    libc::SIGHUP,
+    libc::SIGQUIT,
+    libc::SIGUSR1,
+    libc::SIGUSR2,
+    libc::SIGALRM,
+    libc::SIGPIPE,
+    libc::SIGXCPU,
+    libc::SIGXFSZ,
     libc::SIGTSTP,
     libc::SIGCONT,
     libc::SIGWINCH,
@@ -467,13 +502,13 @@ impl Live<'_, '_> {
         loop {
             // Signals.
             let mut sigs = self.signals.take();
-            for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP, libc::SIGQUIT] {
-                if signals::has(sigs, sig) {
-                    return Ok(Exit::Signal(sig));
-                }
+            if let Some(sig) = ending(sigs) {
+                return Ok(Exit::Signal(sig));
             }
             if signals::has(sigs, libc::SIGTSTP) {
-                self.suspend(link)?;
+                if let Some(sig) = self.suspend(link)? {
+                    return Ok(Exit::Signal(sig));
+                }
                 // The SIGCONT that woke us is handled by now.
                 sigs = (sigs | self.signals.take()) & !(1 << libc::SIGCONT);
                 dirty = true;
@@ -527,7 +562,9 @@ impl Live<'_, '_> {
                 }
             }
             if suspend {
-                self.suspend(link)?;
+                if let Some(sig) = self.suspend(link)? {
+                    return Ok(Exit::Signal(sig));
+                }
                 dirty = true;
             }
             if self.player.notice_serial() != notice.0 {
@@ -668,11 +705,20 @@ impl Live<'_, '_> {
     }
 
     /// Ctrl-Z or SIGTSTP: the terminal restored, the process stopped; when
-    /// continued, the terminal taken over again and redrawn in full.
-    fn suspend(&mut self, link: &mut Link) -> std::io::Result<()> {
+    /// continued, the terminal taken over again and redrawn in full. A
+    /// signal that ends the loop, come while stopped, is returned instead
+    /// (the terminal is left as the shell has it).
+    fn suspend(&mut self, link: &mut Link) -> std::io::Result<Option<libc::c_int>> {
         self.collect_answers(link);
         self.screen.suspend();
         self.signals.stop_self()?;
+        // Handlers run before raise() returns: what came while stopped is
+        // pending now. Keep the rest (SIGCONT, SIGWINCH) for the loop.
+        let sigs = self.signals.take();
+        if let Some(sig) = ending(sigs) {
+            return Ok(Some(sig));
+        }
+        self.signals.keep(sigs);
         self.screen.resume()?;
         self.abandon_frame(link);
         self.player.apply(Command::Redraw);
@@ -680,7 +726,7 @@ impl Live<'_, '_> {
             let (cols, rows) = ws.cells();
             self.resize(cols, rows)?;
         }
-        Ok(())
+        Ok(None)
     }
 }
 

@@ -378,7 +378,16 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     }
     Ok(match outcome.exit {
         Exit::Quit | Exit::Done => ExitCode::SUCCESS,
-        Exit::Signal(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
+        Exit::Signal(sig) => {
+            if !matches!(
+                sig,
+                libc::SIGINT | libc::SIGTERM | libc::SIGHUP | libc::SIGQUIT
+            ) {
+                // The terminal is restored: now the signal's own action.
+                terminal::die_by(sig);
+            }
+            ExitCode::from((128 + sig).clamp(0, 255) as u8)
+        }
     })
 }
 

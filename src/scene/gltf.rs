@@ -66,6 +66,16 @@ pub fn parse(
     options: &LoadOptions,
 ) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
+    // The gltf crate subtracts the 12-byte header from the GLB's length
+    // unchecked (a panic where overflow is checked): shorter is refused here.
+    if let Some(length) = bytes.get(..12).filter(|b| b.starts_with(b"glTF")) {
+        let length = u32::from_le_bytes([length[8], length[9], length[10], length[11]]);
+        if length < 12 {
+            return Err(bad(format!(
+                "a GLB whose header gives its length as {length} bytes, less than the header's 12"
+            )));
+        }
+    }
     let Gltf { document, blob } =
         Gltf::from_slice_without_validation(bytes).map_err(|e| bad(describe(&e)))?;
     let root = document.into_json();

@@ -49,6 +49,19 @@ pub fn is_open(fd: i32) -> bool {
     unsafe { libc::fcntl(fd, libc::F_GETFD) != -1 }
 }
 
+/// Ends the process by `sig`'s default action (a core dump for SIGXCPU
+/// and SIGXFSZ, as if the signal had not been caught), for a program that
+/// caught it to restore the terminal first. Returns only if the default
+/// action is not to end the process.
+pub fn die_by(sig: i32) {
+    // SAFETY: setting the default action and raising the signal; nothing
+    // is shared with a handler.
+    unsafe {
+        libc::signal(sig, libc::SIG_DFL);
+        libc::raise(sig);
+    }
+}
+
 /// A terminal's size: cells, and pixels where it reports them (0 if not).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct WindowSize {

@@ -79,6 +79,11 @@ impl Signals {
         PENDING.swap(0, Ordering::SeqCst)
     }
 
+    /// Puts signals taken by [`Signals::take`] back, for the next take.
+    pub fn keep(&self, mask: u64) {
+        PENDING.fetch_or(mask, Ordering::SeqCst);
+    }
+
     /// What `poll` waits on: readable when a signal arrived.
     pub fn fd(&self) -> BorrowedFd<'_> {
         self.read.as_fd()
