@@ -3,21 +3,11 @@
 //! it includes the parent's at the moment it was started, so the parent
 //! here stays small (the file is written a line at a time).
 
-use std::io::Write;
-use std::path::Path;
-use std::process::Command;
+#[path = "support/run.rs"]
+mod support;
 
-/// The peak memory of the children this process has waited for, in bytes.
-fn children_peak_rss() -> u64 {
-    // SAFETY: a zeroed rusage is a valid value, which getrusage fills.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: the pointer is to a live rusage.
-    assert_eq!(
-        unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) },
-        0
-    );
-    usage.ru_maxrss as u64 * 1024
-}
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 #[test]
 fn a_scene_of_200k_loose_triangles_takes_memory_within_twice_its_size() {
@@ -46,18 +36,111 @@ fn a_scene_of_200k_loose_triangles_takes_memory_within_twice_its_size() {
     }
     drop(out);
     let size = std::fs::metadata(&path).unwrap().len();
-    let run = Command::new(env!("CARGO_BIN_EXE_rastty"))
-        .args([
-            "render",
-            path.to_str().unwrap(),
-            "--cols",
-            "20",
-            "--rows",
-            "5",
-        ])
-        .output()
-        .unwrap();
-    assert!(run.status.success());
-    let peak = children_peak_rss();
-    assert!(peak < 2 * size, "{peak} bytes for a file of {size}");
+    let r = render(&path);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert!(r.peak < 2 * size, "{} bytes for a file of {size}", r.peak);
+}
+
+/// A file at `name` in this binary's directory, written in pieces by
+/// `fill` (never held whole by the test).
+fn write(name: &str, fill: impl FnOnce(&mut dyn Write)) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("memory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let mut out = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
+    fill(&mut out);
+    out.flush().unwrap();
+    path
+}
+
+/// `rastty render PATH` in a small frame, its peak less that of drawing
+/// a cube (the program itself, and what the kernel counts of this test
+/// process at the spawn: see `support`).
+fn render(path: &Path) -> support::Run {
+    let base = support::run(&["render", "cube", "--cols", "20", "--rows", "6"]).peak;
+    let mut r = support::run(&[
+        "render",
+        path.to_str().unwrap(),
+        "--cols",
+        "20",
+        "--rows",
+        "6",
+    ]);
+    r.peak = r.peak.saturating_sub(base);
+    r
+}
+
+#[test]
+fn one_20_mb_ply_line_is_refused_as_it_is_read() {
+    let path = write("long.ply", |out| {
+        out.write_all(b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n").unwrap();
+        for _ in 0..1000 {
+            out.write_all(&b"0 ".repeat(10_000)).unwrap();
+        }
+    });
+    let r = render(&path);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "error: {}: line 10: longer than 4194304 bytes\n",
+            path.display()
+        )
+    );
+    // At most the 4 MiB line and its tokens, not the 20 MB.
+    assert!(r.peak < 48 << 20, "{} bytes", r.peak);
+}
+
+#[test]
+fn a_scene_of_20_mb_of_nul_bytes_is_refused_at_its_first_byte() {
+    let path = write("nul.toml", |out| {
+        for _ in 0..20 {
+            out.write_all(&[0u8; 1 << 20]).unwrap();
+        }
+    });
+    let r = render(&path);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "error: {}:1:1: a control character (\\x00), which TOML does not allow: is this a scene file?\n",
+            path.display()
+        )
+    );
+    // The file, read once.
+    assert!(r.peak < 24 << 20, "{} bytes", r.peak);
+}
+
+#[test]
+fn a_20_mb_toml_key_gives_a_short_error_in_a_few_times_the_file() {
+    let size = 20u64 << 20;
+    let path = write("key.toml", |out| {
+        for _ in 0..20 {
+            out.write_all(&[b'k'; 1 << 20]).unwrap();
+        }
+        out.write_all(b" = 1\n").unwrap();
+    });
+    let r = render(&path);
+    assert_eq!(r.stderr.lines().count(), 1);
+    assert!(r.stderr.chars().count() < 400, "{}", r.stderr);
+    assert!(r.stderr.contains(" characters cut] … "), "{}", r.stderr);
+    // The text, the parser's key and its message: three times the file.
+    assert!(r.peak < 3 * size + (4 << 20), "{} bytes", r.peak);
+}
+
+#[test]
+fn a_ply_of_a_million_vertices_takes_a_few_times_its_size() {
+    let n = 1_000_000;
+    let path = write("many.ply", |out| {
+        write!(out, "ply\nformat ascii 1.0\nelement vertex {n}\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n").unwrap();
+        for i in 0..n {
+            writeln!(out, "{}.125 {}.25 0.5", i % 1000, i / 1000).unwrap();
+        }
+        out.write_all(b"3 0 1 2\n").unwrap();
+    });
+    let size = std::fs::metadata(&path).unwrap().len();
+    let r = render(&path);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    // Vertices as read (28 bytes, and the vector's doubling), positions
+    // and normals (24), then the renderer's per-vertex buffers (about 80
+    // bytes a vertex): seven times this dense 19 MB file.
+    assert!(r.peak < 8 * size, "{} bytes for a file of {size}", r.peak);
 }

@@ -653,10 +653,21 @@ impl Scene {
 
     /// [`Scene::open`], every file read with `options`.
     pub fn open_within(path: &Path, options: &LoadOptions) -> Result<Scene> {
-        match Scene::kind(path)? {
-            Kind::Model => Scene::of_model_within(path, options),
-            Kind::Scene => Scene::load_within(path, options),
+        let scene = match Scene::kind(path)? {
+            Kind::Model => Scene::of_model_within(path, options)?,
+            Kind::Scene => Scene::load_within(path, options)?,
+        };
+        // Loaders refuse what they would expand past the budget; a model
+        // read whole is held to it too.
+        let n = scene.triangle_count() as u64;
+        if n > options.max_triangles {
+            return Err(Error::Invalid(format!(
+                "{}: {n} triangles, more than the triangle budget of {} (--max-triangles raises it)",
+                path.display(),
+                options.max_triangles
+            )));
         }
+        Ok(scene)
     }
 
     /// The number of triangles, loose and in meshes.

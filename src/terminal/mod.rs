@@ -39,14 +39,23 @@ pub fn stdout_is_terminal() -> bool {
     io::stdout().is_terminal()
 }
 
-/// Whether file descriptor `fd` is open. The standard library treats
-/// writes to a closed stdout or stderr as done (it ignores `EBADF`), so a
-/// program that must not report success having written nothing asks
-/// first.
+/// Whether file descriptor `fd` (0, 1 or 2) was open when the program
+/// started. The standard library, before `main`, opens `/dev/null` for a
+/// standard descriptor that was closed (`>&-`), read-write, and then takes
+/// every write as done: a descriptor that is `/dev/null` opened read-write
+/// is taken as closed (a shell's `>/dev/null` opens it write-only).
 pub fn is_open(fd: i32) -> bool {
-    // SAFETY: F_GETFD reads the descriptor's flags and changes nothing;
-    // a closed descriptor gives -1 (EBADF).
-    unsafe { libc::fcntl(fd, libc::F_GETFD) != -1 }
+    // SAFETY: fstat and fcntl read the descriptor's state into a local
+    // and change nothing; a closed descriptor gives -1.
+    unsafe {
+        let mut st: libc::stat = std::mem::zeroed();
+        if libc::fstat(fd, &mut st) != 0 {
+            return false;
+        }
+        let null = st.st_mode & libc::S_IFMT == libc::S_IFCHR && st.st_rdev == libc::makedev(1, 3);
+        let rw = libc::fcntl(fd, libc::F_GETFL) & libc::O_ACCMODE == libc::O_RDWR;
+        !(null && rw)
+    }
 }
 
 /// Ends the process by `sig`'s default action (a core dump for SIGXCPU
