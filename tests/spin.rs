@@ -224,6 +224,22 @@ fn sigterm_and_sighup_restore_the_terminal() {
 }
 
 #[test]
+fn other_signals_restore_the_terminal_then_take_their_default_action() {
+    use expectrl::process::unix::{Signal, WaitStatus};
+    for signal in [Signal::SIGUSR1, Signal::SIGALRM, Signal::SIGXFSZ] {
+        let mut s = spawn(&[]);
+        let seen = first_frame(&mut s);
+        s.get_process_mut().signal(signal).unwrap();
+        let out = drain(&mut s, seen);
+        match s.get_process().wait().unwrap() {
+            WaitStatus::Signaled(_, sig, _) => assert_eq!(sig, signal),
+            other => panic!("{signal:?}: {other:?}"),
+        }
+        assert_restored(&out);
+    }
+}
+
+#[test]
 fn a_bad_model_is_reported_before_the_terminal_is_touched() {
     let mut s = spawn(&["tests/data/short-face.obj"]);
     let out = drain(&mut s, Vec::new());
