@@ -49,7 +49,7 @@ fn main() -> ExitCode {
 static UNSAID: AtomicBool = AtomicBool::new(false);
 
 /// Writes `message` on stderr as one line after `label` (`error`,
-/// `note`), escaped and cut as [`rastty::text::line`] does: a name from a
+/// `note`), escaped and cut as [`rastty::text::line()`] does: a name from a
 /// file never drives the terminal. A stderr that cannot be written (full,
 /// closed) is not a reason to panic, and not a success: the exit status
 /// is 1.

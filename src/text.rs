@@ -15,7 +15,7 @@
 //! escaping twice is escaping once, and a message may be escaped where it
 //! is built and again where it is shown.
 //!
-//! [`line`] does that to a whole message that is to take one line
+//! [`line()`] does that to a whole message that is to take one line
 //! (newlines are escaped too) and cuts it to [`MAX_LINE_CHARS`] characters,
 //! keeping its start (the file, line and column) and its end (what is
 //! wrong) and saying how much was cut between: a 100 MB key in a TOML file
@@ -28,7 +28,7 @@
 use std::borrow::Cow;
 use std::fmt::Write as _;
 
-/// The longest line [`line`] gives, in characters.
+/// The longest line [`line()`] gives, in characters.
 pub const MAX_LINE_CHARS: usize = 300;
 
 /// Whether `c` must not reach a terminal as it is: a control character
@@ -77,7 +77,7 @@ pub fn line(s: &str) -> String {
     cut(s, MAX_LINE_CHARS)
 }
 
-/// [`line`] for a part of a line: escaped and cut to at most `max`
+/// [`line()`] for a part of a line: escaped and cut to at most `max`
 /// characters (at least 40), keeping about two thirds from its start and
 /// a quarter from its end.
 pub fn cut(s: &str, max: usize) -> String {

@@ -68,6 +68,7 @@ pub fn open(path: &Path, max_bytes: u64) -> Result<(File, u64)> {
 /// the limit while reading: a file whose size says 0 but that goes on (as
 /// `/proc/self/pagemap` does) is cut off at `max_bytes` with an error,
 /// never read until memory runs out.
+#[cfg(feature = "textures")]
 pub fn read(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     let (file, size) = open(path, max_bytes)?;
     let mut bytes = Vec::with_capacity(size as usize);

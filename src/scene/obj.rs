@@ -140,6 +140,7 @@ struct Reader<'a> {
     textures: Vec<Arc<Texture>>,
     texture_ids: FxHashMap<PathBuf, u32>,
     /// What is left of the texel budget.
+    #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     texels_left: u64,
     /// Notes on the files named (absolute paths, paths out of the folder).
     reference_notes: Vec<String>,
@@ -564,7 +565,7 @@ impl Reader<'_> {
 
     fn finish(mut self, last_line: usize) -> Result<Loaded> {
         let mut notes = std::mem::take(&mut self.reference_notes);
-        notes.extend(polygon::fallback_note(&self.name, self.cutter.fallbacks));
+        notes.extend(polygon::fallback_note(self.name, self.cutter.fallbacks));
         if let Some(&first) = self.bad_pos.first() {
             notes.push(format!(
                 "{}:{first}: {} vertices are not finite numbers; the {} faces that use them are not drawn",

@@ -38,6 +38,8 @@ pub fn run_with(args: &[&str], setup: impl FnOnce(&mut Command)) -> Run {
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
     setup(&mut cmd);
+    // Reaped by wait4 below, which gives its resource use.
+    #[allow(clippy::zombie_processes)]
     let mut child = cmd.spawn().unwrap();
     let mut out = child.stdout.take();
     let mut err = child.stderr.take();
