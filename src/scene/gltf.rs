@@ -822,7 +822,8 @@ fn check(
     let stride = view.stride().unwrap_or(elem);
     let count = acc.count();
     let need = match count {
-        0 => 0,
+        // The spec's minimum; the gltf crate's iterators take count − 1.
+        0 => return Err(format!("{} has a count of 0 (glTF requires at least 1)", at())),
         n => (n - 1)
             .checked_mul(stride)
             .and_then(|b| b.checked_add(acc.offset()))
