@@ -65,18 +65,21 @@ pub fn open(path: &Path, max_bytes: u64) -> Result<(File, u64)> {
 }
 
 /// Reads all of the file at `path`, opened as [`open`] opens it, holding
-/// the limit while reading: a file whose size says 0 but that goes on (as
-/// `/proc/self/pagemap` does) is cut off at `max_bytes` with an error,
-/// never read until memory runs out.
+/// its size while reading: a file that goes on past the size it gave (a
+/// `/proc` or `/sys` file says 0 bytes; `/proc/self/pagemap` never ends)
+/// is refused at the first byte past it, never read until memory runs out.
 #[cfg(feature = "textures")]
 pub fn read(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     let (file, size) = open(path, max_bytes)?;
     let mut bytes = Vec::with_capacity(size as usize);
-    file.take(max_bytes.saturating_add(1))
+    file.take(size.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(|e| Error::io(path, e))?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(too_large(path, "more", max_bytes));
+    if bytes.len() as u64 > size {
+        return Err(Error::Invalid(format!(
+            "{}: has more than the {size} bytes its size says (a /proc or /sys file?)",
+            path.display()
+        )));
     }
     Ok(bytes)
 }
