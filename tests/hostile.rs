@@ -236,6 +236,18 @@ fn files_a_model_names_are_opened_as_the_model_is() {
     let r = render(&model, &[]);
     assert_eq!(r.code, Some(1));
     assert!(r.stderr.contains("symbolic links"), "{}", r.stderr);
+    // A /proc file says it is empty and goes on: refused at once.
+    std::os::unix::fs::symlink("/proc/self/status", d.join("proc.bin")).unwrap();
+    let model = put(&d, "p.gltf", triangle(r#""uri":"proc.bin","#, ""));
+    let r = render(&model, &[]);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "error: {}: buffer 0: {}: has more than the 0 bytes its size says (a /proc or /sys file?)\n",
+            model.display(),
+            d.join("proc.bin").display()
+        )
+    );
     // Relative paths work: percent-encoded, and from outside the folder
     // with a note; an absolute path is tried beside the model, with a note.
     let inner = d.join("inner");
