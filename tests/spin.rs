@@ -240,6 +240,30 @@ fn other_signals_restore_the_terminal_then_take_their_default_action() {
 }
 
 #[test]
+fn a_suspended_spin_ends_on_kill_without_taking_the_terminal_back() {
+    // A shell with job control, as a user has: Ctrl-Z stops spin, and
+    // `kill %1` sends SIGTERM (and SIGCONT) to the stopped job.
+    let mut cmd = Command::new("bash");
+    cmd.args(["--norc", "--noprofile", "-i"])
+        .env("TERM", "xterm-256color")
+        .env("PS1", "$ ");
+    let mut s = Session::spawn(cmd).expect("a pty");
+    s.get_process_mut().set_window_size(80, 24).unwrap();
+    s.set_expect_timeout(Some(Duration::from_secs(20)));
+    s.send_line(format!("{BIN} spin --cols 60 --rows 20")).unwrap();
+    s.expect("\x1b[?2026l").expect("a first frame");
+    s.send("\x1a").unwrap();
+    s.expect("Stopped").expect("spin stopped");
+    s.send_line("kill %1; wait %1; echo code=$?").unwrap();
+    // 128 + SIGTERM, and not stopped again taking the terminal back.
+    let found = s.expect("code=").unwrap();
+    let before = String::from_utf8_lossy(found.before()).into_owned();
+    let code = s.expect(expectrl::Regex("[0-9]+")).unwrap();
+    assert_eq!(code.get(0).unwrap(), b"143", "{before:?}");
+    s.send_line("exit").unwrap();
+}
+
+#[test]
 fn a_bad_model_is_reported_before_the_terminal_is_touched() {
     let mut s = spawn(&["tests/data/short-face.obj"]);
     let out = drain(&mut s, Vec::new());
