@@ -250,7 +250,8 @@ fn a_suspended_spin_ends_on_kill_without_taking_the_terminal_back() {
     let mut s = Session::spawn(cmd).expect("a pty");
     s.get_process_mut().set_window_size(80, 24).unwrap();
     s.set_expect_timeout(Some(Duration::from_secs(20)));
-    s.send_line(format!("{BIN} spin --cols 60 --rows 20")).unwrap();
+    s.send_line(format!("{BIN} spin --cols 60 --rows 20"))
+        .unwrap();
     s.expect("\x1b[?2026l").expect("a first frame");
     s.send("\x1a").unwrap();
     s.expect("Stopped").expect("spin stopped");

@@ -823,7 +823,12 @@ fn check(
     let count = acc.count();
     let need = match count {
         // The spec's minimum; the gltf crate's iterators take count − 1.
-        0 => return Err(format!("{} has a count of 0 (glTF requires at least 1)", at())),
+        0 => {
+            return Err(format!(
+                "{} has a count of 0 (glTF requires at least 1)",
+                at()
+            ));
+        }
         n => (n - 1)
             .checked_mul(stride)
             .and_then(|b| b.checked_add(acc.offset()))
