@@ -211,22 +211,40 @@ impl Texture {
             ));
         }
         let decode = |v: u8| f32::from(srgb::DECODE[v as usize]) / 65535.0;
-        let texels = pixels
-            .chunks_exact(channels)
-            .map(|p| match channels {
-                1 | 2 => [decode(p[0]); 3],
-                _ => [decode(p[0]), decode(p[1]), decode(p[2])],
-            })
-            .collect();
-        Ok(Texture::from_level(
-            name,
+        let linear = |p: &[u8]| match channels {
+            1 | 2 => [decode(p[0]); 3],
+            _ => [decode(p[0]), decode(p[1]), decode(p[2])],
+        };
+        let row = |y: usize, out: &mut Vec<[f32; 3]>| {
+            let w = width as usize * channels;
+            out.clear();
+            out.extend(
+                pixels[y * w..(y + 1) * w]
+                    .chunks_exact(channels)
+                    .map(linear),
+            );
+        };
+        let first = if width > MAX_SIDE || height > MAX_SIDE {
+            // Halved as the rows are made linear: the whole image is never
+            // held in f32 (12 bytes a texel), the same texels as converting
+            // first and halving after.
+            Level::halve(width as usize, height as usize, row)
+        } else {
+            let mut texels = Vec::with_capacity(n);
+            let mut line = Vec::with_capacity(width as usize);
+            for y in 0..height as usize {
+                row(y, &mut line);
+                texels.extend_from_slice(&line);
+            }
             Level {
                 width,
                 height,
                 texels,
-            },
-            sampler,
-        ))
+            }
+        };
+        let mut texture = Texture::from_level(name, first, sampler);
+        texture.original = (width, height);
+        Ok(texture)
     }
 
     /// A texture from linear texels in [0, 1], row by row from the top.
@@ -418,17 +436,23 @@ impl Level {
     /// The next mipmap level: each side halved (rounded down, at least 1),
     /// each texel the mean of the texels under it, fractions counted.
     fn halved(&self) -> Level {
-        let (w, h) = (self.width as usize, self.height as usize);
+        let w = self.width as usize;
+        Level::halve(w, self.height as usize, |y, out| {
+            out.clear();
+            out.extend_from_slice(&self.texels[y * w..(y + 1) * w]);
+        })
+    }
+
+    /// [`Level::halved`] of a `w`×`h` level whose rows `row(y, out)` makes,
+    /// one at a time.
+    fn halve(w: usize, h: usize, mut row: impl FnMut(usize, &mut Vec<[f32; 3]>)) -> Level {
         let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
         // Along x, then along y.
         let mut rows = vec![[0.0f32; 3]; nw * h];
+        let mut line = Vec::with_capacity(w);
         for y in 0..h {
-            resample(
-                &self.texels[y * w..(y + 1) * w],
-                1,
-                &mut rows[y * nw..(y + 1) * nw],
-                1,
-            );
+            row(y, &mut line);
+            resample(&line, 1, &mut rows[y * nw..(y + 1) * nw], 1);
         }
         let mut texels = vec![[0.0f32; 3]; nw * nh];
         for x in 0..nw {
@@ -537,5 +561,30 @@ mod tests {
         assert_eq!(t.size(), (MAX_SIDE, 1));
         assert_eq!(t.original_size(), (MAX_SIDE * 2 + 1, 1));
         assert_eq!(t.texel(0, 7, 0).x, 0.5);
+    }
+
+    #[test]
+    fn a_large_srgb_image_halved_as_it_is_read_equals_converting_first() {
+        // 2·MAX_SIDE + 3 by 5, odd both ways, three channels of varied bytes.
+        let (w, h) = (MAX_SIDE * 2 + 3, 5);
+        let pixels: Vec<u8> = (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect();
+        let read = Texture::from_srgb8("t", w, h, 3, &pixels, Sampler::default()).unwrap();
+        let decode = |v: u8| f32::from(srgb::DECODE[v as usize]) / 65535.0;
+        let linear = pixels
+            .chunks_exact(3)
+            .map(|p| [decode(p[0]), decode(p[1]), decode(p[2])])
+            .collect();
+        let first = Texture::from_linear("t", w, h, linear, Sampler::default());
+        assert_eq!(read.original_size(), (w, h));
+        assert_eq!(read.levels.len(), first.levels.len());
+        for (a, b) in read.levels.iter().zip(&first.levels) {
+            assert_eq!((a.width, a.height), (b.width, b.height));
+            assert!(
+                a.texels
+                    .iter()
+                    .zip(&b.texels)
+                    .all(|(x, y)| x.map(f32::to_bits) == y.map(f32::to_bits))
+            );
+        }
     }
 }
