@@ -272,6 +272,45 @@ fn auto_colour_is_none_when_piped_even_with_colorterm() {
     assert!(!out.stdout.contains(&0x1b));
 }
 
+#[test]
+fn an_obj_without_its_mtl_is_drawn_in_the_default_colour_with_a_note() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .args([
+            "render",
+            "tests/data/missing-mtl.obj",
+            "--cols",
+            "20",
+            "--rows",
+            "6",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8(out.stderr).unwrap(),
+        "note: tests/data/missing-mtl.obj:1:8: material library \"nowhere.mtl\" not found: drawn in the default colour\n"
+    );
+    // The same frame as the model without its `mtllib` line.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-mtllib");
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = std::fs::read_to_string("tests/data/missing-mtl.obj").unwrap();
+    let plain = dir.join("plain.obj");
+    std::fs::write(&plain, src.replace("mtllib nowhere.mtl\n", "")).unwrap();
+    let want = Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .args([
+            "render",
+            plain.to_str().unwrap(),
+            "--cols",
+            "20",
+            "--rows",
+            "6",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.stdout, want.stdout);
+}
+
 /// Every kind of bad input: one line on stderr naming the file (and the
 /// line where the format has lines), a non-zero exit, no panic.
 #[test]
@@ -289,10 +328,6 @@ fn bad_input_gets_one_clear_line() {
         (
             "OBJ index out of range",
             &["render", "tests/data/out-of-range.obj"],
-        ),
-        (
-            "OBJ with a missing MTL",
-            &["render", "tests/data/missing-mtl.obj"],
         ),
         (
             "truncated binary STL",

@@ -545,15 +545,14 @@ impl Reader<'_> {
         for (file, col) in files {
             let r = file::reference(self.dir, self.name, &lossy(file));
             if !r.path.exists() {
-                return Err(self.at_byte(
-                    line,
-                    n,
-                    col,
-                    format!(
-                        "material library {} not found",
-                        crate::text::name(&lossy(file), 80)
-                    ),
+                // Downloaded models often come without their library: the
+                // faces are drawn in the default colour, and it is said.
+                let at = self.at_byte(line, n, col, "");
+                self.reference_notes.push(format!(
+                    "{at}material library {} not found: drawn in the default colour",
+                    crate::text::name(&lossy(file), 80)
                 ));
+                continue;
             }
             self.reference_notes.extend(r.note);
             let (mtl, notes) = mtl(&r.path, self.options)?;
@@ -903,10 +902,6 @@ mod tests {
         assert_eq!(
             e("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
             "t.obj:4:7: face vertex index 4 is out of range (1 to 3 so far)"
-        );
-        assert_eq!(
-            e("mtllib missing.mtl\nv 0 0 0\n"),
-            "t.obj:1:8: material library \"missing.mtl\" not found"
         );
         assert_eq!(e(""), "t.obj:1:1: no faces in the file");
         assert_eq!(e("v 0 0 0\n"), "t.obj:1:1: no faces in the file");
