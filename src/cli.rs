@@ -248,6 +248,9 @@ pub enum ColorArg {
     Ansi16,
     #[value(name = "256")]
     Ansi256,
+    /// 24-bit colour (also `24bit`, `direct`, as `COLORTERM` and terminfo
+    /// call it)
+    #[value(alias = "24bit", alias = "direct")]
     Truecolor,
 }
 

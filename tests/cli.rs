@@ -273,6 +273,20 @@ fn auto_colour_is_none_when_piped_even_with_colorterm() {
 }
 
 #[test]
+fn color_24bit_and_direct_are_truecolor() {
+    let frame = |c: &str| {
+        rastty(&[
+            "render", "torus", "--cols", "30", "--rows", "8", "--color", c,
+        ])
+        .stdout
+    };
+    let truecolor = frame("truecolor");
+    assert!(truecolor.windows(5).any(|w| w == b"[38;2"));
+    assert_eq!(frame("24bit"), truecolor);
+    assert_eq!(frame("direct"), truecolor);
+}
+
+#[test]
 fn an_obj_without_its_mtl_is_drawn_in_the_default_colour_with_a_note() {
     let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
         .args([

@@ -549,11 +549,72 @@ fn a_vertex_that_is_not_a_number_drops_its_faces_and_says_so() {
 }
 
 #[test]
+#[cfg(all(feature = "ply", feature = "gltf"))]
+fn a_format_is_told_by_its_first_bytes_where_its_name_is_missing_or_lies() {
+    let quad = b"ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+    let dir = scratch("sniff");
+    let tri = "# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let put = |name: &str, bytes: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    // No extension: OBJ statements, PLY's signature.
+    let obj = put("triangle", tri.as_bytes());
+    let with_ext = put("triangle.obj", tri.as_bytes());
+    let ply = put("quad", quad);
+    for p in [&obj, &ply] {
+        let out = rastty(&["render", p, "--cols", "20", "--rows", "6"]);
+        assert!(
+            out.status.success(),
+            "{p}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            out.stderr.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    assert_eq!(
+        rastty(&["render", &obj, "--cols", "20", "--rows", "6"]).stdout,
+        rastty(&["render", &with_ext, "--cols", "20", "--rows", "6"]).stdout
+    );
+    // A name that lies: read by its bytes, with a note.
+    let lying = put("quad.glb", quad);
+    let out = rastty(&["render", &lying, "--cols", "20", "--rows", "6"]);
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8(out.stderr).unwrap(),
+        format!("note: {lying}: read as PLY (its first bytes say so), not as its name says\n")
+    );
+    // Text that is none of them; a GLB that is not one; a shape misspelt.
+    let passwd = put("passwd", b"root:x:0:0:root:/root:/bin/bash\n");
+    assert_eq!(
+        fails(&["render", &passwd]),
+        format!(
+            "error: {passwd}: not a model or a scene: its first bytes are not OBJ, STL, PLY, glTF or TOML"
+        )
+    );
+    let fake = put("fake.glb", b"root:x:0:0:root:/root:/bin/bash\n");
+    assert_eq!(
+        fails(&["render", &fake]),
+        format!(
+            "error: {fake}: not glTF: a GLB starts with `glTF` and a .gltf file is a JSON object"
+        )
+    );
+    assert_eq!(
+        fails(&["render", "torsu"]),
+        "error: torsu: no such file or shape; did you mean torus?"
+    );
+}
+
+#[test]
 fn an_extension_rastty_does_not_read_is_an_error_listing_those_it_does() {
     let dir = scratch("ext");
     for ext in ["3ds", "dae", "fbx"] {
         let path = dir.join(format!("model.{ext}"));
-        std::fs::write(&path, "ply\nformat ascii 1.0\n").unwrap();
+        std::fs::write(&path, b"MM\x00\x00 a model in another format").unwrap();
         let p = path.to_str().unwrap();
         assert_eq!(
             fails(&["render", p]),

@@ -66,6 +66,11 @@ pub fn parse(
     options: &LoadOptions,
 ) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
+    if !bytes.starts_with(b"glTF") && !bytes.trim_ascii_start().starts_with(b"{") {
+        return Err(bad(
+            "not glTF: a GLB starts with `glTF` and a .gltf file is a JSON object".into(),
+        ));
+    }
     // The gltf crate subtracts the 12-byte header from the GLB's length
     // unchecked (a panic where overflow is checked): shorter is refused here.
     if let Some(length) = bytes.get(..12).filter(|b| b.starts_with(b"glTF")) {

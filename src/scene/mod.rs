@@ -606,9 +606,7 @@ impl Scene {
     pub fn of_model_within(name: &Path, options: &LoadOptions) -> Result<Scene> {
         let (geometry, notes) = load_geometry(name, options)?;
         // STL is z-up by convention; OBJ and the shapes are y-up.
-        let stl = name
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+        let stl = matches!(Format::of(name), Ok((Format::Stl, _)));
         let up = options.up.unwrap_or(if stl {
             transform::Axis::Z
         } else {
@@ -619,25 +617,13 @@ impl Scene {
         Ok(scene)
     }
 
-    /// What `path` names, by its extension: a model, a scene, or (without
-    /// one, when no such file exists) a built-in shape.
+    /// What `path` names: a model, a scene, or (without an extension, when
+    /// no such file exists) a built-in shape. See [`Format::of`].
     pub fn kind(path: &Path) -> Result<Kind> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some(ext) if MODEL_EXTENSIONS.contains(&ext) => Ok(Kind::Model),
-            Some("toml") => Ok(Kind::Scene),
-            None if !path.exists() && path.to_str().and_then(Shape::from_name).is_some() => {
-                Ok(Kind::Model)
-            }
-            None => Ok(Kind::Scene),
-            Some(other) => Err(Error::Invalid(format!(
-                "{}: rastty does not read .{other} files; it reads models ({MODELS}), scenes (.toml) and the shapes cube, sphere and torus",
-                path.display()
-            ))),
-        }
+        Ok(match Format::of(path)?.0 {
+            Format::Toml => Kind::Scene,
+            _ => Kind::Model,
+        })
     }
 
     /// Whether `path` names a model rather than a scene file (see
@@ -833,9 +819,15 @@ impl Scene {
                         .ok_or_else(|| {
                             at(
                                 span.clone(),
-                                format!(
-                                    "unknown shape {s:?}: expected \"cube\", \"sphere\" or \"torus\""
-                                ),
+                                match Shape::nearest(s) {
+                                    Some(near) => format!(
+                                        "unknown shape {s:?}: did you mean \"{}\"? (the shapes are \"cube\", \"sphere\" and \"torus\")",
+                                        near.name()
+                                    ),
+                                    None => format!(
+                                        "unknown shape {s:?}: expected \"cube\", \"sphere\" or \"torus\""
+                                    ),
+                                },
                             )
                         })?
                         .geometry(),
@@ -912,6 +904,171 @@ pub const DEFAULT_SCENE: &str = include_str!("../../examples/scenes/default.toml
 /// [`DEFAULT_SCENE`], parsed.
 pub fn default_scene() -> Scene {
     Scene::parse(DEFAULT_SCENE, "<built-in default scene>").expect("the built-in scene parses")
+}
+
+/// A file's format, as its extension says or, where that is missing or
+/// lies, as its first bytes say.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Wavefront OBJ.
+    Obj,
+    /// STL, binary or ASCII.
+    Stl,
+    /// glTF, as JSON or GLB.
+    Gltf,
+    /// PLY.
+    Ply,
+    /// A scene file.
+    Toml,
+    /// A built-in shape named without an extension.
+    Shape(Shape),
+}
+
+impl Format {
+    /// The format of `path`, and a note when its first bytes overrule its
+    /// extension. An extension is believed unless the file starts with
+    /// another format's signature (GLB's `glTF`, PLY's `ply`, a binary
+    /// STL whose facet count gives its exact size, glTF's JSON object);
+    /// without one, a name like a shape's is the shape (when no such
+    /// file exists), and a file is told by its first bytes (OBJ
+    /// statements, `solid`, a TOML table or key). A file that is none of
+    /// them, or a shape misspelt, is an error saying so.
+    pub fn of(path: &Path) -> Result<(Format, Option<String>)> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let named = match ext.as_deref() {
+            Some("obj") => Some(Format::Obj),
+            Some("stl") => Some(Format::Stl),
+            #[cfg(feature = "gltf")]
+            Some("gltf" | "glb") => Some(Format::Gltf),
+            #[cfg(feature = "ply")]
+            Some("ply") => Some(Format::Ply),
+            Some("toml") => Some(Format::Toml),
+            _ => None,
+        };
+        let regular = std::fs::metadata(path).is_ok_and(|m| m.is_file());
+        let head = if regular { head(path) } else { Vec::new() };
+        let (signed, guessed) = sniff(&head);
+        match (named, ext.as_deref()) {
+            (Some(named), _) => match signed {
+                Some(actual) if actual != named && readable(actual) => Ok((
+                    actual,
+                    Some(format!(
+                        "{}: read as {} (its first bytes say so), not as its name says",
+                        path.display(),
+                        actual.name()
+                    )),
+                )),
+                _ => Ok((named, None)),
+            },
+            (None, Some(other)) if signed.is_none() => Err(Error::Invalid(format!(
+                "{}: rastty does not read .{other} files; it reads models ({MODELS}), scenes (.toml) and the shapes cube, sphere and torus",
+                path.display()
+            ))),
+            (None, _) => {
+                if !path.exists() {
+                    if let Some(shape) = path.to_str().and_then(Shape::from_name) {
+                        return Ok((Format::Shape(shape), None));
+                    }
+                    if let Some(near) = path.to_str().and_then(Shape::nearest) {
+                        return Err(Error::Invalid(format!(
+                            "{}: no such file or shape; did you mean {}?",
+                            path.display(),
+                            near.name()
+                        )));
+                    }
+                    // Not there: reading it as a scene says so.
+                    return Ok((Format::Toml, None));
+                }
+                match signed.or(guessed) {
+                    Some(f) if readable(f) => Ok((
+                        f,
+                        ext.map(|_| {
+                            format!(
+                                "{}: read as {} (its first bytes say so), not as its name says",
+                                path.display(),
+                                f.name()
+                            )
+                        }),
+                    )),
+                    Some(f) => Err(Error::Invalid(format!(
+                        "{}: a {} file, which this build of rastty does not read",
+                        path.display(),
+                        f.name()
+                    ))),
+                    None if !regular => Ok((Format::Toml, None)),
+                    None => Err(Error::Invalid(format!(
+                        "{}: not a model or a scene: its first bytes are not OBJ, STL, PLY, glTF or TOML",
+                        path.display()
+                    ))),
+                }
+            }
+        }
+    }
+
+    /// The format's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Obj => "OBJ",
+            Format::Stl => "STL",
+            Format::Gltf => "glTF",
+            Format::Ply => "PLY",
+            Format::Toml => "TOML scene",
+            Format::Shape(_) => "built-in shape",
+        }
+    }
+}
+
+/// Whether this build reads `f`.
+fn readable(f: Format) -> bool {
+    !matches!(f, Format::Gltf if !cfg!(feature = "gltf"))
+        && !matches!(f, Format::Ply if !cfg!(feature = "ply"))
+}
+
+/// Up to the first 512 bytes of the file at `path` (none if it cannot be
+/// read: the loader will say why).
+fn head(path: &Path) -> Vec<u8> {
+    use std::io::Read;
+    let mut head = Vec::with_capacity(512);
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(512).read_to_end(&mut head);
+    }
+    head
+}
+
+/// What a file's first bytes say: a signature (a format that cannot be
+/// mistaken), and else a guess from its first statement.
+fn sniff(head: &[u8]) -> (Option<Format>, Option<Format>) {
+    if head.starts_with(b"glTF") {
+        return (Some(Format::Gltf), None);
+    }
+    if head.starts_with(b"ply\n") || head.starts_with(b"ply\r\n") {
+        return (Some(Format::Ply), None);
+    }
+    let text = head.trim_ascii_start();
+    if text.starts_with(b"{") {
+        return (Some(Format::Gltf), None);
+    }
+    if text.starts_with(b"solid") {
+        return (None, Some(Format::Stl));
+    }
+    // The first line that is not blank or a comment.
+    let first = head
+        .split(|&b| b == b'\n')
+        .map(<[u8]>::trim_ascii)
+        .find(|l| !l.is_empty() && !l.starts_with(b"#"));
+    let guess = first.and_then(|l| {
+        let word = l.split(|b| b.is_ascii_whitespace()).next().unwrap_or(l);
+        match word {
+            b"v" | b"vn" | b"vt" | b"f" | b"o" | b"g" | b"s" | b"mtllib" | b"usemtl" | b"l"
+            | b"p" => Some(Format::Obj),
+            _ if l.starts_with(b"[") || l.contains(&b'=') => Some(Format::Toml),
+            _ => None,
+        }
+    });
+    (None, guess)
 }
 
 /// What a path names.
@@ -1046,33 +1203,30 @@ const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) {
 /// Loads a model file by its extension, or a built-in shape by its name:
 /// its geometry, and what the loader has to tell.
 pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry>, Vec<String>)> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let loaded = match ext.as_deref() {
-        Some("obj") => obj::load(path, options)?,
-        Some("stl") => stl::load(path, options)?,
+    let (format, note) = Format::of(path)?;
+    let mut loaded = match format {
+        Format::Obj => obj::load(path, options)?,
+        Format::Stl => stl::load(path, options)?,
         #[cfg(feature = "gltf")]
-        Some("gltf" | "glb") => gltf::load(path, options)?,
+        Format::Gltf => gltf::load(path, options)?,
         #[cfg(feature = "ply")]
-        Some("ply") => ply::load(path, options)?,
-        _ => match path.to_str().and_then(Shape::from_name) {
-            Some(shape) if !path.exists() => {
-                let mut g = shape.geometry();
-                if options.crease != mesh::DEFAULT_CREASE {
-                    Arc::make_mut(&mut g).compute_normals(options.crease);
-                }
-                return Ok((g, Vec::new()));
+        Format::Ply => ply::load(path, options)?,
+        Format::Shape(shape) => {
+            let mut g = shape.geometry();
+            if options.crease != mesh::DEFAULT_CREASE {
+                Arc::make_mut(&mut g).compute_normals(options.crease);
             }
-            _ => {
-                return Err(Error::Invalid(format!(
-                    "{}: not a model: expected a model file ({MODELS}), or one of cube, sphere, torus",
-                    path.display()
-                )));
-            }
-        },
+            return Ok((g, Vec::new()));
+        }
+        #[allow(unreachable_patterns)]
+        _ => {
+            return Err(Error::Invalid(format!(
+                "{}: not a model: expected a model file ({MODELS}), or one of cube, sphere, torus",
+                path.display()
+            )));
+        }
     };
+    loaded.notes.splice(0..0, note);
     Ok((Arc::new(loaded.geometry), loaded.notes))
 }
 
@@ -1272,6 +1426,18 @@ mod tests {
 
     fn err(src: &str) -> String {
         Scene::parse(src, "s.toml").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn an_unknown_shape_suggests_the_nearest() {
+        assert_eq!(
+            err("[[mesh]]\nshape = \"torsu\"\n"),
+            "s.toml:1:1: unknown shape \"torsu\": did you mean \"torus\"? (the shapes are \"cube\", \"sphere\" and \"torus\")"
+        );
+        assert_eq!(
+            err("[[mesh]]\nshape = \"teapot\"\n"),
+            "s.toml:1:1: unknown shape \"teapot\": expected \"cube\", \"sphere\" or \"torus\""
+        );
     }
 
     #[test]

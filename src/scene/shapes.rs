@@ -40,6 +40,17 @@ impl Shape {
         Shape::ALL.into_iter().find(|s| s.name() == name)
     }
 
+    /// The shape whose name is nearest `name`, if one is within two edits
+    /// of it (for "did you mean": `torsu` is `torus`).
+    pub fn nearest(name: &str) -> Option<Shape> {
+        Shape::ALL
+            .into_iter()
+            .map(|s| (edits(name, s.name()), s))
+            .filter(|&(d, _)| d <= 2)
+            .min_by_key(|&(d, _)| d)
+            .map(|(_, s)| s)
+    }
+
     /// A mesh of the shape in `color`. The geometry is built once and
     /// shared by every mesh of the shape.
     pub fn mesh(self, color: Rgb) -> Mesh {
@@ -155,6 +166,35 @@ fn grid(
         a != b && b != c && c != a
     });
     (positions, faces)
+}
+
+/// The edit distance between `a` and `b` (insertions, deletions,
+/// substitutions and swaps of neighbours, each one edit), in characters.
+fn edits(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    if a.len().abs_diff(b.len()) > 2 || a.len() > 64 {
+        return usize::MAX;
+    }
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
 }
 
 #[cfg(test)]
