@@ -29,6 +29,9 @@ use crate::scene::Scene;
 /// screen does.
 const HIDE_CURSOR: &str = "\x1b[?25l";
 
+/// Shows the cursor: the last event ends with it.
+const SHOW_CURSOR: &str = "\x1b[?25h";
+
 /// The header line.
 #[derive(Serialize)]
 struct Header<'a> {
@@ -86,6 +89,8 @@ pub struct Recorder<W: Write + ?Sized> {
     /// Microseconds of the last event.
     last: u64,
     started: bool,
+    /// The terminal's height, for [`Recorder::end`].
+    rows: u16,
     line: Vec<u8>,
     out: W,
 }
@@ -113,6 +118,7 @@ impl<W: Write> Recorder<W> {
         Ok(Recorder {
             last: 0,
             started: false,
+            rows: height,
             line: Vec::new(),
             out,
         })
@@ -148,7 +154,24 @@ impl<W: Write + ?Sized> Recorder<W> {
 
     /// Records that the terminal became `cols × rows` at `at`.
     pub fn resize(&mut self, at: Duration, cols: u16, rows: u16) -> io::Result<()> {
+        self.rows = rows;
         self.event(at, "r", &format!("{cols}x{rows}"))
+    }
+
+    /// Ends the recording as a program ends on a terminal: colours reset,
+    /// the cursor on a new line below the picture and shown again, so that
+    /// a player (`asciinema play`) leaves a usable shell. At the last
+    /// event's time; nothing for a recording of nothing.
+    pub fn end(&mut self) -> io::Result<()> {
+        if !self.started {
+            return Ok(());
+        }
+        let at = Duration::from_micros(self.last);
+        self.event(
+            at,
+            "o",
+            &format!("\x1b[0m\x1b[{};1H\r\n{SHOW_CURSOR}", self.rows),
+        )
     }
 
     fn event(&mut self, at: Duration, code: &str, data: &str) -> io::Result<()> {
@@ -184,7 +207,7 @@ pub fn play<W: Write>(
         recorder.output(at, player.prepare(LiveStatus::default()))?;
         player.advance(1);
     }
-    Ok(())
+    recorder.end()
 }
 
 #[cfg(test)]

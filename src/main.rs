@@ -107,6 +107,19 @@ fn usage_error(e: clap::Error) -> ExitCode {
     // clap's message without its colours, each line escaped: it quotes
     // the arguments it refuses.
     say_lines(&e.render().to_string());
+    // `rastty --hud`: an option of a command given before any command.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if e.kind() == ErrorKind::UnknownArgument
+        && args.first().is_some_and(|a| a.starts_with('-'))
+        && !args
+            .iter()
+            .any(|a| matches!(a.as_str(), "render" | "spin" | "bench"))
+    {
+        say_lines(&format!(
+            "hint: options follow a command: rastty spin {}",
+            rastty::text::line(&args.join(" "))
+        ));
+    }
     ExitCode::from(2)
 }
 
@@ -274,6 +287,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
             .and_then(|mut rec| {
                 encoder.prepare(frame);
                 rec.output(Duration::ZERO, encoder.last_bytes())?;
+                rec.end()?;
                 Ok(rec)
             })
             .map_err(|e| rastty::Error::io(path, e))?;
@@ -371,7 +385,9 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let outcome = live::run(&mut player, &live_opts, record)
         .map_err(|e| rastty::Error::Invalid(format!("spin: {e}")))?;
     if let Some((rec, path)) = &mut rec {
-        rec.flush().map_err(|e| rastty::Error::io(path, e))?;
+        rec.end()
+            .and_then(|()| rec.flush())
+            .map_err(|e| rastty::Error::io(path, e))?;
     }
     for m in &outcome.messages {
         say("note", m);

@@ -273,6 +273,17 @@ fn auto_colour_is_none_when_piped_even_with_colorterm() {
 }
 
 #[test]
+fn an_option_before_the_command_gets_a_hint() {
+    let out = rastty(&["--hud", "--cols", "40"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.ends_with("hint: options follow a command: rastty spin --hud --cols 40\n"),
+        "{err}"
+    );
+}
+
+#[test]
 fn color_24bit_and_direct_are_truecolor() {
     let frame = |c: &str| {
         rastty(&[

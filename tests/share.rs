@@ -112,14 +112,21 @@ fn a_spin_recording_is_asciicast_v2_and_replays_to_the_render_at_the_last_angle(
             "env": {"TERM": "xterm-256color", "SHELL": "/bin/zsh"}
         })
     );
-    // Every frame turns the fox, so each is an event, frame k at k/8 s.
+    // Every frame turns the fox, so each is an event, frame k at k/8 s;
+    // then the end, at the last frame's time: colours reset, the cursor
+    // below the picture and shown, for the shell after `asciinema play`.
+    let (end, events) = events.split_last().unwrap();
     let times: Vec<f64> = events.iter().map(|e| e.0).collect();
     assert_eq!(times, (0..10).map(|k| k as f64 / 8.0).collect::<Vec<_>>());
     assert!(events[0].2.starts_with("\x1b[?25l"), "the cursor is hidden");
+    assert_eq!(
+        (end.0, end.1.as_str(), end.2.as_str()),
+        (9.0 / 8.0, "o", "\x1b[0m\x1b[14;1H\r\n\x1b[?25h")
+    );
 
     // Frame 9 is turned by 81 degrees; with no terminal, --color auto is
     // truecolor in a recording.
-    let replayed = replay(&header, &events);
+    let replayed = replay(&header, events);
     let expected = rendered(
         &[&[FOX, "--yaw", "81", "--color", "truecolor"][..], &view].concat(),
         14,
@@ -158,13 +165,18 @@ fn a_render_recording_is_one_frame_at_time_zero() {
         (header["width"].as_u64(), header["height"].as_u64()),
         (Some(30), Some(10))
     );
-    assert_eq!(events.len(), 1);
+    assert_eq!(events.len(), 2);
     assert_eq!(events[0].0, 0.0);
+    assert_eq!(
+        events[1],
+        (0.0, "o".into(), "\x1b[0m\x1b[10;1H\r\n\x1b[?25h".into())
+    );
+    let events = &events[..1];
     // The frame is still printed, and the recording shows the same.
     let mut printed = terminal(10, 30);
     printed.process(&as_displayed(&stdout));
     assert_eq!(
-        cells(replay(&header, &events).screen()),
+        cells(replay(&header, events).screen()),
         cells(printed.screen())
     );
 }

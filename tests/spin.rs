@@ -169,15 +169,22 @@ fn a_recording_in_a_terminal_replays_to_the_render_at_the_last_angle() {
         ),
         (Some(2), Some(60), Some(20))
     );
-    let mut vt = terminal(20, 60);
+    // One more row than the recording: its end moves the cursor below
+    // the picture and shows it.
+    let mut vt = terminal(21, 60);
     let mut last = 0.0;
+    let mut end = String::new();
     for line in lines {
         let (t, code, data): (f64, String, String) = serde_json::from_str(line).unwrap();
         assert_eq!(code, "o");
         assert!(t >= last, "times go forward: {last} then {t}");
         last = t;
         vt.process(data.as_bytes());
+        end = data;
     }
+    assert_eq!(end, "\x1b[0m\x1b[20;1H\r\n\x1b[?25h");
+    assert_eq!(vt.screen().cursor_position(), (20, 0));
+    assert!(!vt.screen().hide_cursor());
     // Frames the loop was late for may be missing, the last never is: it
     // is turned by 15 · 7.5 = 112.5 degrees.
     let lines = run(&[
@@ -193,7 +200,7 @@ fn a_recording_in_a_terminal_replays_to_the_render_at_the_last_angle() {
         "--glyphs",
         "half",
     ]);
-    let mut rendered = terminal(20, 60);
+    let mut rendered = terminal(21, 60);
     rendered.process(&as_displayed(&lines));
     assert_eq!(cells(vt.screen()), cells(rendered.screen()));
 }
