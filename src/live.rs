@@ -106,7 +106,7 @@ Keys:
   arrows           orbit the camera around its target
   + / -            zoom in / out
   m                next glyph mode (skipping those the terminal cannot draw)
-  c                next colour depth (up to what the terminal shows)
+  c                next colour depth (truecolor included)
   s                next shading
   Ctrl-L           redraw
   Ctrl-Z           suspend (fg resumes)";

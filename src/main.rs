@@ -362,8 +362,10 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     terminal::install_panic_hook();
-    // `c` goes up to what the terminal shows, or what was asked for.
-    let max_depth = auto_color(true).max(opts.color);
+    // `c` cycles every depth, truecolor included: the detection reads an
+    // environment that tmux and ssh often strip, and the user may know
+    // better.
+    let max_depth = ColorDepth::TrueColor;
     let mut player = Player::new(scene, opts, spin, encoder).with_hud(args.hud);
     let live_opts = LiveOptions {
         fps: args.fps,

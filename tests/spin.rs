@@ -206,6 +206,28 @@ fn a_recording_in_a_terminal_replays_to_the_render_at_the_last_angle() {
 }
 
 #[test]
+fn c_reaches_truecolor_where_the_environment_says_256() {
+    let mut cmd = Command::new(BIN);
+    cmd.args(["spin", "--cols", "60", "--rows", "20", "--step", "0"])
+        .env("TERM", "xterm-256color")
+        .env_remove("COLORTERM")
+        .env_remove("NO_COLOR");
+    let mut s = Session::spawn(cmd).expect("a pty");
+    s.get_process_mut().set_window_size(80, 24).unwrap();
+    s.set_expect_timeout(Some(Duration::from_secs(20)));
+    let first = first_frame(&mut s);
+    assert!(
+        !String::from_utf8_lossy(&first).contains("[38;2;"),
+        "256 colours at first"
+    );
+    s.send("c").unwrap();
+    s.expect("[38;2;").expect("truecolor after c");
+    s.send("q").unwrap();
+    drain(&mut s, Vec::new());
+    assert_eq!(exit_code(&s), 0);
+}
+
+#[test]
 fn q_quits_and_restores_the_terminal() {
     let mut s = spawn(&[]);
     let seen = first_frame(&mut s);
