@@ -180,6 +180,14 @@ impl Player {
         self.paused
     }
 
+    /// Whether the picture changes by itself as the clock ticks: not while
+    /// paused or turning by nothing. A loop renders a still player only
+    /// when something else changes (a key, a resize, a notice ending), so
+    /// a paused `spin` costs nothing.
+    pub fn moves(&self) -> bool {
+        !self.paused && self.spin.step != 0.0
+    }
+
     /// The notice shown over the last row, if any.
     pub fn notice(&self) -> Option<&str> {
         self.notice.as_deref()
@@ -385,6 +393,27 @@ mod tests {
             step: -1.5,
         };
         assert_eq!(y.turn(Vec3::ZERO, 2), Vec3::new(0.0, 357.0, 0.0));
+    }
+
+    #[test]
+    fn a_paused_or_unturning_player_does_not_move() {
+        let spin = |step| Spin {
+            axis: Axis::Y,
+            step,
+        };
+        let player = |step| {
+            Player::new(
+                crate::scene::default_scene(),
+                RenderOptions::default(),
+                spin(step),
+                Encoder::new(ColorDepth::TrueColor),
+            )
+        };
+        let mut p = player(3.0);
+        assert!(p.moves());
+        p.apply(Command::TogglePause);
+        assert!(!p.moves());
+        assert!(!player(0.0).moves());
     }
 
     #[test]

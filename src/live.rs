@@ -589,7 +589,14 @@ impl Live<'_, '_> {
             let now = Instant::now();
             let tick = ((now - start).as_secs_f64() * fps) as u64;
             let idle = self.written == self.out.len();
-            if idle && (shown != Some(tick) || dirty) && link.can_send(now) {
+            // A still picture is drawn again only when something changed
+            // (`--frames` counts ticks, so it keeps them).
+            let ticks = self.player.moves() || self.opts.frames.is_some();
+            if !ticks && shown.is_some() {
+                // Still: the ticks go by undrawn, and are not made up later.
+                shown = Some(tick);
+            }
+            if idle && ((ticks && shown != Some(tick)) || dirty) && link.can_send(now) {
                 // Frames the loop was too late for are skipped, not queued.
                 let mut step = shown.map_or(0, |s| tick.saturating_sub(s));
                 if let Some(n) = self.opts.frames {
