@@ -96,6 +96,8 @@ pub struct Player {
     /// Frames played while not paused: the angle's frame number.
     k: u64,
     paused: bool,
+    /// The status line's parts, highest priority first (reused buffers).
+    hud_parts: [String; 9],
     orbit: (f32, f32),
     zoom: f32,
     hud: bool,
@@ -124,6 +126,7 @@ impl Player {
             spin,
             k: 0,
             paused: false,
+            hud_parts: Default::default(),
             orbit: (0.0, 0.0),
             zoom: 1.0,
             hud: false,
@@ -269,31 +272,45 @@ impl Player {
             let stats = *self.renderer.stats();
             // Anti-aliasing draws every triangle once per pass.
             let drawn = stats.raster.triangles_drawn / opts.aa.passes();
-            // Rebuilt in the same buffer each frame: no allocation once it
-            // has grown.
-            self.status.clear();
-            // A notice first, where the narrowest status line still shows it.
+            // Parts by priority, each kept whole: the status line holds as
+            // many as the width has room for. Rebuilt in the same buffers
+            // each frame: no allocation once they have grown.
+            let angle = self.spin.axis.unit().dot(turn).rem_euclid(360.0);
+            let p = &mut self.hud_parts;
+            p.iter_mut().for_each(String::clear);
             if let Some(n) = &self.notice {
-                let _ = write!(self.status, " {n} ·");
+                p[0].push_str(n);
             }
-            let _ = write!(self.status, " {:.1} fps · ", live.fps);
-            let _ = match live.link {
-                Some(rate) => write!(self.status, "link {:.1} kB/s · ", rate / 1e3),
-                None => write!(self.status, "link ? · "),
-            };
+            if self.paused {
+                p[1].push_str("paused");
+            }
             let _ = write!(
-                self.status,
-                "{} triangles · {} B/frame · {} · {} · {} · sync {} · {} {:.1}°{} ",
-                drawn,
-                self.last_bytes,
+                p[2],
+                "{} {angle:.1}° pitch {:.0}° zoom {:.2}×",
+                self.spin.axis.angle_name(),
+                self.orbit.1,
+                1.0 / self.zoom
+            );
+            let _ = write!(
+                p[3],
+                "{} · {} · {}",
                 opts.glyphs.name(),
                 opts.color.name(),
-                opts.shading.name(),
-                if self.encoder.sync() { "on" } else { "off" },
-                self.spin.axis.angle_name(),
-                self.spin.axis.unit().dot(turn).rem_euclid(360.0),
-                if self.paused { " · paused" } else { "" },
+                opts.shading.name()
             );
+            let _ = write!(p[4], "{:.1} fps", live.fps);
+            let _ = write!(p[5], "{drawn} triangles");
+            let _ = write!(p[6], "{} B/frame", self.last_bytes);
+            let _ = match live.link {
+                Some(rate) => write!(p[7], "link {:.1} kB/s", rate / 1e3),
+                None => write!(p[7], "link ?"),
+            };
+            let _ = write!(
+                p[8],
+                "sync {}",
+                if self.encoder.sync() { "on" } else { "off" }
+            );
+            fit_status(&mut self.status, &self.hud_parts, usize::from(opts.cols));
             overlay(self.renderer.frame_mut(), &self.status, true);
         } else if let Some(n) = &self.notice {
             self.status.clear();
@@ -315,6 +332,24 @@ impl Player {
         out.flush()?;
         Ok(bytes.len())
     }
+}
+
+/// Joins the first non-empty `parts` (highest priority first) with ` · `
+/// into `out`: as many as fit `width` cells, a part never cut (the first
+/// is cut only where it alone is wider, by [`overlay`]).
+fn fit_status(out: &mut String, parts: &[String], width: usize) {
+    out.clear();
+    let mut len = 1;
+    for text in parts.iter().filter(|t| !t.is_empty()) {
+        let add = text.chars().count() + if out.is_empty() { 1 } else { 3 };
+        if !out.is_empty() && len + add > width {
+            break;
+        }
+        out.push_str(if out.is_empty() { " " } else { " · " });
+        out.push_str(text);
+        len += add;
+    }
+    out.push(' ');
 }
 
 /// Writes `text` over the last row of `frame`, white on black; across the
@@ -393,6 +428,36 @@ mod tests {
             step: -1.5,
         };
         assert_eq!(y.turn(Vec3::ZERO, 2), Vec3::new(0.0, 357.0, 0.0));
+    }
+
+    #[test]
+    fn the_status_line_keeps_whole_parts_by_priority() {
+        let parts = [
+            "",
+            "paused",
+            "yaw 12.0° pitch 5° zoom 1.00×",
+            "half · 256 · smooth",
+            "30.0 fps",
+        ]
+        .map(String::from);
+        let mut out = String::new();
+        fit_status(&mut out, &parts, 80);
+        assert_eq!(
+            out,
+            " paused · yaw 12.0° pitch 5° zoom 1.00× · half · 256 · smooth · 30.0 fps "
+        );
+        fit_status(&mut out, &parts, 62);
+        assert_eq!(
+            out,
+            " paused · yaw 12.0° pitch 5° zoom 1.00× · half · 256 · smooth "
+        );
+        fit_status(&mut out, &parts, 30);
+        assert_eq!(out, " paused ");
+        fit_status(&mut out, &parts, 3);
+        assert_eq!(
+            out, " paused ",
+            "the first part is kept, and cut where it is drawn"
+        );
     }
 
     #[test]
