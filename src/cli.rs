@@ -62,68 +62,133 @@ pub struct BenchArgs {
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
-    pub input: InputArgs,
-    #[command(flatten)]
     pub view: ViewArgs,
+    #[command(flatten)]
+    pub input: InputArgs,
     /// After the frame, print the plan to stderr: each stage, run or
     /// skipped, why, what it did and how long it took
-    #[arg(long)]
+    #[arg(long, help_heading = "Output")]
     pub explain: bool,
     /// Write the frame to PATH instead of stdout, in the format its
     /// extension names: .png or .svg (a picture: each cell painted at
     /// --cell-px, no font needed), .ans (the ANSI frame) or .txt (plain
     /// text). --color auto is truecolor for these, none for .txt
-    #[arg(long, short = 'o', value_name = "PATH")]
+    #[arg(help_heading = "Output", long, short = 'o', value_name = "PATH")]
     pub output: Option<PathBuf>,
     /// Pixels a cell in .png and .svg pictures, W×H (or WxH); the frame is
     /// drawn for that cell shape unless --cell-aspect says otherwise
-    #[arg(long, value_name = "W×H", default_value = "8x16")]
+    #[arg(
+        help_heading = "Output",
+        long,
+        value_name = "W×H",
+        default_value = "8x16"
+    )]
     pub cell_px: CellPx,
     /// Also write the frame as a one-frame asciicast v2 recording
-    #[arg(long, value_name = "FILE.cast")]
+    #[arg(help_heading = "Output", long, value_name = "FILE.cast")]
     pub record: Option<PathBuf>,
+    #[command(flatten)]
+    pub knobs: KnobArgs,
+    #[command(flatten)]
+    pub budgets: BudgetArgs,
 }
 
 #[derive(Args, Debug, Default)]
 pub struct SpinArgs {
     #[command(flatten)]
-    pub input: InputArgs,
-    #[command(flatten)]
     pub view: ViewArgs,
     /// The world axis to turn about
-    #[arg(long, value_enum, default_value_t = Axis::Y)]
+    #[arg(long, value_enum, default_value_t = Axis::Y, help_heading = "Spin")]
     pub axis: Axis,
     /// Degrees turned per frame
-    #[arg(long, value_name = "DEG", default_value_t = 3.0, allow_negative_numbers = true, value_parser = parse_angle)]
+    #[arg(help_heading = "Spin", long, value_name = "DEG", default_value_t = 3.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub step: f32,
     /// Frames per second
-    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    #[arg(help_heading = "Spin", long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: u32,
     /// Stop after N frames (needed when stdout is not a terminal: the frames
     /// are then written as one ANSI stream)
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(help_heading = "Spin", long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub frames: Option<u64>,
     /// Show a status line: fps, link rate, triangles drawn, bytes per
     /// frame, the settings and the angle
-    #[arg(long)]
+    #[arg(help_heading = "Spin", long)]
     pub hud: bool,
     /// Do not ask the terminal which glyphs it draws (by default spin
     /// checks, within 150 ms, and falls back from modes it cannot draw)
-    #[arg(long)]
+    #[arg(help_heading = "Spin", long)]
     pub no_probe: bool,
+    #[command(flatten)]
+    pub input: InputArgs,
     /// Record the frames as asciicast v2 (asciinema play FILE replays
     /// them): in a terminal, what was shown, when it was shown; otherwise
     /// (with --frames N) frame k at k/fps seconds, and nothing on stdout
-    #[arg(long, value_name = "FILE.cast")]
+    #[arg(long, value_name = "FILE.cast", help_heading = "Output")]
     pub record: Option<PathBuf>,
+    #[command(flatten)]
+    pub knobs: KnobArgs,
+    #[command(flatten)]
+    pub budgets: BudgetArgs,
 }
 
 /// What is drawn.
 #[derive(Args, Debug, Default)]
+#[command(next_help_heading = "Model")]
 pub struct InputArgs {
-    /// A scene file (.toml), a model (.obj, .stl) or a built-in shape (cube,
-    /// sphere, torus); without it, the built-in default scene.
+    /// A scene file (.toml), a model (.obj with its .mtl, .stl, .gltf,
+    /// .glb, .ply; told by its first bytes where its name says nothing) or
+    /// a built-in shape (cube, sphere, torus); without it, the built-in
+    /// default scene.
     pub scene: Option<PathBuf>,
+    /// A model's up axis [default: z for STL, y otherwise]
+    #[arg(long, value_enum)]
+    pub up: Option<Axis>,
+    /// Faces meeting at a sharper angle keep their own normals along the
+    /// edge (computed normals only)
+    #[arg(long, value_name = "DEG", default_value_t = rastty::scene::DEFAULT_CREASE, value_parser = parse_crease)]
+    pub crease: f32,
+    /// How MTL Kd colours are read: linear light (as Blender and most
+    /// exporters write them) or sRGB
+    #[arg(long, value_enum, default_value_t = ColorSpace::Linear)]
+    pub mtl_colors: ColorSpace,
+}
+
+/// The accuracy and speed knobs: each changes how a frame is computed, and
+/// is measured by `rastty bench`.
+#[derive(Args, Debug, Default)]
+#[command(next_help_heading = "Accuracy and speed knobs")]
+pub struct KnobArgs {
+    /// How the rasterizer walks samples (all give the same picture)
+    #[arg(long, value_enum, default_value_t = Traversal::Spans)]
+    pub traversal: Traversal,
+    /// How attributes are interpolated (affine is wrong under perspective:
+    /// for comparison)
+    #[arg(long, value_enum, default_value_t = Interpolation::Perspective)]
+    pub interpolation: Interpolation,
+    /// How cells of more than two colours are split (widest-channel is
+    /// chafa's fast path: for comparison)
+    #[arg(long, value_enum, default_value_t = Split::Exhaustive)]
+    pub split: Split,
+    /// How edge functions are evaluated (f64 and f32 skip the snap and are
+    /// not watertight: for comparison)
+    #[arg(long, value_enum, default_value_t = Precision::Fixed)]
+    pub precision: Precision,
+    /// Run every pipeline stage on every primitive, even those the scene
+    /// does not need (the same picture, slower: for comparison)
+    #[arg(long)]
+    pub full_pipeline: bool,
+    /// Threads drawing each frame, a band of rows each (the same picture
+    /// with any count): auto uses every core for frames of 600×180 cells
+    /// or more, one thread below
+    #[arg(long, value_name = "N|auto", default_value = "auto")]
+    pub threads: rastty::Threads,
+}
+
+/// Budgets: limits on what a file or a frame may cost, refused before the
+/// work.
+#[derive(Args, Debug, Default)]
+#[command(next_help_heading = "Budgets")]
+pub struct BudgetArgs {
     /// The largest scene or model file read, in bytes or with a unit (K, M,
     /// G, T: powers of 1024) [default: 1G]
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
@@ -138,21 +203,15 @@ pub struct InputArgs {
     /// 256M]
     #[arg(long, value_name = "N", value_parser = parse_count)]
     pub max_triangles: Option<u64>,
-    /// A model's up axis [default: z for STL, y otherwise]
-    #[arg(long, value_enum)]
-    pub up: Option<Axis>,
-    /// Faces meeting at a sharper angle keep their own normals along the
-    /// edge (computed normals only)
-    #[arg(long, value_name = "DEG", default_value_t = rastty::scene::DEFAULT_CREASE, value_parser = parse_crease)]
-    pub crease: f32,
-    /// How MTL Kd colours are read: linear light (as Blender and most
-    /// exporters write them) or sRGB
-    #[arg(long, value_enum, default_value_t = ColorSpace::Linear)]
-    pub mtl_colors: ColorSpace,
+    /// The most sample tests a frame may make (cells × samples a cell ×
+    /// anti-aliasing passes), refused before any work [default: 64M]
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub max_samples: Option<u64>,
 }
 
 /// How a frame is laid out and drawn.
 #[derive(Args, Debug, Default)]
+#[command(next_help_heading = "View")]
 pub struct ViewArgs {
     /// Width in cells [default: the terminal's, or 80]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_CELLS as i64))]
@@ -165,10 +224,6 @@ pub struct ViewArgs {
     /// or ascii when TERM is dumb]
     #[arg(long, value_enum)]
     pub glyphs: Option<GlyphMode>,
-    /// The most sample tests a frame may make (cells × samples a cell ×
-    /// anti-aliasing passes), refused before any work [default: 64M]
-    #[arg(long, value_name = "N", value_parser = parse_count)]
-    pub max_samples: Option<u64>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -199,38 +254,14 @@ pub struct ViewArgs {
     /// Turn the scene about the world's z axis, in degrees
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub roll: f32,
-    /// How the rasterizer walks samples (all give the same picture)
-    #[arg(long, value_enum, default_value_t = Traversal::Spans)]
-    pub traversal: Traversal,
     /// Anti-aliasing: 4 or 16 sub-samples per sample, or each triangle's
     /// exact area in the sample's square
     #[arg(long, value_enum, default_value_t = Aa::None)]
     pub aa: Aa,
-    /// How attributes are interpolated (affine is wrong under perspective:
-    /// for comparison)
-    #[arg(long, value_enum, default_value_t = Interpolation::Perspective)]
-    pub interpolation: Interpolation,
-    /// How cells of more than two colours are split (widest-channel is
-    /// chafa's fast path: for comparison)
-    #[arg(long, value_enum, default_value_t = Split::Exhaustive)]
-    pub split: Split,
-    /// How edge functions are evaluated (f64 and f32 skip the snap and are
-    /// not watertight: for comparison)
-    #[arg(long, value_enum, default_value_t = Precision::Fixed)]
-    pub precision: Precision,
     /// Texture filtering for every texture (default: as each model's
     /// sampler says; trilinear where it says nothing)
     #[arg(long, value_enum)]
     pub filter: Option<FilterMode>,
-    /// Run every pipeline stage on every primitive, even those the scene
-    /// does not need (the same picture, slower: for comparison)
-    #[arg(long)]
-    pub full_pipeline: bool,
-    /// Threads drawing each frame, a band of rows each (the same picture
-    /// with any count): auto uses every core for frames of 600×180 cells
-    /// or more, one thread below
-    #[arg(long, value_name = "N|auto", default_value = "auto")]
-    pub threads: rastty::Threads,
 }
 
 impl ViewArgs {

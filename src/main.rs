@@ -203,20 +203,20 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
 
 /// The scene to draw; what the loaders read but cannot draw is said on
 /// stderr.
-fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
+fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Result<Scene> {
     let mut options = rastty::scene::LoadOptions {
         up: input.up,
         crease: input.crease,
         mtl_colors: input.mtl_colors,
         ..Default::default()
     };
-    if let Some(max) = input.max_file_size {
+    if let Some(max) = budgets.max_file_size {
         options.max_bytes = max;
     }
-    if let Some(max) = input.max_texels {
+    if let Some(max) = budgets.max_texels {
         options.max_texels = max;
     }
-    if let Some(max) = input.max_triangles {
+    if let Some(max) = budgets.max_triangles {
         options.max_triangles = max;
     }
     let scene = match &input.scene {
@@ -231,7 +231,7 @@ fn scene(input: &cli::InputArgs) -> rastty::Result<Scene> {
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
     let format = args.output.as_deref().map(Format::of).transpose()?;
-    let mut opts = options(&args.view, 1);
+    let mut opts = options(&args.view, &args.knobs, 1);
     if let Some(format) = format {
         // A file is not the terminal: sizes and colours are its own.
         opts.color = args.view.color.depth().unwrap_or(if format.has_color() {
@@ -248,13 +248,13 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     }
     // Everything that can be refused is refused before the work: the
     // frame's size, the files to write, then the scene.
-    opts.check_samples(max_samples(&args.view))?;
+    opts.check_samples(max_samples(&args.budgets))?;
     let mut record = args
         .record
         .as_deref()
         .map(|p| Ok((create(p)?, p)))
         .transpose()?;
-    let scene = scene(&args.input).inspect_err(|_| {
+    let scene = scene(&args.input, &args.budgets).inspect_err(|_| {
         // No recording of a frame that was never drawn.
         if let Some((_, path)) = &record {
             let _ = std::fs::remove_file(path);
@@ -308,14 +308,14 @@ fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
 }
 
 /// The frame budget `--max-samples` sets.
-fn max_samples(view: &ViewArgs) -> u64 {
-    view.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES)
+fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
+    budgets.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES)
 }
 
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
-    let opts = options(&args.view, 0);
-    opts.check_samples(max_samples(&args.view))?;
-    let scene = scene(&args.input)?;
+    let opts = options(&args.view, &args.knobs, 0);
+    opts.check_samples(max_samples(&args.budgets))?;
+    let scene = scene(&args.input, &args.budgets)?;
     let spin = Spin {
         axis: args.axis,
         step: args.step,
@@ -421,7 +421,7 @@ fn auto_color(tty: bool) -> ColorDepth {
 
 /// Resolves sizes, glyphs and colour against the terminal; `spare_rows`
 /// are left free below the frame (for the shell prompt after `render`).
-fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
+fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOptions {
     let tty = terminal::stdout_is_terminal();
     let term = terminal::stdout_size();
     let cells = term.map(|t| t.cells());
@@ -451,20 +451,20 @@ fn options(view: &ViewArgs, spare_rows: u16) -> RenderOptions {
         glyphs,
         color,
         cell_aspect,
-        traversal: view.traversal,
+        traversal: knobs.traversal,
         turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
         shading: view.shading,
         cull: view.cull,
-        pipeline: if view.full_pipeline {
+        pipeline: if knobs.full_pipeline {
             Pipeline::Full
         } else {
             Pipeline::Planned
         },
         aa: view.aa,
-        interpolation: view.interpolation,
-        split: view.split,
-        precision: view.precision,
+        interpolation: knobs.interpolation,
+        split: knobs.split,
+        precision: knobs.precision,
         filter: view.filter,
-        threads: view.threads,
+        threads: knobs.threads,
     }
 }

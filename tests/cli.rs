@@ -273,6 +273,47 @@ fn auto_colour_is_none_when_piped_even_with_colorterm() {
 }
 
 #[test]
+fn spin_help_shows_everyday_options_first_in_groups() {
+    let help = String::from_utf8(rastty(&["spin", "-h"]).stdout).unwrap();
+    let headings: Vec<&str> = help
+        .lines()
+        .filter(|l| !l.starts_with(' ') && l.ends_with(':'))
+        .collect();
+    assert_eq!(
+        headings,
+        [
+            "Options:",
+            "View:",
+            "Spin:",
+            "Model:",
+            "Output:",
+            "Accuracy and speed knobs:",
+            "Budgets:",
+            "Keys:"
+        ]
+    );
+    let after = |heading: &str, option: &str| {
+        let h = help.find(heading).unwrap();
+        let o = help.find(option).unwrap();
+        assert!(o > h, "{option} under {heading}");
+    };
+    for knob in [
+        "--traversal",
+        "--precision",
+        "--split",
+        "--interpolation",
+        "--full-pipeline",
+    ] {
+        after("Accuracy and speed knobs:", knob);
+    }
+    after("Budgets:", "--max-texels");
+    assert!(
+        help.contains(".gltf") && help.contains(".ply"),
+        "[SCENE] lists every format"
+    );
+}
+
+#[test]
 fn an_option_before_the_command_gets_a_hint() {
     let out = rastty(&["--hud", "--cols", "40"]);
     assert_eq!(out.status.code(), Some(2));
