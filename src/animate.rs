@@ -153,7 +153,13 @@ impl Player {
         self.usable = GlyphMode::ALL.map(usable);
     }
 
-    /// LoadOptions the depths `c` cycles through to `max` and below.
+    /// Switches to colour depth `depth`.
+    pub fn set_color(&mut self, depth: ColorDepth) {
+        self.opts.color = depth;
+        self.encoder.set_depth(depth);
+    }
+
+    /// Limits the depths `c` cycles through to `max` and below.
     pub fn set_max_depth(&mut self, max: ColorDepth) {
         self.max_depth = max;
     }

@@ -62,6 +62,10 @@ pub struct LiveOptions {
     pub full_screen: bool,
     /// The deepest colour the `c` key may pick.
     pub max_depth: ColorDepth,
+    /// Whether to switch to truecolor where the probe finds the terminal
+    /// draws it (the depth was left to detection, and the environment
+    /// said less).
+    pub detect_truecolor: bool,
 }
 
 /// How the loop ended.
@@ -673,6 +677,14 @@ impl Live<'_, '_> {
         self.player.set_max_depth(self.opts.max_depth);
         if caps.sync == Some(false) {
             self.player.encoder_mut().set_sync(false);
+        }
+        if self.opts.detect_truecolor && caps.truecolor == Some(true) {
+            self.player.set_color(ColorDepth::TrueColor);
+            self.player
+                .set_notice("color truecolor: the terminal says it draws 24-bit colour");
+            self.messages.push(
+                "colour: truecolor, as the terminal answered (COLORTERM does not say so here; --color chooses)".into(),
+            );
         }
         let asked = self.player.options().glyphs;
         let best = caps.best(asked);

@@ -373,6 +373,8 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         probe: !args.no_probe,
         full_screen: !dumb,
         max_depth,
+        detect_truecolor: args.view.color == cli::ColorArg::Auto
+            && !matches!(opts.color, ColorDepth::None | ColorDepth::TrueColor),
     };
     let mut rec = match &args.record {
         Some(path) => {
@@ -414,9 +416,16 @@ fn is_dumb() -> bool {
     terminal::is_dumb(std::env::var("TERM").ok().as_deref())
 }
 
-/// The colour depth `--color auto` gives.
+/// The colour depth `--color auto` gives: the environment's, raised to
+/// truecolor inside tmux when tmux says its client's terminal draws it.
 fn auto_color(tty: bool) -> ColorDepth {
-    terminal::detect_color(tty, |k| std::env::var(k).ok())
+    let env = terminal::detect_color(tty, |k| std::env::var(k).ok());
+    if matches!(env, ColorDepth::Ansi16 | ColorDepth::Ansi256)
+        && terminal::tmux_truecolor() == Some(true)
+    {
+        return ColorDepth::TrueColor;
+    }
+    env
 }
 
 /// Resolves sizes, glyphs and colour against the terminal; `spare_rows`

@@ -208,10 +208,19 @@ fn a_recording_in_a_terminal_replays_to_the_render_at_the_last_angle() {
 #[test]
 fn c_reaches_truecolor_where_the_environment_says_256() {
     let mut cmd = Command::new(BIN);
-    cmd.args(["spin", "--cols", "60", "--rows", "20", "--step", "0"])
-        .env("TERM", "xterm-256color")
-        .env_remove("COLORTERM")
-        .env_remove("NO_COLOR");
+    cmd.args([
+        "spin",
+        "--cols",
+        "60",
+        "--rows",
+        "20",
+        "--step",
+        "0",
+        "--no-probe",
+    ])
+    .env("TERM", "xterm-256color")
+    .env_remove("COLORTERM")
+    .env_remove("NO_COLOR");
     let mut s = Session::spawn(cmd).expect("a pty");
     s.get_process_mut().set_window_size(80, 24).unwrap();
     s.set_expect_timeout(Some(Duration::from_secs(20)));
@@ -323,6 +332,10 @@ struct Fake {
     cpr_cols: Vec<u16>,
     /// Whether position and status requests are answered at all.
     answer: bool,
+    /// How DECRQSS of the SGR after a 24-bit colour is answered: keeping
+    /// it (`Some(true)`), mapped to the 256-colour palette (`Some(false)`),
+    /// or not at all.
+    rgb: Option<bool>,
     rate: Option<f64>,
     /// Bytes the rate allows now, and when that was reckoned.
     tokens: f64,
@@ -346,6 +359,7 @@ impl Fake {
             scanned: 0,
             cpr_cols: cpr_cols.iter().rev().copied().collect(),
             answer,
+            rgb: None,
             rate,
             tokens: 0.0,
             last_pump: 0.0,
@@ -404,23 +418,26 @@ impl Fake {
     fn answer_queries(&mut self) {
         loop {
             let rest = &self.seen[self.scanned..];
-            let next = [b"\x1b[6n", b"\x1b[5n"]
+            let next = [&b"\x1b[6n"[..], b"\x1b[5n", b"\x1bP$qm"]
                 .iter()
-                .filter_map(|q| find(rest, *q).map(|i| (i, q[2])))
+                .filter_map(|q| find(rest, q).map(|i| (i, q.len(), q[2])))
                 .min();
-            let Some((i, kind)) = next else {
-                self.scanned = self.seen.len().saturating_sub(3).max(self.scanned);
+            let Some((i, len, kind)) = next else {
+                self.scanned = self.seen.len().saturating_sub(5).max(self.scanned);
                 return;
             };
-            self.scanned += i + 4;
+            self.scanned += i + len;
             if !self.answer {
                 continue;
             }
-            let reply = if kind == b'6' {
-                let col = self.cpr_cols.pop().unwrap_or(2);
-                format!("\x1b[1;{col}R")
-            } else {
-                "\x1b[0n".to_string()
+            let reply = match kind {
+                b'6' => format!("\x1b[1;{}R", self.cpr_cols.pop().unwrap_or(2)),
+                b'5' => "\x1b[0n".to_string(),
+                _ => match self.rgb {
+                    Some(true) => "\x1bP1$r0;38;2;1;2;3m\x1b\\".to_string(),
+                    Some(false) => "\x1bP1$r0;38;5;16m\x1b\\".to_string(),
+                    None => continue,
+                },
             };
             self.session.write_all(reply.as_bytes()).unwrap();
         }
@@ -600,6 +617,72 @@ fn a_terminal_that_answers_nothing_costs_the_probe_deadline_and_no_more() {
 }
 
 #[test]
+fn truecolor_is_used_where_the_terminal_says_it_draws_it() {
+    for (rgb, truecolor) in [(Some(true), true), (Some(false), false), (None, false)] {
+        let mut t = Fake::spawn(
+            &["--cols", "60", "--rows", "20", "--frames", "3"],
+            true,
+            &[],
+            None,
+        );
+        t.rgb = rgb;
+        assert!(t.wait_exit(Duration::from_secs(20)));
+        let text = String::from_utf8_lossy(&t.seen);
+        let frames = &text[text.find("\x1b[2J").unwrap()..];
+        assert_eq!(frames.contains("[38;2;"), truecolor, "{rgb:?}");
+        assert_eq!(frames.contains("[38;5;"), !truecolor, "{rgb:?}");
+        assert_eq!(
+            text.contains("note: colour: truecolor, as the terminal answered"),
+            truecolor,
+            "{rgb:?}"
+        );
+        assert_eq!(exit_code(&t.session), 0);
+    }
+}
+
+#[test]
+fn inside_tmux_truecolor_is_what_tmux_says_its_client_draws() {
+    // A `tmux` on PATH that answers as tmux 3.3 does for a client in a
+    // truecolor terminal, and one for a 256-colour terminal.
+    for (features, truecolor) in [("256,RGB,title,usstyle", true), ("256,title", false)] {
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("fake-tmux-{truecolor}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        let tmux = dir.join("tmux");
+        std::fs::write(&tmux, format!("#!/bin/sh\necho '{features}'\n")).unwrap();
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&tmux, std::fs::Permissions::from_mode(0o755)).unwrap();
+        let path = format!(
+            "{}:{}",
+            dir.display(),
+            std::env::var("PATH").unwrap_or_default()
+        );
+        let mut cmd = Command::new(BIN);
+        cmd.args([
+            "spin",
+            "--cols",
+            "40",
+            "--rows",
+            "10",
+            "--frames",
+            "2",
+            "--no-probe",
+        ])
+        .env("TERM", "tmux-256color")
+        .env("TMUX", "/tmp/tmux-0/default,1,0")
+        .env("PATH", path)
+        .env_remove("COLORTERM")
+        .env_remove("NO_COLOR");
+        let mut s = Session::spawn(cmd).expect("a pty");
+        s.get_process_mut().set_window_size(80, 24).unwrap();
+        let out = String::from_utf8_lossy(&drain(&mut s, Vec::new())).into_owned();
+        assert_eq!(out.contains("[38;2;"), truecolor, "{features}");
+        assert_eq!(out.contains("[38;5;"), !truecolor, "{features}");
+        assert_eq!(exit_code(&s), 0);
+    }
+}
+
+#[test]
 fn no_probe_asks_nothing() {
     let mut t = Fake::spawn(
         &[
@@ -657,6 +740,7 @@ fn ctrl_z_and_sigtstp_suspend_and_fg_resumes_with_the_terminal_sane_at_each_step
         scanned: 0,
         cpr_cols: Vec::new(),
         answer: true,
+        rgb: None,
         rate: None,
         tokens: 0.0,
         last_pump: 0.0,

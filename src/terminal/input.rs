@@ -47,6 +47,11 @@ pub enum Input {
     /// The answer to a device status report (`CSI 0 n`): everything sent
     /// before the query has been processed.
     StatusOk,
+    /// An answer on 24-bit colour: to DECRQSS of the SGR after setting
+    /// colour 1;2;3 (`DCS 1 $ r … 38;2;1;2;3 … m ST` keeps it: `true`;
+    /// mapped to a palette or refused: `false`), or to XTGETTCAP of `RGB`
+    /// (`DCS 1 + r 524742 … ST`: `true`; `DCS 0 + r …`: `false`).
+    RgbSupport(bool),
 }
 
 /// The longest escape sequence kept; longer ones are dropped whole.
@@ -103,6 +108,15 @@ impl Parser {
                 Some(&f) if (0x40..=0x7e).contains(&f) => csi(&rest[..rest.len() - 1], f),
                 _ => return,
             },
+            // DCS … ST (or BEL): a terminal's answer to DECRQSS or
+            // XTGETTCAP.
+            [0x1b, b'P', rest @ ..] => {
+                let body = match rest {
+                    [body @ .., 0x1b, b'\\'] | [body @ .., 0x07] => body,
+                    _ => return,
+                };
+                dcs(body)
+            }
             [0x1b, b'O'] => return,
             [0x1b, b'O', f] => match f {
                 b'A' => Input::Key(Key::Up),
@@ -143,6 +157,23 @@ fn control_or_char(b: u8) -> Key {
         0x1c => Key::Ctrl('\\'),
         0x20..=0x7e => Key::Char(b as char),
         _ => Key::Other,
+    }
+}
+
+/// A DCS answer's body (between `ESC P` and ST).
+fn dcs(body: &[u8]) -> Input {
+    let contains = |needle: &[u8]| body.windows(needle.len()).any(|w| w == needle);
+    match body {
+        [b'1', b'$', b'r', sgr @ ..] => {
+            let has = |n: &[u8]| sgr.windows(n.len()).any(|w| w == n);
+            Input::RgbSupport(has(b"2;1;2;3") || has(b"2:1:2:3") || has(b"2::1:2:3"))
+        }
+        [b'0', b'$', b'r', ..] => Input::RgbSupport(false),
+        [b'1', b'+', b'r', ..] if contains(b"524742") || contains(b"5463") => {
+            Input::RgbSupport(true)
+        }
+        [b'0', b'+', b'r', ..] => Input::RgbSupport(false),
+        _ => Input::Key(Key::Other),
     }
 }
 
@@ -196,6 +227,31 @@ mod tests {
         }
         p.flush(&mut out);
         out
+    }
+
+    #[test]
+    fn answers_on_24_bit_colour_are_read() {
+        assert_eq!(
+            parse(&[b"\x1bP1$r0;38;2;1;2;3m\x1b\\"]),
+            [Input::RgbSupport(true)]
+        );
+        assert_eq!(
+            parse(&[b"\x1bP1$r38:2::1:2:3m\x1b", b"\\"]),
+            [Input::RgbSupport(true)]
+        );
+        assert_eq!(
+            parse(&[b"\x1bP1$r0;38;5;16m\x1b\\"]),
+            [Input::RgbSupport(false)]
+        );
+        assert_eq!(parse(&[b"\x1bP0$r\x1b\\"]), [Input::RgbSupport(false)]);
+        assert_eq!(
+            parse(&[b"\x1bP1+r524742=382F382F38\x07"]),
+            [Input::RgbSupport(true)]
+        );
+        assert_eq!(
+            parse(&[b"\x1bP0+r524742\x1b\\"]),
+            [Input::RgbSupport(false)]
+        );
     }
 
     fn keys(k: &[Key]) -> Vec<Input> {

@@ -121,6 +121,24 @@ pub fn stdout_size() -> Option<WindowSize> {
     WindowSize::of(out.as_fd())
 }
 
+/// Inside tmux (`TMUX` set), whether the terminal tmux's client runs in
+/// draws 24-bit colour, as tmux says (`tmux display -p
+/// '#{client_termfeatures}'` lists `RGB`). tmux answers neither DECRQSS
+/// nor XTGETTCAP itself, and sets no `COLORTERM`. `None` outside tmux or
+/// where it cannot be asked (no client attached says nothing).
+pub fn tmux_truecolor() -> Option<bool> {
+    std::env::var_os("TMUX").filter(|v| !v.is_empty())?;
+    let out = std::process::Command::new("tmux")
+        .args(["display", "-p", "#{client_termfeatures}"])
+        .stdin(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .output()
+        .ok()
+        .filter(|o| o.status.success())?;
+    let features = String::from_utf8_lossy(&out.stdout);
+    Some(features.trim().split(',').any(|f| f == "RGB"))
+}
+
 /// Whether `TERM` names a terminal that cannot move its cursor (unset,
 /// empty or `dumb`): it gets plain lines, no escape sequences.
 pub fn is_dumb(term: Option<&str>) -> bool {

@@ -10,7 +10,11 @@
 //! sextant → quadrant → half; braille → sextant → …).
 //!
 //! The same round trip asks whether synchronized output (DEC mode 2026) is
-//! supported (DECRQM), and ends with a device status report (DSR 5), which
+//! supported (DECRQM) and whether 24-bit colour is drawn (a colour set,
+//! then DECRQSS of the SGR: a terminal that keeps 38;2;1;2;3 has it; and
+//! XTGETTCAP `RGB`): `COLORTERM`, which says so in the environment, does
+//! not survive tmux or ssh, but the queries reach the real terminal over
+//! ssh. It ends with a device status report (DSR 5), which
 //! every terminal that answers anything answers last: once it is in, no
 //! other answer is coming, so a terminal that ignores DECRQM costs no
 //! waiting. A terminal that answers nothing (a pipe, a multiplexer that
@@ -85,6 +89,10 @@ pub struct Capabilities {
     pub answers_status: bool,
     /// How long the round trip took (with `answers_status`).
     pub round_trip: Option<Duration>,
+    /// Whether it draws 24-bit colour, by its answers to DECRQSS and
+    /// XTGETTCAP (any "yes" wins: a terminal may know one query and not
+    /// the other).
+    pub truecolor: Option<bool>,
 }
 
 impl Capabilities {
@@ -141,6 +149,9 @@ impl Capabilities {
                     caps.sync = Some(matches!(value, 1..=3));
                 }
                 Input::StatusOk => caps.answers_status = true,
+                Input::RgbSupport(yes) => {
+                    caps.truecolor = Some(yes || caps.truecolor == Some(true));
+                }
                 _ => {}
             }
         }
@@ -161,6 +172,9 @@ pub fn query() -> Vec<u8> {
             q.extend_from_slice(b"\x1b[6n");
         }
     }
+    // 24-bit colour: set one, ask what SGR is now (DECRQSS), ask for the
+    // `RGB` capability (XTGETTCAP), reset.
+    q.extend_from_slice(b"\x1b[38;2;1;2;3m\x1bP$qm\x1b\\\x1bP+q524742\x1b\\\x1b[0m");
     q.extend_from_slice(b"\x1b[?2026$p\x1b[5n\x1b[H\x1b[2K");
     q
 }
@@ -217,6 +231,21 @@ mod tests {
 
     fn cpr(col: u16) -> Input {
         Input::CursorPosition { row: 1, col }
+    }
+
+    #[test]
+    fn any_yes_on_24_bit_colour_wins() {
+        let caps = |a: &[Input]| Capabilities::from_answers(a).truecolor;
+        assert_eq!(caps(&[]), None);
+        assert_eq!(caps(&[Input::RgbSupport(false)]), Some(false));
+        assert_eq!(
+            caps(&[Input::RgbSupport(true), Input::RgbSupport(false)]),
+            Some(true)
+        );
+        assert_eq!(
+            caps(&[Input::RgbSupport(false), Input::RgbSupport(true)]),
+            Some(true)
+        );
     }
 
     #[test]
