@@ -224,6 +224,11 @@ pub struct ViewArgs {
     /// or ascii when TERM is dumb]
     #[arg(long, value_enum)]
     pub glyphs: Option<GlyphMode>,
+    /// Paint the cells the scene leaves uncovered #rrggbb (a dark model on
+    /// a dark terminal shows against a lighter one), or `terminal` to keep
+    /// the terminal's own [default: the scene file's, or the terminal's]
+    #[arg(long, value_name = "COLOR", value_parser = parse_background)]
+    pub background: Option<Background>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -326,6 +331,24 @@ fn parse_size(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("{s:?} is not a size (like 4096, 512M or 4G)"))?;
     n.checked_mul(1 << shift)
         .ok_or_else(|| format!("{s} is too large"))
+}
+
+/// What `--background` asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Background {
+    /// The terminal's own background.
+    Terminal,
+    /// This colour.
+    Color(rastty::Rgb),
+}
+
+fn parse_background(s: &str) -> Result<Background, String> {
+    if s == "terminal" {
+        return Ok(Background::Terminal);
+    }
+    s.parse()
+        .map(Background::Color)
+        .map_err(|_| format!("{s:?} is not a colour: #rrggbb, or `terminal`"))
 }
 
 /// A count, plain or with K, M or G (powers of 1024: 64M is 2^26).

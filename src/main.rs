@@ -254,12 +254,14 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         .as_deref()
         .map(|p| Ok((create(p)?, p)))
         .transpose()?;
-    let scene = scene(&args.input, &args.budgets).inspect_err(|_| {
-        // No recording of a frame that was never drawn.
-        if let Some((_, path)) = &record {
-            let _ = std::fs::remove_file(path);
-        }
-    })?;
+    let scene = scene(&args.input, &args.budgets)
+        .map(|s| with_background(s, &args.view))
+        .inspect_err(|_| {
+            // No recording of a frame that was never drawn.
+            if let Some((_, path)) = &record {
+                let _ = std::fs::remove_file(path);
+            }
+        })?;
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
     let palette = rastty::color::Palette {
@@ -307,6 +309,16 @@ fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
         .map_err(|e| rastty::Error::io(path, e))
 }
 
+/// `scene` with the background `--background` asks for, if it asks.
+fn with_background(mut scene: Scene, view: &ViewArgs) -> Scene {
+    match view.background {
+        Some(cli::Background::Terminal) => scene.background = None,
+        Some(cli::Background::Color(c)) => scene.background = Some(c),
+        None => {}
+    }
+    scene
+}
+
 /// The frame budget `--max-samples` sets.
 fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
     budgets.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES)
@@ -315,7 +327,7 @@ fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let opts = options(&args.view, &args.knobs, 0);
     opts.check_samples(max_samples(&args.budgets))?;
-    let scene = scene(&args.input, &args.budgets)?;
+    let scene = with_background(scene(&args.input, &args.budgets)?, &args.view);
     let spin = Spin {
         axis: args.axis,
         step: args.step,

@@ -325,6 +325,36 @@ fn an_option_before_the_command_gets_a_hint() {
 }
 
 #[test]
+fn background_paints_the_uncovered_cells() {
+    let frame = |bg: &str| {
+        String::from_utf8(
+            rastty(&[
+                "render",
+                "cube",
+                "--cols",
+                "30",
+                "--rows",
+                "8",
+                "--color",
+                "truecolor",
+                "--background",
+                bg,
+            ])
+            .stdout,
+        )
+        .unwrap()
+    };
+    assert!(frame("#102030").contains("48;2;16;32;48"));
+    assert!(!frame("terminal").contains("48;2;16;32;48"));
+    let bad = rastty(&["render", "cube", "--background", "grey"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr)
+            .contains("\"grey\" is not a colour: #rrggbb, or `terminal`")
+    );
+}
+
+#[test]
 fn color_24bit_and_direct_are_truecolor() {
     let frame = |c: &str| {
         rastty(&[
