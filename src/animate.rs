@@ -271,8 +271,21 @@ impl Player {
     pub fn prepare(&mut self, live: LiveStatus) -> &[u8] {
         self.scene.camera = self.camera();
         let turn = self.spin.turn(self.opts.turn, self.k);
-        let opts = RenderOptions { turn, ..self.opts };
+        // The status line takes a row of its own: the model is drawn in
+        // the rows above it, never under it.
+        let hud_row = self.hud && self.opts.rows > 1;
+        let opts = RenderOptions {
+            turn,
+            rows: self.opts.rows - u16::from(hud_row),
+            ..self.opts
+        };
         self.renderer.render(&self.scene, &opts);
+        if hud_row {
+            // A blank row below, for the status line.
+            self.renderer
+                .frame_mut()
+                .resize(self.opts.cols, self.opts.rows);
+        }
         if self.hud {
             use std::fmt::Write as _;
             let stats = *self.renderer.stats();
@@ -463,6 +476,49 @@ mod tests {
         assert_eq!(
             out, " paused ",
             "the first part is kept, and cut where it is drawn"
+        );
+    }
+
+    #[test]
+    fn the_status_line_has_a_row_of_its_own() {
+        let opts = RenderOptions {
+            cols: 40,
+            rows: 12,
+            color: ColorDepth::TrueColor,
+            ..RenderOptions::default()
+        };
+        let spin = Spin {
+            axis: Axis::Y,
+            step: 3.0,
+        };
+        let screen = |opts: RenderOptions, hud: bool| {
+            let mut p = Player::new(
+                crate::scene::default_scene(),
+                opts,
+                spin,
+                Encoder::new(ColorDepth::TrueColor),
+            )
+            .with_hud(hud);
+            let nz = |n| std::num::NonZeroU16::new(n).unwrap();
+            let mut vt = vt100::Parser::new(nz(12), nz(40), 0);
+            vt.process(p.prepare(LiveStatus::default()));
+            vt
+        };
+        let with = screen(opts, true);
+        let without = screen(RenderOptions { rows: 11, ..opts }, false);
+        for row in 0..11 {
+            for col in 0..40 {
+                assert_eq!(
+                    with.screen().cell(row, col),
+                    without.screen().cell(row, col),
+                    "({row}, {col})"
+                );
+            }
+        }
+        let status = with.screen().contents_between(11, 0, 11, 40);
+        assert!(
+            status.starts_with(" yaw 0.0° pitch 0° zoom 1.00×"),
+            "{status:?}"
         );
     }
 
