@@ -1049,7 +1049,15 @@ fn sniff(head: &[u8]) -> (Option<Format>, Option<Format>) {
     }
     let text = head.trim_ascii_start();
     if text.starts_with(b"{") {
-        return (Some(Format::Gltf), None);
+        // glTF's JSON must hold an `asset` object, which exporters write
+        // first; a brace without it in the first bytes is only a guess (an
+        // STL header may start with one).
+        let asset = head.windows(7).any(|w| w == b"\"asset\"");
+        return if asset {
+            (Some(Format::Gltf), None)
+        } else {
+            (None, Some(Format::Gltf))
+        };
     }
     if text.starts_with(b"solid") {
         return (None, Some(Format::Stl));
