@@ -315,22 +315,23 @@ fn parse_angle(s: &str) -> Result<f32, String> {
 /// A size in bytes: digits with an optional unit K, M, G or T (powers of
 /// 1024; `KiB`, `kb` and the like are read the same).
 fn parse_size(s: &str) -> Result<u64, String> {
-    let t = s.trim();
-    let digits = t.bytes().take_while(u8::is_ascii_digit).count();
-    let (number, unit) = t.split_at(digits);
-    let shift = match unit.trim().to_ascii_lowercase().as_str() {
-        "" | "b" => 0,
-        "k" | "kb" | "kib" => 10,
-        "m" | "mb" | "mib" => 20,
-        "g" | "gb" | "gib" => 30,
-        "t" | "tb" | "tib" => 40,
-        _ => return Err(format!("{s:?} is not a size (like 4096, 512M or 4G)")),
-    };
-    let n: u64 = number
-        .parse()
-        .map_err(|_| format!("{s:?} is not a size (like 4096, 512M or 4G)"))?;
-    n.checked_mul(1 << shift)
-        .ok_or_else(|| format!("{s} is too large"))
+    let units = [
+        ("", 0),
+        ("b", 0),
+        ("k", 10),
+        ("kb", 10),
+        ("kib", 10),
+        ("m", 20),
+        ("mb", 20),
+        ("mib", 20),
+        ("g", 30),
+        ("gb", 30),
+        ("gib", 30),
+        ("t", 40),
+        ("tb", 40),
+        ("tib", 40),
+    ];
+    parse_scaled(s, &units, "a size (like 4096, 512M or 4G)")
 }
 
 /// What `--background` asks for.
@@ -353,19 +354,22 @@ fn parse_background(s: &str) -> Result<Background, String> {
 
 /// A count, plain or with K, M or G (powers of 1024: 64M is 2^26).
 fn parse_count(s: &str) -> Result<u64, String> {
+    let units = [("", 0), ("k", 10), ("m", 20), ("g", 30)];
+    parse_scaled(s, &units, "a count (like 1000000, 64M or 1G)")
+}
+
+/// A number followed by one of `units` (case aside), each a power of two.
+fn parse_scaled(s: &str, units: &[(&str, u32)], what: &str) -> Result<u64, String> {
     let t = s.trim();
     let digits = t.bytes().take_while(u8::is_ascii_digit).count();
     let (number, unit) = t.split_at(digits);
-    let shift = match unit.trim().to_ascii_lowercase().as_str() {
-        "" => 0,
-        "k" => 10,
-        "m" => 20,
-        "g" => 30,
-        _ => return Err(format!("{s:?} is not a count (like 1000000, 64M or 1G)")),
-    };
-    let n: u64 = number
-        .parse()
-        .map_err(|_| format!("{s:?} is not a count (like 1000000, 64M or 1G)"))?;
+    let unit = unit.trim().to_ascii_lowercase();
+    let shift = units
+        .iter()
+        .find(|(u, _)| *u == unit)
+        .map(|&(_, shift)| shift)
+        .ok_or_else(|| format!("{s:?} is not {what}"))?;
+    let n: u64 = number.parse().map_err(|_| format!("{s:?} is not {what}"))?;
     n.checked_mul(1 << shift)
         .ok_or_else(|| format!("{s} is too large"))
 }

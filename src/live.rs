@@ -349,22 +349,32 @@ fn ending(sigs: u64) -> Option<libc::c_int> {
     ENDING.into_iter().find(|&sig| signals::has(sigs, sig))
 }
 
-/// Signals the loop handles.
-const HANDLED: [libc::c_int; 13] = [
-    libc::SIGINT,
-    libc::SIGTERM,
-    libc::SIGHUP,
-    libc::SIGQUIT,
-    libc::SIGUSR1,
-    libc::SIGUSR2,
-    libc::SIGALRM,
-    libc::SIGPIPE,
-    libc::SIGXCPU,
-    libc::SIGXFSZ,
-    libc::SIGTSTP,
-    libc::SIGCONT,
-    libc::SIGWINCH,
-];
+/// Signals the loop handles: those that end it, and those that suspend,
+/// continue and resize it.
+const HANDLED: [libc::c_int; ENDING.len() + 3] = {
+    let mut all = [
+        libc::SIGTSTP,
+        libc::SIGCONT,
+        libc::SIGWINCH,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+    ];
+    let mut i = 0;
+    while i < ENDING.len() {
+        all[3 + i] = ENDING[i];
+        i += 1;
+    }
+    all
+};
+
 /// How long a notice (a new glyph mode…) stays up.
 const NOTICE_TIME: Duration = Duration::from_secs(2);
 /// How long a lone ESC waits for the rest of a sequence.

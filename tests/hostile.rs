@@ -55,6 +55,13 @@ fn render(model: &Path, more: &[&str]) -> Run {
     run(&args)
 }
 
+/// A one-frame render of `model` that must fail with status 1.
+fn refused(model: &Path) -> Run {
+    let r = render(model, &[]);
+    assert_eq!(r.code, Some(1), "{}", r.stderr);
+    r
+}
+
 /// The planted sequences: OSC 52 (clipboard), OSC 0 (title), CSI 2 J
 /// (clear), a C1 CSI and a bidi override.
 const PLANTED: &str = "\u{1b}]52;c;SGVsbG8=\u{7}\u{1b}]0;PWNED\u{7}\u{1b}[2J\u{9b}2J\u{202e}txt";
@@ -97,8 +104,7 @@ fn names_in_errors_are_escaped_wherever_they_come_from() {
     let d = dir("names");
     // A path on the command line.
     let bad = d.join(format!("{PLANTED}.obj"));
-    let r = render(&bad, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&bad);
     assert_eq!(
         r.stderr,
         format!(
@@ -113,8 +119,7 @@ fn names_in_errors_are_escaped_wherever_they_come_from() {
         "mtllib q.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n",
     );
     put(&d, "q.mtl", format!("newmtl a\nmap_Kd {PLANTED}.png\n"));
-    let r = render(&obj, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&obj);
     assert!(
         r.stderr.contains(r"SGVsbG8=\x07\x1b]0;PWNED"),
         "{}",
@@ -211,8 +216,7 @@ fn files_a_model_names_are_opened_as_the_model_is() {
     // SAFETY: a valid C string; makes a FIFO in the test's directory.
     assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
     let model = put(&d, "f.gltf", triangle(r#""uri":"pipe.bin","#, ""));
-    let r = render(&model, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&model);
     assert_eq!(
         r.stderr,
         format!(
@@ -228,13 +232,11 @@ fn files_a_model_names_are_opened_as_the_model_is() {
         "q.obj",
         "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
     );
-    let r = render(&obj, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&obj);
     assert!(r.stderr.contains("is a directory"), "{}", r.stderr);
     std::os::unix::fs::symlink("loop.bin", d.join("loop.bin")).unwrap();
     let model = put(&d, "l.gltf", triangle(r#""uri":"loop.bin","#, ""));
-    let r = render(&model, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&model);
     assert!(r.stderr.contains("symbolic links"), "{}", r.stderr);
     // A /proc file says it is empty and goes on: refused at once.
     std::os::unix::fs::symlink("/proc/self/status", d.join("proc.bin")).unwrap();
@@ -332,8 +334,7 @@ fn budgets_are_refused_before_the_work() {
     );
     put(&d, "q.mtl", "newmtl a\nmap_Kd bomb.png\n");
     put(&d, "bomb.png", png_header(16384, 16384));
-    let r = render(&obj, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&obj);
     assert_eq!(
         r.stderr,
         format!(
@@ -358,8 +359,7 @@ fn budgets_are_refused_before_the_work() {
         &format!("\"nodes\":[{}]", nodes.join(",")),
     );
     let model = put(&d, "bomb.glb", glb(&json, &f32s(&TRI)));
-    let r = render(&model, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&model);
     assert_eq!(
         r.stderr,
         format!(
@@ -581,8 +581,7 @@ fn the_smaller_holes_are_closed() {
         "b.ply",
         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\nabc\n",
     );
-    let r = render(&ply, &[]);
-    assert_eq!(r.code, Some(1));
+    let r = refused(&ply);
     assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
     assert!(!r.stderr.contains("abc"), "{}", r.stderr);
     // bench with a folder that is not there.
