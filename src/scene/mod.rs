@@ -604,9 +604,10 @@ impl Scene {
 
     /// [`Scene::of_model`], the file read with `options`.
     pub fn of_model_within(name: &Path, options: &LoadOptions) -> Result<Scene> {
-        let (geometry, notes) = load_geometry(name, options)?;
+        let (format, note) = Format::of(name)?;
+        let (geometry, notes) = load_as(name, format, note, options)?;
         // STL is z-up by convention; OBJ and the shapes are y-up.
-        let stl = matches!(Format::of(name), Ok((Format::Stl, _)));
+        let stl = format == Format::Stl;
         let up = options.up.unwrap_or(if stl {
             transform::Axis::Z
         } else {
@@ -1212,6 +1213,17 @@ const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) {
 /// its geometry, and what the loader has to tell.
 pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry>, Vec<String>)> {
     let (format, note) = Format::of(path)?;
+    load_as(path, format, note, options)
+}
+
+/// [`load_geometry`] of a file whose format is known (`note`: what telling
+/// it said, if anything).
+fn load_as(
+    path: &Path,
+    format: Format,
+    note: Option<String>,
+    options: &LoadOptions,
+) -> Result<(Arc<Geometry>, Vec<String>)> {
     let mut loaded = match format {
         Format::Obj => obj::load(path, options)?,
         Format::Stl => stl::load(path, options)?,
