@@ -6,7 +6,9 @@
 //! ```
 //!
 //! Without arguments it lists the built-in shapes and the shared models
-//! found in `../shared/models`. Keys: arrows orbit, `+`/`-` zoom, Tab and
+//! found in `../shared/models`. It starts in the finest glyph mode the
+//! terminal draws one cell wide, asked of it with [`rastty::GlyphSupport`]
+//! (octants, or sextants in a tmux whose C library lacks them). Keys: arrows orbit, `+`/`-` zoom, Tab and
 //! Shift-Tab pick a model, `g` the next glyph mode, space pauses, `q` or
 //! Esc quits. Mouse: drag in the view to orbit, the wheel zooms, a click in
 //! the list picks a model.
@@ -18,12 +20,15 @@ use std::time::{Duration, Instant};
 use rastty::glam::Vec3;
 use rastty::ratatui::{SceneState, SceneWidget};
 use rastty::scene::Shape;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene};
+use rastty::{ColorDepth, GlyphMode, GlyphSupport, RenderOptions, Rgb, Scene};
+use ratatui::crossterm::cursor::{MoveTo, position};
 use ratatui::crossterm::event::{
     self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, MouseButton,
     MouseEventKind,
 };
 use ratatui::crossterm::execute;
+use ratatui::crossterm::style::Print;
+use ratatui::crossterm::terminal::{Clear, ClearType};
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
@@ -114,9 +119,8 @@ impl App {
             entries,
             list: ListState::default().with_selected(Some(0)),
             options: RenderOptions {
-                // Block elements every terminal and tmux draw one cell wide
-                // (octants are Unicode 16: a terminal or tmux that does not
-                // know them garbles the screen; `g` reaches them).
+                // Until the terminal is asked (`best_glyphs`): block
+                // elements every terminal and tmux draw one cell wide.
                 glyphs: GlyphMode::Quadrant,
                 color: color_depth(),
                 ..Default::default()
@@ -298,9 +302,26 @@ fn run(terminal: &mut DefaultTerminal, mut app: App) -> io::Result<()> {
     }
 }
 
+/// The best glyph mode this terminal draws one cell wide, asked of it: each
+/// probe glyph written at the top-left corner and the cursor's column read
+/// back (crossterm's `cursor::position`, which waits up to two seconds for a
+/// terminal that does not answer; the asking stops at the first silence).
+/// Octants where it can, as tmux with an old C library cannot.
+fn best_glyphs() -> io::Result<GlyphMode> {
+    let mut out = io::stdout();
+    let support = GlyphSupport::ask(|c| -> io::Result<Option<u16>> {
+        execute!(out, MoveTo(0, 0), Print(c))?;
+        Ok(position().ok().map(|(col, _)| col))
+    })?;
+    execute!(out, MoveTo(0, 0), Clear(ClearType::CurrentLine))?;
+    Ok(support.best(GlyphMode::Octant))
+}
+
 fn main() -> io::Result<()> {
-    let app = App::new(entries(std::env::args().skip(1).collect()));
+    let mut app = App::new(entries(std::env::args().skip(1).collect()));
     let mut terminal = ratatui::init();
+    app.options.glyphs = best_glyphs()?;
+    terminal.clear()?;
     execute!(io::stdout(), EnableMouseCapture)?;
     let result = run(&mut terminal, app);
     execute!(io::stdout(), DisableMouseCapture)?;

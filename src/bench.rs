@@ -27,7 +27,7 @@ use glam::Vec3;
 use crate::accuracy::{Poly, area_in_rect};
 use crate::blit::{GlyphMode, Split};
 use crate::color::{self, ColorDepth, Dither, Ink, Lin, Metric, Palette, Rgb};
-use crate::encode::Encoder;
+use crate::encode::{Encoder, TermCell};
 use crate::options::{Aa, Interpolation, RenderOptions};
 use crate::raster::{Precision, Traversal};
 use crate::render::Renderer;
@@ -966,23 +966,30 @@ pub fn dither_cost(workloads: &[Workload], palette: Palette) -> DitherCost {
         let mut q = color::Quantizer::of(palette);
         let bg = w.scene.background.unwrap_or(Rgb::BLACK);
         let light = |c: Option<Rgb>| Vec3::from(Lin::from_srgb(c.unwrap_or(bg)).to_f32());
+        // Each cell's light: its two colours weighted by the glyph's share,
+        // as sent (through the encoder's own cell mapping) or as drawn.
+        let share = |ch: char| match ch {
+            ' ' => 0.0,
+            '█' => 1.0,
+            _ => 0.5,
+        };
         let cell_light = |x: u16, y: u16, q: &mut Option<&mut color::Quantizer>| {
-            let cell = frame.get(x, y);
-            let share = match cell.ch {
-                ' ' => 0.0,
-                '█' => 1.0,
-                _ => 0.5,
+            let (ch, fg, bg_) = match q {
+                Some(q) => {
+                    let t = TermCell::at(&frame, q, x, y);
+                    let ink = |i: Ink| match i {
+                        Ink::Indexed(i) => Some(color::xterm256(i)),
+                        Ink::Rgb(c) => Some(c),
+                        Ink::Default => None,
+                    };
+                    (t.ch, ink(t.fg), ink(t.bg))
+                }
+                None => {
+                    let cell = frame.get(x, y);
+                    (cell.ch, cell.fg, cell.bg)
+                }
             };
-            let send = |c: Option<Rgb>, q: &mut Option<&mut color::Quantizer>| match q {
-                Some(q) => match q.ink_at(c, x, y) {
-                    Ink::Indexed(i) => Some(color::xterm256(i)),
-                    Ink::Rgb(c) => Some(c),
-                    Ink::Default => None,
-                },
-                None => c,
-            };
-            let (fg, bg_) = (send(cell.fg, q), send(cell.bg, q));
-            light(fg) * share + light(bg_) * (1.0 - share)
+            light(fg) * share(ch) + light(bg_) * (1.0 - share(ch))
         };
         for by in 0..frame.rows() / 2 {
             for bx in 0..frame.cols() / 2 {

@@ -48,6 +48,9 @@
 //! for the encoder ([`Frame::known`]).
 
 pub mod glyphs;
+mod support;
+
+pub use support::{GlyphFamily, GlyphSupport};
 
 use crate::color::{ColorDepth, Lin, Rgb};
 use crate::frame::{Cell, Frame, Known};

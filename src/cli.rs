@@ -239,8 +239,8 @@ pub struct ViewArgs {
     /// A cell's width over its height [default: the terminal's, or 0.5]
     #[arg(long, value_name = "R", value_parser = parse_aspect)]
     pub cell_aspect: Option<f32>,
-    /// Draw colours between palette entries as patterns of two (auto:
-    /// ordered in 16 colours, none in 256)
+    /// Draw colours between palette entries as patterns of entries (auto:
+    /// ordered in 16 and 256 colours; none sends each colour's nearest)
     #[arg(long, value_enum, default_value_t = Dither::Auto)]
     pub dither: Dither,
     /// How surfaces are lit (by the scene's lights)

@@ -102,8 +102,36 @@ impl TermCell {
     /// anchor the dithering pattern), is told to a terminal whose colours
     /// `q` maps to: what every frame this encoder sends is made of, and
     /// what other back ends (the ratatui widget) take to show the same.
+    ///
+    /// Dithered, a cell is two square halves, top and bottom, each with its
+    /// own place in the pattern (rows `2y` and `2y + 1` of the matrix): a
+    /// cell of one colour whose halves get different entries is sent as `▀`
+    /// with the top's entry over the bottom's, so that a 2×2-cell area
+    /// shows eight entries of a colour's pattern, not four; a cell of two
+    /// colours keeps its glyph, its foreground taking the top's place and
+    /// its background the bottom's.
+    ///
+    /// This is for a cell of a frame of block elements; [`TermCell::at`]
+    /// asks the frame.
     #[inline]
     pub fn of(cell: &Cell, q: &mut Quantizer, x: u16, y: u16) -> TermCell {
+        TermCell::of_cell(cell, q, x, y, false)
+    }
+
+    /// [`TermCell::of`] for the cell of `frame` at column `x`, row `y`,
+    /// which keeps the characters of a [`Frame::plain`] frame as they are
+    /// (never splitting a cell in halves).
+    #[inline]
+    pub fn at(frame: &Frame, q: &mut Quantizer, x: u16, y: u16) -> TermCell {
+        TermCell::of_cell(&frame.get(x, y), q, x, y, frame.plain())
+    }
+
+    /// [`TermCell::of`], splitting cells unless `plain`.
+    #[inline]
+    fn of_cell(cell: &Cell, q: &mut Quantizer, x: u16, y: u16, plain: bool) -> TermCell {
+        if q.dithers() {
+            return TermCell::dithered(cell, q, x, y, plain);
+        }
         TermCell {
             ch: cell.ch,
             fg: if cell.ch == ' ' {
@@ -112,6 +140,50 @@ impl TermCell {
                 q.ink_at(cell.fg, x, y)
             },
             bg: q.ink_at(cell.bg, x, y),
+        }
+    }
+
+    /// [`TermCell::of`] where the quantizer dithers.
+    #[inline(never)]
+    fn dithered(cell: &Cell, q: &mut Quantizer, x: u16, y: u16, plain: bool) -> TermCell {
+        let top = y.wrapping_mul(2);
+        let bottom = top.wrapping_add(1);
+        let whole = match cell.ch {
+            _ if plain => None,
+            ' ' => cell.bg,
+            '█' => cell.fg,
+            _ => None,
+        };
+        if let Some(c) = whole {
+            let (a, b) = (q.ink_at(Some(c), x, top), q.ink_at(Some(c), x, bottom));
+            if a != b {
+                return TermCell {
+                    ch: '▀',
+                    fg: a,
+                    bg: b,
+                };
+            }
+        }
+        if cell.ch == ' ' {
+            return TermCell {
+                ch: ' ',
+                fg: Ink::Default,
+                bg: q.ink_at(cell.bg, x, bottom),
+            };
+        }
+        // A colour alone in its cell (the other side is the terminal's
+        // background) may be a thin edge: it is never shown black there.
+        let (fg, bg) = match (cell.fg, cell.bg) {
+            (Some(_), Some(_)) => (q.ink_at(cell.fg, x, top), q.ink_at(cell.bg, x, bottom)),
+            _ => (
+                q.ink_alone(cell.fg, x, top),
+                q.ink_alone(cell.bg, x, bottom),
+            ),
+        };
+        TermCell {
+            ch: cell.ch,
+            fg,
+            bg,
         }
     }
 
@@ -703,8 +775,9 @@ fn quantize_in(frame: &Frame, q: &mut Quantizer, out: &mut Vec<Packed>, region: 
             }
             continue;
         }
+        let plain = frame.plain();
         for ((o, c), x) in out.iter_mut().zip(cells).zip(span) {
-            *o = Packed::of(TermCell::of(c, q, x as u16, y as u16));
+            *o = Packed::of(TermCell::of_cell(c, q, x as u16, y as u16, plain));
         }
     }
 }
@@ -1159,7 +1232,7 @@ impl Encoder {
         self
     }
 
-    /// Dithers as `dither` says (`auto` by default: ordered in 16 colours).
+    /// Dithers as `dither` says (`auto` by default: ordered in 16 and 256 colours).
     pub fn with_dither(mut self, dither: Dither) -> Encoder {
         self.dither = dither;
         self.quantizer = Quantizer::of(self.palette());

@@ -48,6 +48,8 @@ pub struct Frame {
     rows: u16,
     cells: Vec<Cell>,
     known: Known,
+    /// Whether a cell of one colour may be sent as two halves (`▀`).
+    plain: bool,
 }
 
 /// Every cell of a [`Frame`] outside `rect` (columns and rows of cells,
@@ -84,7 +86,22 @@ impl Frame {
             rows,
             cells: vec![Cell::BLANK; cols as usize * rows as usize],
             known: Known::default(),
+            plain: false,
         }
+    }
+
+    /// Whether the frame's characters are its picture (ascii and braille
+    /// frames): a dithering palette then sends each cell's characters as
+    /// they are, never splitting a cell of one colour into two halves
+    /// (`▀`), which it does where cells are block elements.
+    pub fn plain(&self) -> bool {
+        self.plain
+    }
+
+    /// Says whether the frame's characters are its picture (see
+    /// [`Frame::plain`]); the renderer says so for ascii and braille.
+    pub fn set_plain(&mut self, plain: bool) {
+        self.plain = plain;
     }
 
     /// Resizes to `cols × rows` and blanks every cell (allocates only when it

@@ -115,7 +115,7 @@ pub mod ratatui;
 
 pub use glam;
 
-pub use blit::{GlyphMode, Split};
+pub use blit::{GlyphFamily, GlyphMode, GlyphSupport, Split};
 pub use color::{ColorDepth, Rgb};
 pub use encode::Encoder;
 pub use error::{Error, Result};

@@ -218,12 +218,9 @@ struct Shown {
 fn shown(frame: &Frame, palette: Palette, theme: Theme) -> Vec<Shown> {
     let mut q = Quantizer::of(palette);
     let cols = frame.cols().max(1) as usize;
-    frame
-        .cells()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let t = TermCell::of(c, &mut q, (i % cols) as u16, (i / cols) as u16);
+    (0..frame.cells().len())
+        .map(|i| {
+            let t = TermCell::at(frame, &mut q, (i % cols) as u16, (i / cols) as u16);
             Shown {
                 ch: t.ch,
                 fg: theme.color(t.fg, true),
@@ -385,6 +382,117 @@ impl Picture {
         w.write_image_data(&self.rgb).map_err(io::Error::other)?;
         w.finish().map_err(io::Error::other)
     }
+}
+
+/// How faithfully one picture of a frame shows another (a palette's
+/// against truecolor's), as an eye a little way off sees them: both are
+/// averaged in linear light over blocks of 2×2 cells (a dithering pattern
+/// blends within one) and each block pair is compared in OKLab.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Fidelity {
+    /// Mean OKLab distance (ΔE) over every block (about 0.02 is just
+    /// noticeable).
+    pub mean: f64,
+    /// The 95th percentile of ΔE over the blocks.
+    pub p95: f64,
+    /// Mean hue difference in degrees over the chromatic blocks (OKLab
+    /// chroma of the reference at least [`CHROMATIC`]); a block shown grey
+    /// has the hue its residue happens to have, which is as good as none.
+    pub hue_error: f64,
+    /// The shown chroma over the reference's, summed over the chromatic
+    /// blocks: 1 keeps saturation, below 1 greys it.
+    pub chroma_kept: f64,
+    /// Blocks the reference draws distinguishably from `background` (ΔE
+    /// over 0.02) that are shown as the background itself (ΔE under
+    /// 0.005): a dark region lost.
+    pub lost: usize,
+    /// How many blocks were compared.
+    pub blocks: usize,
+}
+
+/// The OKLab chroma from which [`Fidelity`] counts a block as having a
+/// hue worth keeping (a pale tan is about 0.05; the palette's own grey line
+/// is 0.03).
+pub const CHROMATIC: f32 = 0.05;
+
+/// Compares `shown` with `reference`, two pictures of one frame at the
+/// same cell size `cell` (see [`Fidelity`]); `background` is the colour of
+/// the cells the scene leaves uncovered.
+///
+/// # Panics
+///
+/// When the pictures' sizes differ.
+pub fn fidelity(reference: &Picture, shown: &Picture, cell: CellPx, background: Rgb) -> Fidelity {
+    assert_eq!(
+        (reference.width, reference.height),
+        (shown.width, shown.height),
+        "pictures of one frame"
+    );
+    let (bw, bh) = (u32::from(cell.w) * 2, u32::from(cell.h) * 2);
+    let lab = |p: &Picture, bx: u32, by: u32| {
+        let mut sum = [0.0f64; 3];
+        let (x1, y1) = ((bx + bw).min(p.width), (by + bh).min(p.height));
+        for y in by..y1 {
+            for x in bx..x1 {
+                let l = Lin::from_srgb(p.pixel(x, y)).to_f32();
+                (0..3).for_each(|i| sum[i] += f64::from(l[i]));
+            }
+        }
+        let n = f64::from((x1 - bx) * (y1 - by)) * 65535.0;
+        oklab_linear(sum.map(|v| (v / n) as f32))
+    };
+    let bg = oklab_linear(Lin::from_srgb(background).to_f32().map(|v| v / 65535.0));
+    let dist = |p: [f32; 3], q: [f32; 3]| {
+        f64::from(((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt())
+    };
+    let mut de = Vec::new();
+    let (mut hue, mut chromatic, mut lost) = (0.0f64, 0usize, 0usize);
+    let (mut want_c, mut got_c) = (0.0f64, 0.0f64);
+    for by in (0..reference.height).step_by(bh as usize) {
+        for bx in (0..reference.width).step_by(bw as usize) {
+            let (want, got) = (lab(reference, bx, by), lab(shown, bx, by));
+            de.push(dist(want, got));
+            let (cw, cg) = (want[1].hypot(want[2]), got[1].hypot(got[2]));
+            if cw >= CHROMATIC {
+                let turn = (got[2].atan2(got[1]) - want[2].atan2(want[1])).to_degrees();
+                let t = ((turn + 540.0).rem_euclid(360.0) - 180.0).abs();
+                if t > 30.0 {
+                    eprintln!(
+                        "HUE {} {} {t:.0} want {want:?} got {got:?}",
+                        bx / bw,
+                        by / bh
+                    );
+                }
+                hue += f64::from(t);
+                chromatic += 1;
+                (want_c, got_c) = (want_c + f64::from(cw), got_c + f64::from(cg));
+            }
+            if dist(want, bg) > 0.02 && dist(got, bg) < 0.005 {
+                eprintln!("LOST {} {} want {want:?}", bx / bw, by / bh);
+                lost += 1;
+            }
+        }
+    }
+    let blocks = de.len();
+    de.sort_by(f64::total_cmp);
+    let p95 = de
+        .get((blocks * 95).div_ceil(100).saturating_sub(1))
+        .copied()
+        .unwrap_or(0.0);
+    Fidelity {
+        mean: de.iter().sum::<f64>() / blocks.max(1) as f64,
+        p95,
+        hue_error: hue / chromatic.max(1) as f64,
+        chroma_kept: if want_c > 0.0 { got_c / want_c } else { 1.0 },
+        lost,
+        blocks,
+    }
+}
+
+/// OKLab of a linear-light colour with channels in [0, 1].
+fn oklab_linear([r, g, b]: [f32; 3]) -> [f32; 3] {
+    let l = oklab::linear_srgb_to_oklab(oklab::LinearRgb { r, g, b });
+    [l.l, l.a, l.b]
 }
 
 /// `frame` as an SVG document, painted as [`Picture::paint`] paints it:

@@ -135,9 +135,8 @@ impl StatefulWidget for SceneWidget<'_> {
         };
         let frame = &state.frame;
         for y in 0..frame.rows() {
-            for (x, cell) in frame.row(y).iter().enumerate() {
-                let x = x as u16;
-                let t = TermCell::of(cell, q, x, y);
+            for x in 0..frame.cols() {
+                let t = TermCell::at(frame, q, x, y);
                 let Some(out) = buf.cell_mut((area.x + x, area.y + y)) else {
                     continue;
                 };

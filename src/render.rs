@@ -391,6 +391,10 @@ impl Renderer {
     /// ```
     pub fn render_into(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
         let grid = opts.glyphs.grid(opts.cols, opts.rows);
+        frame.set_plain(matches!(
+            opts.glyphs,
+            blit::GlyphMode::Ascii | blit::GlyphMode::Braille
+        ));
         self.stats = FrameStats::default();
         self.times = FrameTimes::default();
         let mut clock = Instant::now();

@@ -349,6 +349,7 @@ proptest! {
                 prop_assert_eq!(depths(&reused), depths(&fresh));
             }
             let mut copy = Frame::new(frame.cols(), frame.rows());
+            copy.set_plain(frame.plain());
             for r in 0..frame.rows() {
                 copy.row_mut(r).copy_from_slice(frame.row(r));
             }

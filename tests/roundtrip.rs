@@ -9,7 +9,7 @@ use common::{as_displayed, nz, terminal};
 use glam::Vec3;
 use proptest::prelude::*;
 use rastty::color::{Ink, Quantizer};
-use rastty::encode::{Encoder, Rep, write_lines};
+use rastty::encode::{Encoder, Rep, TermCell, write_lines};
 use rastty::scene::{Triangle, TriangleColor};
 use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
 
@@ -45,8 +45,9 @@ impl Paint {
 /// What a cell of `glyphs` with `ch` in `fg` on `bg` paints, sample by
 /// sample (one sample for a character that is not a block pattern of the
 /// mode): a space paints its background, `█` its foreground, a block
-/// element of the two-colour modes its pattern, anything else is compared
-/// as itself.
+/// element of the two-colour modes its pattern, `▀`/`▄` elsewhere (a
+/// dithered cell's halves) its two colours top first, anything else is
+/// compared as itself.
 fn paints(
     glyphs: GlyphMode,
     ch: char,
@@ -57,6 +58,10 @@ fn paints(
     match ch {
         ' ' => (None, vec![Paint::Bg(bg); n]),
         '█' => (None, vec![Paint::Fg(fg); n]),
+        // A dithered cell of one colour, in halves whatever the mode (in
+        // either orientation).
+        '▀' if glyphs.pattern(ch).is_none() => (Some('▀'), vec![Paint::Fg(fg), Paint::Bg(bg)]),
+        '▄' if glyphs.pattern(ch).is_none() => (Some('▀'), vec![Paint::Fg(bg), Paint::Bg(fg)]),
         _ => match glyphs {
             GlyphMode::Half | GlyphMode::Quadrant | GlyphMode::Sextant | GlyphMode::Octant => {
                 let mask = glyphs.pattern(ch).expect("a glyph of the mode");
@@ -99,11 +104,10 @@ fn assert_screen(
     }
     for r in 0..frame.rows() {
         for c in 0..frame.cols() {
-            let want = frame.get(c, r);
+            let want = TermCell::at(frame, &mut q, c, r);
             let got = screen.cell(r, c).ok_or("no cell")?;
             let ch = got.contents().chars().next().unwrap_or(' ');
-            let fg = vt_color(q.ink_at(want.fg, c, r));
-            let bg = vt_color(q.ink_at(want.bg, c, r));
+            let (fg, bg) = (vt_color(want.fg), vt_color(want.bg));
             let (want_ch, want_paint) = paints(glyphs, want.ch, fg, bg);
             let (got_ch, got_paint) = paints(glyphs, ch, got.fgcolor(), got.bgcolor());
             let same = want_ch == got_ch

@@ -1,13 +1,9 @@
 //! Asking the terminal what it draws, before drawing with it.
 //!
-//! A terminal draws a character as wide as its own tables say, and those
-//! differ: Debian 12's C library gives the Unicode 16 octants no width, so
-//! tmux drops them and an octant frame smears. The only way to know is to
-//! ask: each family of glyphs a mode needs is written at the top-left
-//! corner and the cursor position read back (DSR 6, answered by a CPR); a
-//! family whose glyph does not move the cursor by exactly one cell is
-//! unusable, and the mode falls back to the best usable one (octant →
-//! sextant → quadrant → half; braille → sextant → …).
+//! Each family of glyphs a mode needs is written at the top-left corner and
+//! the cursor position read back (DSR 6, answered by a CPR), all in one
+//! write; the library's [`GlyphSupport`] reads the answers (why, and the
+//! fallbacks, are in its module).
 //!
 //! The same round trip asks whether synchronized output (DEC mode 2026) is
 //! supported (DECRQM) and whether 24-bit colour is drawn (a colour set,
@@ -26,62 +22,16 @@ use std::time::{Duration, Instant};
 
 use super::Tty;
 use super::input::{Input, Parser};
-use crate::blit::GlyphMode;
+use crate::blit::{GlyphFamily, GlyphMode, GlyphSupport};
 
 /// The longest the probe waits for answers, in total.
 pub const DEADLINE: Duration = Duration::from_millis(150);
 
-/// A family of glyphs beyond the half blocks, which every terminal draws.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Family {
-    /// Quadrant block elements (U+2596–U+259F).
-    Quadrant,
-    /// Sextants (U+1FB00–U+1FB3B).
-    Sextant,
-    /// Octants (U+1CD00–U+1CDE5) and the Unicode 16 quarter blocks beside
-    /// them, and the Unicode 13 middle quarters (U+1FBE6/7).
-    Octant,
-    /// Braille patterns (U+2800–U+28FF).
-    Braille,
-}
-
-impl Family {
-    pub const ALL: [Family; 4] = [
-        Family::Quadrant,
-        Family::Sextant,
-        Family::Octant,
-        Family::Braille,
-    ];
-
-    /// The characters written to test the family: one from each block of
-    /// Unicode the family's table draws from.
-    pub fn probes(self) -> &'static [char] {
-        match self {
-            Family::Quadrant => &['\u{259F}'],
-            Family::Sextant => &['\u{1FB00}'],
-            Family::Octant => &['\u{1CD00}', '\u{1CEA8}', '\u{1FBE6}'],
-            Family::Braille => &['\u{28FF}'],
-        }
-    }
-
-    /// The families a mode's glyphs come from.
-    pub fn of(mode: GlyphMode) -> &'static [Family] {
-        match mode {
-            GlyphMode::Ascii | GlyphMode::Block | GlyphMode::Half => &[],
-            GlyphMode::Quadrant => &[Family::Quadrant],
-            GlyphMode::Sextant => &[Family::Sextant],
-            GlyphMode::Octant => &[Family::Octant, Family::Quadrant],
-            GlyphMode::Braille => &[Family::Braille],
-        }
-    }
-}
-
 /// What the terminal said it can do; `None` where it did not answer.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Capabilities {
-    /// Per family (in [`Family::ALL`] order): whether each probe glyph moved
-    /// the cursor by exactly one cell.
-    pub families: [Option<bool>; 4],
+    /// Which glyph families it draws one cell wide.
+    pub glyphs: GlyphSupport,
     /// Whether synchronized output (mode 2026) is recognised.
     pub sync: Option<bool>,
     /// Whether it answered the status report: it answers queries, so one
@@ -99,50 +49,25 @@ impl Capabilities {
     /// Whether `mode`'s glyphs are drawn one cell wide (or not known not to
     /// be).
     pub fn usable(&self, mode: GlyphMode) -> bool {
-        Family::of(mode).iter().all(|f| {
-            let i = Family::ALL.iter().position(|g| g == f).unwrap_or(0);
-            self.families[i] != Some(false)
-        })
+        self.glyphs.usable(mode)
     }
 
     /// `mode`, or the best usable mode it falls back to.
     pub fn best(&self, mode: GlyphMode) -> GlyphMode {
-        let chain: &[GlyphMode] = match mode {
-            GlyphMode::Octant => &[GlyphMode::Octant, GlyphMode::Sextant, GlyphMode::Quadrant],
-            GlyphMode::Braille => &[GlyphMode::Braille, GlyphMode::Sextant, GlyphMode::Quadrant],
-            GlyphMode::Sextant => &[GlyphMode::Sextant, GlyphMode::Quadrant],
-            other => return other,
-        };
-        chain
-            .iter()
-            .copied()
-            .find(|&m| self.usable(m))
-            .unwrap_or(GlyphMode::Half)
+        self.glyphs.best(mode)
     }
 
     /// Reads the answers to [`query`], in the order they came.
     pub fn from_answers(answers: &[Input]) -> Capabilities {
         let mut caps = Capabilities::default();
-        let mut cprs = answers.iter().filter_map(|a| match *a {
-            Input::CursorPosition { col, .. } => Some(col),
-            _ => None,
-        });
-        for (i, f) in Family::ALL.iter().enumerate() {
-            let mut verdict = Some(true);
-            for _ in f.probes() {
-                // Each glyph is written at column 1: one cell wide leaves the
-                // cursor at column 2.
-                match cprs.next() {
-                    Some(col) => {
-                        if col != 2 {
-                            verdict = Some(false);
-                        }
-                    }
-                    None => verdict = None,
-                }
-            }
-            caps.families[i] = verdict;
-        }
+        let columns: Vec<u16> = answers
+            .iter()
+            .filter_map(|a| match *a {
+                Input::CursorPosition { col, .. } => Some(col),
+                _ => None,
+            })
+            .collect();
+        caps.glyphs = GlyphSupport::from_columns(&columns);
         for a in answers {
             match *a {
                 Input::ModeReport { mode: 2026, value } => {
@@ -164,7 +89,7 @@ impl Capabilities {
 /// and the line cleared again.
 pub fn query() -> Vec<u8> {
     let mut q = Vec::new();
-    for f in Family::ALL {
+    for f in GlyphFamily::ALL {
         for &c in f.probes() {
             q.extend_from_slice(b"\x1b[H");
             let mut utf8 = [0; 4];
@@ -262,7 +187,7 @@ mod tests {
         ];
         let caps = Capabilities::from_answers(&answers);
         assert_eq!(
-            caps.families,
+            caps.glyphs.families,
             [Some(true), Some(true), Some(false), Some(true)]
         );
         assert!(caps.answers_status);
@@ -282,19 +207,23 @@ mod tests {
     #[test]
     fn falls_back_down_the_chain_and_silence_changes_nothing() {
         let caps = Capabilities {
-            families: [Some(true), Some(false), Some(false), Some(false)],
+            glyphs: GlyphSupport {
+                families: [Some(true), Some(false), Some(false), Some(false)],
+            },
             ..Capabilities::default()
         };
         assert_eq!(caps.best(GlyphMode::Octant), GlyphMode::Quadrant);
         assert_eq!(caps.best(GlyphMode::Braille), GlyphMode::Quadrant);
         let none = Capabilities {
-            families: [Some(false); 4],
+            glyphs: GlyphSupport {
+                families: [Some(false); 4],
+            },
             ..Capabilities::default()
         };
         assert_eq!(none.best(GlyphMode::Octant), GlyphMode::Half);
         assert_eq!(none.best(GlyphMode::Ascii), GlyphMode::Ascii);
         let silent = Capabilities::from_answers(&[]);
-        assert_eq!(silent.families, [None; 4]);
+        assert_eq!(silent.glyphs.families, [None; 4]);
         assert!(GlyphMode::ALL.iter().all(|&m| silent.best(m) == m));
     }
 
@@ -309,7 +238,7 @@ mod tests {
     #[test]
     fn the_query_asks_once_per_probe_glyph() {
         let q = String::from_utf8(query()).unwrap();
-        let glyphs: usize = Family::ALL.iter().map(|f| f.probes().len()).sum();
+        let glyphs: usize = GlyphFamily::ALL.iter().map(|f| f.probes().len()).sum();
         assert_eq!(q.matches("\x1b[6n").count(), glyphs);
         assert!(q.contains("\x1b[?2026$p") && q.contains("\x1b[5n"));
     }
