@@ -297,7 +297,9 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     }
     if args.explain {
         let encode = start.elapsed();
-        say_lines(&renderer.explain(&scene, &opts, encode, written));
+        let mut lines = renderer.explain(&scene, &opts, encode, written);
+        lines.push_str(&colour_line(&args.view, palette));
+        say_lines(&lines);
     }
     Ok(())
 }
@@ -430,14 +432,42 @@ fn is_dumb() -> bool {
 
 /// The colour depth `--color auto` gives: the environment's, raised to
 /// truecolor inside tmux when tmux says its client's terminal draws it.
-fn auto_color(tty: bool) -> ColorDepth {
-    let env = terminal::detect_color(tty, |k| std::env::var(k).ok());
+fn auto_color(tty: bool) -> (ColorDepth, String) {
+    let (env, why) = terminal::detect_color_why(tty, |k| std::env::var(k).ok());
     if matches!(env, ColorDepth::Ansi16 | ColorDepth::Ansi256)
         && terminal::tmux_truecolor() == Some(true)
     {
-        return ColorDepth::TrueColor;
+        return (
+            ColorDepth::TrueColor,
+            "inside tmux, whose client features list RGB".into(),
+        );
     }
-    env
+    (env, why)
+}
+
+/// `--explain`'s line on colour: the depth and why, and how a palette's
+/// colours are sent.
+fn colour_line(view: &ViewArgs, palette: rastty::color::Palette) -> String {
+    let (depth, why) = color_choice(view);
+    let mut line = format!("colour: {} ({why})", depth.name());
+    if matches!(depth, ColorDepth::Ansi16 | ColorDepth::Ansi256) {
+        let q = rastty::color::Quantizer::of(palette);
+        line += &format!(
+            ", matched in {}, dithering {}",
+            q.metric().name(),
+            q.dither().name()
+        );
+    }
+    line.push('\n');
+    line
+}
+
+/// The colour depth `view` asks for, or the detected one, and why.
+fn color_choice(view: &ViewArgs) -> (ColorDepth, String) {
+    match view.color.depth() {
+        Some(depth) => (depth, "--color says so".into()),
+        None => auto_color(terminal::stdout_is_terminal()),
+    }
 }
 
 /// Resolves sizes, glyphs and colour against the terminal; `spare_rows`
@@ -456,7 +486,7 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         .or(cells.map(|t| t.1.saturating_sub(spare_rows).max(1)))
         .unwrap_or(24)
         .min(rastty::MAX_CELLS);
-    let color = view.color.depth().unwrap_or_else(|| auto_color(tty));
+    let color = color_choice(view).0;
     let cell_aspect = view
         .cell_aspect
         .or_else(|| term.and_then(|t| t.cell_aspect()))

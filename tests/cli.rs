@@ -509,3 +509,29 @@ fn a_huge_frame_count_streams_until_the_reader_stops() {
         assert!(err.is_empty(), "{frames}: {err}");
     }
 }
+
+#[test]
+fn explain_says_which_colour_depth_and_why() {
+    let colour_line = |args: &[&str]| {
+        let out = rastty(args);
+        assert!(out.status.success());
+        let err = String::from_utf8(out.stderr).unwrap();
+        err.lines()
+            .find(|l| l.starts_with("colour: "))
+            .unwrap_or_else(|| panic!("no colour line in {err}"))
+            .to_string()
+    };
+    let base = ["render", "--explain", "--cols", "8", "--rows", "3"];
+    assert_eq!(
+        colour_line(&base),
+        "colour: none (stdout is not a terminal)"
+    );
+    assert_eq!(
+        colour_line(&[&base[..], &["--color", "256"]].concat()),
+        "colour: 256 (--color says so), matched in oklch, dithering ordered"
+    );
+    assert_eq!(
+        colour_line(&[&base[..], &["--color", "16", "--dither", "none"]].concat()),
+        "colour: 16 (--color says so), matched in oklch, dithering none"
+    );
+}

@@ -161,26 +161,56 @@ pub fn is_dumb(term: Option<&str>) -> bool {
 /// `--color truecolor` is given. `env` looks up a variable (a parameter so
 /// that tests need not touch the process's environment).
 pub fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -> ColorDepth {
+    detect_color_why(stdout_is_tty, env).0
+}
+
+/// [`detect_color`], and why: the rule that decided, as `--explain` says
+/// it (the environment's values escaped).
+pub fn detect_color_why(
+    stdout_is_tty: bool,
+    env: impl Fn(&str) -> Option<String>,
+) -> (ColorDepth, String) {
     let set = |k: &str| env(k).filter(|v| !v.is_empty());
-    if set("NO_COLOR").is_some() || !stdout_is_tty {
-        return ColorDepth::None;
+    if set("NO_COLOR").is_some() {
+        return (ColorDepth::None, "NO_COLOR is set".into());
+    }
+    if !stdout_is_tty {
+        return (ColorDepth::None, "stdout is not a terminal".into());
     }
     let term = set("TERM");
+    let shown = |v: &str| crate::text::line(v);
     if is_dumb(term.as_deref()) {
-        return ColorDepth::None;
+        let why = match &term {
+            None => "TERM is unset".to_string(),
+            Some(t) => format!("TERM is {}", shown(t)),
+        };
+        return (ColorDepth::None, why);
     }
     let term = term.unwrap_or_default();
     let colorterm = set("COLORTERM").unwrap_or_default().to_ascii_lowercase();
-    if colorterm == "truecolor"
-        || colorterm == "24bit"
-        || term.ends_with("-direct")
-        || term.ends_with("-truecolor")
-    {
-        ColorDepth::TrueColor
+    if colorterm == "truecolor" || colorterm == "24bit" {
+        (
+            ColorDepth::TrueColor,
+            format!("COLORTERM is {}", shown(&colorterm)),
+        )
+    } else if term.ends_with("-direct") || term.ends_with("-truecolor") {
+        (ColorDepth::TrueColor, format!("TERM is {}", shown(&term)))
     } else if term.contains("256color") {
-        ColorDepth::Ansi256
+        (
+            ColorDepth::Ansi256,
+            format!(
+                "TERM is {} and COLORTERM does not say truecolor",
+                shown(&term)
+            ),
+        )
     } else {
-        ColorDepth::Ansi16
+        (
+            ColorDepth::Ansi16,
+            format!(
+                "TERM is {}, which says neither 256 colours nor truecolor",
+                shown(&term)
+            ),
+        )
     }
 }
 
@@ -577,6 +607,29 @@ mod tests {
         assert_eq!(
             detect_color(true, env(&[("TERM", "linux"), ("COLORTERM", "yes")])),
             ColorDepth::Ansi16
+        );
+    }
+
+    #[test]
+    fn the_colour_rule_that_decided_is_said_with_its_values_escaped() {
+        let why = |vars: &[(&str, &str)]| detect_color_why(true, env(vars)).1;
+        assert_eq!(why(&[("NO_COLOR", "1")]), "NO_COLOR is set");
+        assert_eq!(
+            detect_color_why(false, env(&[])).1,
+            "stdout is not a terminal"
+        );
+        assert_eq!(why(&[]), "TERM is unset");
+        assert_eq!(
+            why(&[("TERM", "screen-256color")]),
+            "TERM is screen-256color and COLORTERM does not say truecolor"
+        );
+        assert_eq!(
+            why(&[("TERM", "x\x1b]0;owned\x07")]),
+            "TERM is x\\x1b]0;owned\\x07, which says neither 256 colours nor truecolor"
+        );
+        assert_eq!(
+            why(&[("TERM", "xterm"), ("COLORTERM", "24BIT")]),
+            "COLORTERM is 24bit"
         );
     }
 
