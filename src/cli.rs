@@ -229,6 +229,11 @@ pub struct ViewArgs {
     /// the terminal's own [default: the scene file's, or the terminal's]
     #[arg(long, value_name = "COLOR", value_parser = parse_background)]
     pub background: Option<Background>,
+    /// Outline the model's silhouette with a rim light of #rrggbb, added
+    /// where its surface turns away from you: a dark model shows against a
+    /// dark background [default: none]
+    #[arg(long, value_name = "COLOR", value_parser = parse_rgb)]
+    pub rim: Option<rastty::Rgb>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -350,6 +355,11 @@ fn parse_background(s: &str) -> Result<Background, String> {
     s.parse()
         .map(Background::Color)
         .map_err(|_| format!("{s:?} is not a colour: #rrggbb, or `terminal`"))
+}
+
+fn parse_rgb(s: &str) -> Result<rastty::Rgb, String> {
+    s.parse()
+        .map_err(|_| format!("{s:?} is not a colour: #rrggbb"))
 }
 
 /// A count, plain or with K, M or G (powers of 1024: 64M is 2^26).

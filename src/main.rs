@@ -517,5 +517,6 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         precision: knobs.precision,
         filter: view.filter,
         threads: knobs.threads,
+        rim: view.rim,
     }
 }

@@ -7,7 +7,7 @@
 use glam::Vec3;
 
 use crate::blit::{GlyphMode, Split};
-use crate::color::ColorDepth;
+use crate::color::{ColorDepth, Rgb};
 use crate::raster::{Precision, Traversal};
 use crate::scene::Cull;
 use crate::shade::Shading;
@@ -58,6 +58,11 @@ pub struct RenderOptions {
     /// How many threads may draw the frame, each a band of its rows (the
     /// same frame, bit for bit, with any number).
     pub threads: Threads,
+    /// A rim light of this colour, or none (the default): light added (not
+    /// multiplied by the surface's colour) where a lit surface turns away
+    /// from the eye, so that a dark model's silhouette shows against a dark
+    /// background (see `shade.rs`; `--rim COLOR`).
+    pub rim: Option<Rgb>,
 }
 
 /// How many threads draw a frame. Each draws one band of the sample rows;
@@ -213,6 +218,7 @@ impl Default for RenderOptions {
             precision: Precision::default(),
             filter: None,
             threads: Threads::Auto,
+            rim: None,
         }
     }
 }

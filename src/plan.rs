@@ -10,6 +10,7 @@
 //! | interpolation | an attribute varies over a triangle (per-vertex colours, smooth shading) | every triangle is one colour: written with no barycentrics |
 //! | perspective correction | perspective projection and something is interpolated | parallel views (`w = 1` exactly, so affine weights are the same numbers) or nothing interpolated |
 //! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
+//! | rim light | a rim was asked for (`RenderOptions::rim`) and the scene is lit | no rim, or nothing lit |
 //! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
@@ -107,6 +108,9 @@ pub struct Plan {
     pub perspective: Decision,
     /// Whether lights are evaluated.
     pub lighting: Decision,
+    /// Whether a rim light is added (`RenderOptions::rim`, on lit
+    /// surfaces).
+    pub rim: Decision,
     /// The shading applied: the options' shading when the scene is lit,
     /// [`Shading::None`] otherwise.
     pub shading: Shading,
@@ -220,6 +224,7 @@ impl Plan {
             interpolation: Decision::run(FORCED),
             perspective: Decision::run(FORCED),
             lighting: Decision::run(FORCED),
+            rim: Decision::run(FORCED),
             texturing: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
@@ -254,6 +259,15 @@ impl Plan {
             Decision::skip("shading is none")
         };
         let shading = if lit { opts.shading } else { Shading::None };
+        let rim = if !lit {
+            Decision::skip("nothing is lit")
+        } else if full {
+            Decision::run(FORCED)
+        } else if opts.rim.is_some() {
+            Decision::run("a rim light was asked for")
+        } else {
+            Decision::skip("no rim light was asked for")
+        };
         let vertex_colors = scene
             .triangles
             .iter()
@@ -335,6 +349,7 @@ impl Plan {
             interpolation,
             perspective,
             lighting,
+            rim,
             texturing,
             filter: opts.filter,
             shading,
@@ -455,6 +470,7 @@ impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "clip           {}", self.clip)?;
         writeln!(f, "lighting       {}", self.lighting)?;
+        writeln!(f, "rim            {}", self.rim)?;
         writeln!(f, "texturing      {}", self.texturing)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;

@@ -211,6 +211,8 @@ struct Vert {
     normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     light: Vec3,
+    /// The rim light added at the vertex (smooth shading with a rim only).
+    rim: Vec3,
     /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
     /// every plane with a finite normal (then the fields below are valid).
     code: u16,
@@ -431,7 +433,14 @@ impl Renderer {
             clipper,
             plan: p,
             viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
-            lights: Lights::new(if p.lighting.run { &scene.lights } else { &[] }),
+            lights: {
+                let lights = Lights::new(if p.lighting.run { &scene.lights } else { &[] });
+                match opts.rim {
+                    Some(c) if p.rim.run => lights.with_rim(c, cam.eye - cam.target),
+                    _ if p.rim.run => lights.with_rim(Rgb::BLACK, cam.eye - cam.target),
+                    _ => lights,
+                }
+            },
             traversal: opts.traversal,
             precision: opts.precision,
             eye,
@@ -1070,11 +1079,28 @@ impl Renderer {
                 let side = if back { -1.0 } else { 1.0 };
                 let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
                 let light = stage.lights.lambert_a(face * side);
-                [b(0) * light, b(1) * light, b(2) * light]
+                let lit = [b(0) * light, b(1) * light, b(2) * light];
+                if !stage.plan.rim.run {
+                    return lit;
+                }
+                let rim = stage.lights.rim_a(face * side);
+                lit.map(|c| c + rim)
             }
             Shading::Smooth if back => {
                 self.stats.lighting_evaluations += 3;
-                let l = |i: usize| b(i) * stage.lights.lambert_a(-v[i].normal);
+                let rim = stage.plan.rim.run;
+                let l = |i: usize| {
+                    let lit = b(i) * stage.lights.lambert_a(-v[i].normal);
+                    if rim {
+                        lit + stage.lights.rim_a(-v[i].normal)
+                    } else {
+                        lit
+                    }
+                };
+                [l(0), l(1), l(2)]
+            }
+            Shading::Smooth if stage.plan.rim.run => {
+                let l = |i: usize| b(i) * Vec3A::from(v[i].light) + Vec3A::from(v[i].rim);
                 [l(0), l(1), l(2)]
             }
             Shading::Smooth => {
@@ -1536,6 +1562,9 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
     };
     if smooth {
         v.light = stage.lights.lambert(normal);
+        if stage.plan.rim.run {
+            v.rim = Vec3::from(stage.lights.rim_a(normal));
+        }
     }
     if code == 0 {
         v.inv_w = 1.0 / clip.w;

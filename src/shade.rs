@@ -6,6 +6,16 @@
 //! surface colour. Lighting is two-sided: a face seen from behind (a mesh
 //! drawn without culling, an open model like the teapot) is lit as seen
 //! from its visible side.
+//!
+//! A **rim light** (`RenderOptions::rim`) is added, not multiplied: its
+//! colour times `(1 − max(0, n·v))³`, where `v` is the direction towards
+//! the eye, so it is nothing on a surface facing the viewer and its whole
+//! colour where the surface turns edge-on, whatever the surface's own
+//! colour: a black model gets a lit outline, which Lambert's term (black
+//! times any light) cannot give it. `v` is one direction for the frame,
+//! from the camera's target to its eye: exact for parallel views, and for
+//! a perspective view the outline a parallel view would have, which differs
+//! from the true silhouette by the angle the model subtends.
 
 use glam::{Vec3, Vec3A, Vec4};
 
@@ -48,6 +58,11 @@ pub struct Lights {
     color: [Vec3A; MAX_LIGHTS],
     ambient: [f32; MAX_LIGHTS],
     len: usize,
+    /// The rim light's colour, in the renderer's linear units (0–65535 a
+    /// channel), zero for none.
+    rim: Vec3A,
+    /// Towards the eye, for the rim light.
+    to_eye: Vec3,
 }
 
 impl Lights {
@@ -64,6 +79,34 @@ impl Lights {
         }
         l.len = lights.len().min(MAX_LIGHTS);
         l
+    }
+
+    /// The same with a rim light of `color` for an eye in direction
+    /// `to_eye` (any length; zero or not finite: straight down −z's
+    /// opposite, +z).
+    pub fn with_rim(mut self, color: crate::color::Rgb, to_eye: Vec3) -> Lights {
+        self.rim = Vec3A::from(Vec3::from(crate::color::Lin::from_srgb(color).to_f32()));
+        self.to_eye = to_eye.try_normalize().unwrap_or(Vec3::Z);
+        self
+    }
+
+    /// The rim light added to a surface of unit normal `n` (seen from the
+    /// side `n` points to), in the renderer's linear units.
+    #[inline(always)]
+    pub(crate) fn rim_a(&self, n: Vec3) -> Vec3A {
+        let edge = 1.0 - n.dot(self.to_eye).max(0.0);
+        self.rim * (edge * edge * edge)
+    }
+
+    /// [`Lights::rim_a`] for four unit normals in lanes (as
+    /// [`Lights::lambert4`]): the same operations per lane, the same
+    /// results bit for bit.
+    #[inline(always)]
+    pub(crate) fn rim4(&self, n: [Vec4; 3]) -> [Vec4; 3] {
+        let e = self.to_eye;
+        let edge = Vec4::ONE - (n[0] * e.x + n[1] * e.y + n[2] * e.z).max(Vec4::ZERO);
+        let k = edge * edge * edge;
+        std::array::from_fn(|c| Vec4::splat(self.rim[c]) * k)
     }
 
     /// Whether there is no light.
@@ -116,6 +159,26 @@ impl Lights {
 mod tests {
     use super::*;
     use crate::color::Rgb;
+
+    #[test]
+    fn the_rim_is_nothing_facing_the_eye_and_all_of_its_colour_edge_on() {
+        let l = Lights::new(&[]).with_rim(Rgb::WHITE, Vec3::new(0.0, 0.0, 2.0));
+        assert_eq!(l.rim_a(Vec3::Z), Vec3A::ZERO);
+        assert_eq!(l.rim_a(Vec3::X), Vec3A::splat(65535.0));
+        assert_eq!(l.rim_a(-Vec3::Z), Vec3A::splat(65535.0));
+        // At 60° from the eye, (1 − cos 60°)³ = 1/8 of the colour.
+        let n = Vec3::new(60f32.to_radians().sin(), 0.0, 60f32.to_radians().cos());
+        let r = l.rim_a(n);
+        assert!((r.x - 65535.0 / 8.0).abs() < 0.1, "{r}");
+        // Four lanes give the same bits as one at a time.
+        let ns = [Vec3::Z, Vec3::X, n, Vec3::new(0.6, 0.0, 0.8)];
+        let lanes = |k: usize| Vec4::from_array(ns.map(|v| v[k]));
+        let four = l.rim4([lanes(0), lanes(1), lanes(2)]);
+        for (i, v) in ns.iter().enumerate() {
+            let one = l.rim_a(*v);
+            assert_eq!([four[0][i], four[1][i], four[2][i]], [one.x, one.y, one.z]);
+        }
+    }
 
     #[test]
     fn lambert_is_ambient_plus_cosine() {

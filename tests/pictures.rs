@@ -421,3 +421,40 @@ fn the_light_rig_neither_washes_out_nor_goes_black() {
     assert!((170..=200).contains(&hi), "brightest {hi}");
     assert!((60..=120).contains(&lo), "darkest {lo}");
 }
+
+#[test]
+fn a_rim_light_outlines_a_black_model_and_leaves_its_middle_black() {
+    let scene = Scene::of_mesh(rastty::scene::Shape::Sphere.mesh(Rgb::BLACK));
+    let opts = |rim| RenderOptions {
+        rim,
+        ..block(24, 12)
+    };
+    let plain = render(&scene, &opts(None));
+    let rimmed = render(&scene, &opts(Some(Rgb::WHITE)));
+    // The middle row, left to right: the sphere's cells, drawn.
+    let row = |f: &Frame| -> Vec<Rgb> { (0..24).filter_map(|x| f.get(x, 6).bg).collect() };
+    let (dark, lit) = (row(&plain), row(&rimmed));
+    assert_eq!(dark.len(), lit.len());
+    assert!(dark.len() >= 6, "{dark:?}");
+    // Without a rim, a black sphere on the terminal's black is black
+    // throughout: its silhouette is lost.
+    assert!(dark.iter().all(|&c| c == Rgb::BLACK), "{dark:?}");
+    // With one, the middle (facing the eye) stays black and the light grows
+    // towards either edge, where the sphere turns away.
+    let mid = lit.len() / 2;
+    assert_eq!(lit[mid], Rgb::BLACK);
+    let grey = |c: Rgb| c.0[1];
+    assert!(
+        grey(lit[0]) > grey(lit[2]) && grey(lit[2]) >= grey(lit[mid]),
+        "{lit:?}"
+    );
+    let last = lit.len() - 1;
+    assert!(grey(lit[last]) > grey(lit[last - 2]), "{lit:?}");
+    // The outermost cells, sampled a little inside the true edge: about
+    // half the rim's light in sRGB.
+    assert_eq!(
+        (lit[0], lit[last]),
+        (Rgb([122; 3]), Rgb([120; 3])),
+        "{lit:?}"
+    );
+}

@@ -254,9 +254,11 @@ fn options() -> impl Strategy<Value = RenderOptions> {
         (0.0f32..360.0, 0.0f32..360.0, 0.0f32..360.0),
         prop::sample::select(vec![(12u16, 6u16), (23, 9)]),
         prop::sample::select(Aa::ALL.to_vec()),
+        // A rim light, a third of the time.
+        prop::option::weighted(0.33, (0u8..=255, 0u8..=255, 0u8..=255)),
     )
         .prop_map(
-            |(glyphs, shading, cull, (p, y, r), (cols, rows), aa)| RenderOptions {
+            |(glyphs, shading, cull, (p, y, r), (cols, rows), aa, rim)| RenderOptions {
                 cols,
                 rows,
                 glyphs,
@@ -265,6 +267,7 @@ fn options() -> impl Strategy<Value = RenderOptions> {
                 cull,
                 turn: Vec3::new(p, y, r),
                 aa,
+                rim: rim.map(|(r, g, b)| Rgb::new(r, g, b)),
                 ..RenderOptions::default()
             },
         )

@@ -60,6 +60,12 @@ impl Renderer {
                 format!("{} evaluations", s.lighting_evaluations),
             ),
             (
+                "rim",
+                plan.rim,
+                opts.rim
+                    .map_or("no colour".into(), |c| format!("colour {c}")),
+            ),
+            (
                 "depth",
                 plan.depth,
                 format!("{} depth tests", s.depth_tests),
