@@ -211,8 +211,6 @@ struct Vert {
     normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     light: Vec3,
-    /// The rim light added at the vertex (smooth shading with a rim only).
-    rim: Vec3,
     /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
     /// every plane with a finite normal (then the fields below are valid).
     code: u16,
@@ -1100,7 +1098,10 @@ impl Renderer {
                 [l(0), l(1), l(2)]
             }
             Shading::Smooth if stage.plan.rim.run => {
-                let l = |i: usize| b(i) * Vec3A::from(v[i].light) + Vec3A::from(v[i].rim);
+                // The rim from each corner's normal, here rather than in the
+                // vertex stage: a frame without a rim keeps its vertices as
+                // small and its vertex loop as short as before.
+                let l = |i: usize| b(i) * Vec3A::from(v[i].light) + stage.lights.rim_a(v[i].normal);
                 [l(0), l(1), l(2)]
             }
             Shading::Smooth => {
@@ -1562,9 +1563,6 @@ fn vertex(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3, clip_tests: bool)
     };
     if smooth {
         v.light = stage.lights.lambert(normal);
-        if stage.plan.rim.run {
-            v.rim = Vec3::from(stage.lights.rim_a(normal));
-        }
     }
     if code == 0 {
         v.inv_w = 1.0 / clip.w;

@@ -98,17 +98,6 @@ impl Lights {
         self.rim * (edge * edge * edge)
     }
 
-    /// [`Lights::rim_a`] for four unit normals in lanes (as
-    /// [`Lights::lambert4`]): the same operations per lane, the same
-    /// results bit for bit.
-    #[inline(always)]
-    pub(crate) fn rim4(&self, n: [Vec4; 3]) -> [Vec4; 3] {
-        let e = self.to_eye;
-        let edge = Vec4::ONE - (n[0] * e.x + n[1] * e.y + n[2] * e.z).max(Vec4::ZERO);
-        let k = edge * edge * edge;
-        std::array::from_fn(|c| Vec4::splat(self.rim[c]) * k)
-    }
-
     /// Whether there is no light.
     pub fn is_empty(&self) -> bool {
         self.len == 0
@@ -170,14 +159,6 @@ mod tests {
         let n = Vec3::new(60f32.to_radians().sin(), 0.0, 60f32.to_radians().cos());
         let r = l.rim_a(n);
         assert!((r.x - 65535.0 / 8.0).abs() < 0.1, "{r}");
-        // Four lanes give the same bits as one at a time.
-        let ns = [Vec3::Z, Vec3::X, n, Vec3::new(0.6, 0.0, 0.8)];
-        let lanes = |k: usize| Vec4::from_array(ns.map(|v| v[k]));
-        let four = l.rim4([lanes(0), lanes(1), lanes(2)]);
-        for (i, v) in ns.iter().enumerate() {
-            let one = l.rim_a(*v);
-            assert_eq!([four[0][i], four[1][i], four[2][i]], [one.x, one.y, one.z]);
-        }
     }
 
     #[test]

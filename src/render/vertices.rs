@@ -126,12 +126,6 @@ fn four(
     } else {
         ([Vec4::ZERO; 3], [Vec4::ZERO; 3])
     };
-    let rim = if smooth && stage.plan.rim.run {
-        stage.lights.rim4(normal)
-    } else {
-        [Vec4::ZERO; 3]
-    };
-    let [r0, r1, r2] = rim.map(|r| r.to_array());
     let (xs, ys, zs, ws) = (x.to_array(), y.to_array(), z.to_array(), inv_w.to_array());
     let [n0, n1, n2] = normal;
     let [l0, l1, l2] = light;
@@ -141,7 +135,6 @@ fn four(
         world: Vec3::ZERO,
         normal: Vec3::new(n0[i], n1[i], n2[i]),
         light: Vec3::new(l0[i], l1[i], l2[i]),
-        rim: Vec3::new(r0[i], r1[i], r2[i]),
         code: 0,
         xy: [xs[i], ys[i]],
         fixed: fixed[i],
