@@ -4,6 +4,7 @@
 //! `cargo bench --bench raster`
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use rastty::Choice;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, Traversal};
 
 fn scene(name: &str) -> Scene {
@@ -15,7 +16,7 @@ fn traversals(c: &mut Criterion) {
     let mut group = c.benchmark_group("traversal");
     for name in ["perspective", "notes-triangle"] {
         let scene = scene(name);
-        for t in Traversal::ALL {
+        for &t in Traversal::ALL {
             let opts = RenderOptions {
                 cols: 200,
                 rows: 60,

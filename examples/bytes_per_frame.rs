@@ -19,6 +19,7 @@
 //! cargo run --release --example bytes_per_frame
 //! ```
 
+use rastty::Choice;
 use std::io::{self, Write};
 use std::rc::Rc;
 
@@ -48,7 +49,7 @@ fn main() {
         "| glyphs | first frame | later frames, mean | later frames, mean, with `--rep` | ratatui `Canvas`, later frames, mean | ratatui, no background |"
     );
     println!("|---|---:|---:|---:|---:|---:|");
-    for glyphs in GlyphMode::ALL {
+    for &glyphs in GlyphMode::ALL {
         let opts = RenderOptions {
             cols: COLS,
             rows: ROWS,

@@ -13,6 +13,7 @@
 //! Esc quits. Mouse: drag in the view to orbit, the wheel zooms, a click in
 //! the list picks a model.
 
+use rastty::Choice;
 use std::io;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};

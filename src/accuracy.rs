@@ -42,6 +42,7 @@ impl Poly {
         p
     }
 
+    /// The corners, counter-clockwise.
     pub fn vertices(&self) -> &[[f64; 2]] {
         &self.v[..self.n]
     }
@@ -98,7 +99,6 @@ impl Poly {
     }
 
     /// The part inside another convex polygon.
-    #[cfg_attr(not(feature = "bench"), allow(dead_code))]
     pub fn intersect(&self, other: &Poly) -> Poly {
         let mut out = *self;
         let w = other.vertices();

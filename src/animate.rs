@@ -9,6 +9,7 @@
 //! resizes); tests and the byte-count table drive it headless ([`play`]),
 //! so that what they measure is exactly what a terminal receives.
 
+use crate::choice::Choice;
 use std::io::{self, Write};
 
 use glam::Vec3;
@@ -105,7 +106,7 @@ pub struct Player {
     encoder: Encoder,
     last_bytes: usize,
     status: String,
-    /// Which glyph modes `m` may pick (in [`GlyphMode::ALL`] order).
+    /// Which glyph modes `m` may pick (in [`Choice::ALL`] order).
     usable: [bool; 7],
     /// The deepest colour `c` may pick.
     max_depth: ColorDepth,
@@ -147,10 +148,10 @@ impl Player {
         self
     }
 
-    /// LoadOptions the modes `m` cycles through to those for which `usable` is
+    /// Limits the modes `m` cycles through to those for which `usable` is
     /// true (the current mode stays as it is).
     pub fn set_usable_glyphs(&mut self, usable: impl Fn(GlyphMode) -> bool) {
-        self.usable = GlyphMode::ALL.map(usable);
+        self.usable = std::array::from_fn(|i| usable(GlyphMode::ALL[i]));
     }
 
     /// Switches to colour depth `depth`.
@@ -231,7 +232,7 @@ impl Player {
             Command::Zoom(f) => self.zoom = (self.zoom * f).clamp(0.05, 20.0),
             Command::NextGlyphs => {
                 let usable = self.usable;
-                self.opts.glyphs = next_where(&GlyphMode::ALL, self.opts.glyphs, |i, _| usable[i]);
+                self.opts.glyphs = next_where(GlyphMode::ALL, self.opts.glyphs, |i, _| usable[i]);
                 self.set_notice(format!("glyphs {}", self.opts.glyphs.name()));
             }
             Command::NextColor => {
@@ -241,7 +242,7 @@ impl Player {
                 self.set_notice(format!("color {}", self.opts.color.name()));
             }
             Command::NextShading => {
-                self.opts.shading = next_where(&Shading::ALL, self.opts.shading, |_, _| true);
+                self.opts.shading = next_where(Shading::ALL, self.opts.shading, |_, _| true);
                 self.set_notice(format!("shading {}", self.opts.shading.name()));
             }
             Command::Resize { cols, rows } => {

@@ -59,7 +59,6 @@ use crate::transform::{Grid, Rect};
 
 /// How samples become glyphs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum GlyphMode {
     /// 1×1: a character of a brightness ramp.
     Ascii,
@@ -78,31 +77,17 @@ pub enum GlyphMode {
     Braille,
 }
 
+crate::choice::choice!(GlyphMode {
+    Ascii => "ascii": "1×1: a character of a brightness ramp",
+    Block => "block": "1×1: the whole cell in one colour",
+    Half => "half": "1×2: `▀ ▄ █` and space, foreground and background",
+    Quadrant => "quadrant": "2×2: the quadrant block elements",
+    Sextant => "sextant": "2×3: the Unicode 13 sextants",
+    Octant => "octant": "2×4: the Unicode 16 octants",
+    Braille => "braille": "2×4: braille dots, one colour per cell",
+});
+
 impl GlyphMode {
-    /// Every mode, from the fewest samples a cell to the most.
-    pub const ALL: [GlyphMode; 7] = [
-        GlyphMode::Ascii,
-        GlyphMode::Block,
-        GlyphMode::Half,
-        GlyphMode::Quadrant,
-        GlyphMode::Sextant,
-        GlyphMode::Octant,
-        GlyphMode::Braille,
-    ];
-
-    /// The name the command line uses (`--glyphs octant`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            GlyphMode::Ascii => "ascii",
-            GlyphMode::Block => "block",
-            GlyphMode::Half => "half",
-            GlyphMode::Quadrant => "quadrant",
-            GlyphMode::Sextant => "sextant",
-            GlyphMode::Octant => "octant",
-            GlyphMode::Braille => "braille",
-        }
-    }
-
     /// Samples per cell, `(w, h)`.
     pub const fn cell_size(self) -> (u32, u32) {
         match self {
@@ -440,7 +425,6 @@ pub fn split(colors: &[Lin]) -> u8 {
 
 /// How a cell of more than two colours is split into two.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Split {
     /// Every split tried: the least squared error (at most 128 tries).
     #[default]
@@ -450,15 +434,10 @@ pub enum Split {
     WidestChannel,
 }
 
-impl Split {
-    /// The name the command line uses (`--split widest-channel`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Split::Exhaustive => "exhaustive",
-            Split::WidestChannel => "widest-channel",
-        }
-    }
-}
+crate::choice::choice!(Split {
+    Exhaustive => "exhaustive": "Every split tried: the least squared error (at most 128 tries)",
+    WidestChannel => "widest-channel": "chafa's fast path: the channel with the widest range, cut at its mean",
+});
 
 /// The cheaper split: samples above the mean of the widest channel are the
 /// foreground. 0 when all colours are equal.
@@ -723,6 +702,7 @@ fn blit_cells<const W: usize, const H: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::choice::Choice;
 
     const RED: Rgb = Rgb::new(255, 0, 0);
     const BLUE: Rgb = Rgb::new(0, 0, 255);
@@ -822,7 +802,7 @@ mod tests {
     #[test]
     fn blit_agrees_with_cell_in_every_mode() {
         let red = Some(L_RED);
-        for mode in GlyphMode::ALL {
+        for &mode in GlyphMode::ALL {
             for depth in [ColorDepth::None, ColorDepth::TrueColor] {
                 for background in [None, Some(Rgb::BLACK)] {
                     let grid = mode.grid(3, 2);

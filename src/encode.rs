@@ -533,7 +533,6 @@ pub fn complement(ch: char) -> Option<char> {
 
 /// Whether runs of identical cells may be sent with REP (`CSI n b`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Rep {
     #[default]
     /// Every cell written out (the default).
@@ -541,6 +540,11 @@ pub enum Rep {
     /// Runs sent with REP where that is shorter.
     On,
 }
+
+crate::choice::choice!(Rep {
+    Off => "off": "Every cell written out (the default)",
+    On => "on": "Runs sent with REP where that is shorter",
+});
 
 /// Appends the decimal digits of `n`.
 fn push_num(buf: &mut Vec<u8>, n: u32) {

@@ -74,12 +74,13 @@
 // Foundations: errors, colours, fixed point, matrices and the sample grid,
 // textures.
 pub mod text;
+mod choice;
 mod error;
 pub mod color;
 pub mod fixed;
 pub mod transform;
 pub mod texture;
-mod accuracy;
+pub mod accuracy;
 
 // The stages, in data-flow order.
 pub mod scene;
@@ -92,30 +93,25 @@ mod blit;
 pub mod encode;
 
 // What runs them: the options, the planner that decides, the renderer that
-// obeys, the animation loop's core, and the measurements.
+// obeys, and the animation loop's core.
 mod options;
 mod plan;
 mod render;
 pub mod animate;
-#[cfg(feature = "bench")]
-pub mod bench;
 
-// Where frames go: a picture, a recording, a terminal (the program), or a
-// ratatui buffer.
+// Where frames go: a picture, a recording, or a ratatui buffer (the
+// terminal itself is the program's, in cli/).
 #[cfg(feature = "share")]
 pub mod picture;
 #[cfg(feature = "share")]
 pub mod cast;
-#[cfg(feature = "cli")]
-pub mod terminal;
-#[cfg(feature = "cli")]
-pub mod live;
 #[cfg(feature = "ratatui")]
 pub mod ratatui;
 
 pub use glam;
 
 pub use blit::{GlyphFamily, GlyphMode, GlyphSupport, Split};
+pub use choice::Choice;
 pub use color::{ColorDepth, Rgb};
 pub use encode::Encoder;
 pub use error::{Error, Result};

@@ -4,6 +4,7 @@
 //! default at the exact, lecture-faithful setting. The planner and the
 //! renderer both read these; neither owns them.
 
+use crate::choice::Choice;
 use glam::Vec3;
 
 use crate::blit::{GlyphMode, Split};
@@ -114,7 +115,6 @@ impl std::str::FromStr for Threads {
 
 /// How attributes are interpolated across a triangle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Interpolation {
     /// Screen-space weights divided by `w` (correct under perspective).
     #[default]
@@ -124,32 +124,31 @@ pub enum Interpolation {
     Affine,
 }
 
-impl Interpolation {
-    /// The name the command line uses (`--interpolation affine`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Interpolation::Perspective => "perspective",
-            Interpolation::Affine => "affine",
-        }
-    }
-}
+crate::choice::choice!(Interpolation {
+    Perspective => "perspective": "Screen-space weights divided by `w` (correct under perspective)",
+    Affine => "affine": "Screen-space weights as they are: cheaper, and wrong under perspective (for measuring what correctness costs)",
+});
 
 /// How a sample's colour is found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Aa {
     /// One test at the sample's centre: the lecture's sampling.
     #[default]
     None,
     /// Four sub-samples in the rotated-grid pattern, averaged.
-    #[cfg_attr(feature = "cli", value(name = "4x"))]
     X4,
     /// Sixteen sub-samples on an ordered 4×4 grid, averaged.
-    #[cfg_attr(feature = "cli", value(name = "16x"))]
     X16,
     /// The exact area of each triangle inside the sample's square.
     Exact,
 }
+
+crate::choice::choice!(Aa {
+    None => "none": "One test at the sample's centre: the lecture's sampling",
+    X4 => "4x": "Four sub-samples in the rotated-grid pattern, averaged",
+    X16 => "16x": "Sixteen sub-samples on an ordered 4×4 grid, averaged",
+    Exact => "exact": "The exact area of each triangle inside the sample's square",
+});
 
 /// The rotated-grid pattern of 4× anti-aliasing, in a sample's square.
 const RGSS: [(f32, f32); 4] = [
@@ -171,19 +170,6 @@ const ORDERED_16: [(f32, f32); 16] = {
 };
 
 impl Aa {
-    /// Every setting, cheapest first.
-    pub const ALL: [Aa; 4] = [Aa::None, Aa::X4, Aa::X16, Aa::Exact];
-
-    /// The name the command line uses (`--aa 16x`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Aa::None => "none",
-            Aa::X4 => "4x",
-            Aa::X16 => "16x",
-            Aa::Exact => "exact",
-        }
-    }
-
     /// How many times a frame's geometry is drawn.
     pub fn passes(self) -> u64 {
         self.offsets().len() as u64
@@ -265,7 +251,6 @@ impl RenderOptions {
 
 /// Whether the planner may skip stages.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Pipeline {
     /// Run only the stages the scene calls for.
     #[default]
@@ -274,3 +259,8 @@ pub enum Pipeline {
     /// reference the planned frames are checked against.
     Full,
 }
+
+crate::choice::choice!(Pipeline {
+    Planned => "planned": "Run only the stages the scene calls for",
+    Full => "full": "Run every stage on every primitive (`--full-pipeline`): the reference the planned frames are checked against",
+});

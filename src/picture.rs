@@ -704,6 +704,7 @@ pub fn save(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::choice::Choice;
 
     #[test]
     fn cell_sizes_parse_with_either_cross_and_refuse_zero_and_huge() {

@@ -74,7 +74,6 @@ use wide::i32x4;
 
 /// How the rasterizer walks the samples. All give identical coverage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Traversal {
     /// Every sample of the grid.
     Scan,
@@ -92,25 +91,12 @@ pub enum Traversal {
     Spans,
 }
 
-impl Traversal {
-    /// The name the command line uses (`--traversal bounding-box`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Traversal::Scan => "scan",
-            Traversal::BoundingBox => "bounding-box",
-            Traversal::Incremental => "incremental",
-            Traversal::Spans => "spans",
-        }
-    }
-
-    /// Every traversal.
-    pub const ALL: [Traversal; 4] = [
-        Traversal::Scan,
-        Traversal::BoundingBox,
-        Traversal::Incremental,
-        Traversal::Spans,
-    ];
-}
+crate::choice::choice!(Traversal {
+    Scan => "scan": "Every sample of the grid",
+    BoundingBox => "bounding-box": "Every sample of the triangle's bounding box, each edge evaluated afresh",
+    Incremental => "incremental": "The bounding box with the edge values stepped by constant deltas",
+    Spans => "spans": "Each row of the bounding box, only where it is covered: the run of covered samples is found from the edge values at the row's start (each edge bounds it from one side, by an exact integer division), and the values are stepped along it",
+});
 
 /// What the rasterizer did, summed over the triangles it was given.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -875,7 +861,6 @@ fn min_max(v: [i64; 3]) -> (i64, i64) {
 /// or the notes' rasterizer without the snap, in f64 or f32, for measuring
 /// what exactness costs and what it buys (`rastty bench`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Precision {
     /// Vertices snapped to 1/256 of a sample, edge functions in `i64`:
     /// exact, watertight.
@@ -889,19 +874,11 @@ pub enum Precision {
     F32,
 }
 
-impl Precision {
-    /// Every precision, the exact one first.
-    pub const ALL: [Precision; 3] = [Precision::Fixed, Precision::F64, Precision::F32];
-
-    /// The name the command line uses (`--precision f32`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Precision::Fixed => "fixed",
-            Precision::F64 => "f64",
-            Precision::F32 => "f32",
-        }
-    }
-}
+crate::choice::choice!(Precision {
+    Fixed => "fixed": "Vertices snapped to 1/256 of a sample, edge functions in `i64`: exact, watertight",
+    F64 => "f64": "Unsnapped positions, edge functions in f64: exact for most inputs, not for all",
+    F32 => "f32": "Unsnapped positions, edge functions in f32: cracks and double hits where edges pass through sample centres",
+});
 
 /// What the renderer needs of a set-up triangle, whatever arithmetic its
 /// edge functions use: the vertex order behind the weights, and a walk

@@ -23,7 +23,6 @@ use crate::scene::{Light, MAX_LIGHTS};
 
 /// How surfaces are shaded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Shading {
     /// Surface colours as they are, unlit.
     None,
@@ -34,19 +33,11 @@ pub enum Shading {
     Smooth,
 }
 
-impl Shading {
-    /// Every shading, cheapest first.
-    pub const ALL: [Shading; 3] = [Shading::None, Shading::Flat, Shading::Smooth];
-
-    /// The name the command line uses (`--shading flat`).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Shading::None => "none",
-            Shading::Flat => "flat",
-            Shading::Smooth => "smooth",
-        }
-    }
-}
+crate::choice::choice!(Shading {
+    None => "none": "Surface colours as they are, unlit",
+    Flat => "flat": "One Lambert term per face, from its geometric normal",
+    Smooth => "smooth": "Gouraud: a Lambert term per vertex from its normal, interpolated",
+});
 
 /// A scene's lights, ready for shading: towards the light, colour in
 /// [0, 1]. Fixed-size, so a frame sets it up without allocating.

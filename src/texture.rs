@@ -33,6 +33,7 @@
 //! surfaces seen at a grazing angle, where anisotropic filtering would not;
 //! alpha is read and ignored (no blending: a surface is opaque).
 
+use crate::choice::Choice;
 use std::fmt;
 use std::str::FromStr;
 
@@ -96,7 +97,6 @@ pub struct Sampler {
 /// The filtering `--filter` forces on every texture (wrap modes stay the
 /// file's).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum FilterMode {
     /// The nearest texel of the finest level.
     Nearest,
@@ -106,23 +106,13 @@ pub enum FilterMode {
     Trilinear,
 }
 
+crate::choice::choice!(FilterMode {
+    Nearest => "nearest": "The nearest texel of the finest level",
+    Bilinear => "bilinear": "Four texels of the finest level",
+    Trilinear => "trilinear": "Four texels of each of the two levels around the level of detail",
+});
+
 impl FilterMode {
-    /// Every mode, from cheapest.
-    pub const ALL: [FilterMode; 3] = [
-        FilterMode::Nearest,
-        FilterMode::Bilinear,
-        FilterMode::Trilinear,
-    ];
-
-    /// The name used on the command line.
-    pub const fn name(self) -> &'static str {
-        match self {
-            FilterMode::Nearest => "nearest",
-            FilterMode::Bilinear => "bilinear",
-            FilterMode::Trilinear => "trilinear",
-        }
-    }
-
     /// `sampler` filtered this way.
     pub fn apply(self, sampler: Sampler) -> Sampler {
         let (filter, mipmap) = match self {
@@ -149,9 +139,7 @@ impl FromStr for FilterMode {
     type Err = String;
 
     fn from_str(s: &str) -> Result<FilterMode, String> {
-        FilterMode::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
+        FilterMode::named(s)
             .ok_or_else(|| format!("unknown filter {s:?} (nearest, bilinear or trilinear)"))
     }
 }

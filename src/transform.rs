@@ -23,7 +23,6 @@ use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
 /// An axis of a coordinate system: one to turn about, or a model's up.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Axis {
     /// x.
     X,
@@ -33,6 +32,12 @@ pub enum Axis {
     /// z.
     Z,
 }
+
+crate::choice::choice!(Axis {
+    X => "x": "x",
+    Y => "y": "y",
+    Z => "z": "z",
+});
 
 impl Axis {
     /// The name of a turn about this axis, as the command line has it

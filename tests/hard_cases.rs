@@ -2,6 +2,7 @@
 //! the spirit of the D3D rasterization rules and the dEQP/VK-GL-CTS
 //! fill-rule tests. docs/promises.md lists them with the test behind each.
 
+use rastty::Choice;
 use std::collections::BTreeSet;
 
 use glam::{Vec3, Vec4};
@@ -939,26 +940,8 @@ fn the_near_touching_pair_leaves_no_hole_on_the_diagonal() {
 
 // 9. Perspective-correct interpolation.
 
-// The f64 measure is `rastty bench`'s own (feature `bench`).
-#[cfg(feature = "bench")]
-#[test]
-fn perspective_correct_colours_match_f64_and_differ_from_affine() {
-    // A floor from 1 to 8 units in front of the eye (w differs eightfold),
-    // red near and blue far; every drawn sample against the floor point
-    // behind it, found by casting the ray in f64 (rastty::bench measures
-    // the same for its table).
-    let (max, mean) = rastty::bench::interpolation_error(rastty::Interpolation::Perspective);
-    assert!(
-        max <= 2.0 && mean <= 0.5,
-        "perspective-correct: max {max}, mean {mean}"
-    );
-    let (affine_max, affine_mean) =
-        rastty::bench::interpolation_error(rastty::Interpolation::Affine);
-    assert!(
-        affine_max > 100.0 && affine_mean > 40.0,
-        "affine: max {affine_max}, mean {affine_mean}"
-    );
-}
+// Perspective-correct colours against an f64 ray cast: `rastty bench`'s
+// own measure, tested beside it (cli/src/bench.rs).
 
 // 10. Depth.
 

@@ -3,6 +3,7 @@
 //! same frame and the same samples, bit for bit. And a skipped stage does
 //! no work at all.
 
+use rastty::Choice;
 use std::path::Path;
 
 use glam::Vec3;
@@ -405,7 +406,7 @@ fn every_example_scene_is_the_same_with_any_thread_count() {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         let scene = Scene::load(&path).unwrap();
-        for glyphs in GlyphMode::ALL {
+        for &glyphs in GlyphMode::ALL {
             let opts = RenderOptions {
                 cols: 40,
                 rows: 14,
@@ -546,7 +547,7 @@ fn every_example_scene_is_the_same_planned_or_full() {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         let scene = Scene::load(&path).unwrap();
-        for glyphs in GlyphMode::ALL {
+        for &glyphs in GlyphMode::ALL {
             for turn in [Vec3::ZERO, Vec3::new(10.0, 35.0, 5.0)] {
                 let opts = RenderOptions {
                     cols: 40,

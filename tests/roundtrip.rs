@@ -8,6 +8,7 @@ mod common;
 use common::{as_displayed, nz, terminal};
 use glam::Vec3;
 use proptest::prelude::*;
+use rastty::Choice;
 use rastty::color::{Ink, Quantizer};
 use rastty::encode::{Encoder, Rep, TermCell, write_lines};
 use rastty::scene::{Triangle, TriangleColor};
@@ -146,7 +147,7 @@ fn full_frames_in_every_mode_and_depth() {
     let mut renderer = Renderer::new();
     for name in ["default", "orthographic", "shared-edge"] {
         let scene = scene(name);
-        for glyphs in GlyphMode::ALL {
+        for &glyphs in GlyphMode::ALL {
             for depth in ColorDepth::ALL {
                 for rep in [Rep::Off, Rep::On] {
                     let frame = renderer
@@ -170,7 +171,7 @@ fn full_frames_in_every_mode_and_depth() {
 #[test]
 fn render_lines_read_back_the_same() {
     let scene = scene("default");
-    for glyphs in GlyphMode::ALL {
+    for &glyphs in GlyphMode::ALL {
         for depth in ColorDepth::ALL {
             let frame = rastty::render(&scene, &opts(30, 9, glyphs, depth));
             let mut bytes = Vec::new();

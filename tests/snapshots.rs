@@ -1,6 +1,7 @@
 //! Plain-text snapshots of whole frames: the scenes in `examples/scenes`,
 //! rendered through the whole pipeline in ascii mode without colour.
 
+use rastty::Choice;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene, render};
 
 fn frame(scene: &str, cols: u16, rows: u16) -> String {
@@ -77,7 +78,7 @@ fn default_scene_in_block_mode() {
 /// The reference triangle in every glyph mode, as `--color none` prints it.
 #[test]
 fn every_glyph_mode() {
-    for mode in GlyphMode::ALL {
+    for &mode in GlyphMode::ALL {
         insta::assert_snapshot!(
             format!("glyphs_{mode:?}"),
             frame_in("notes-triangle", 24, 8, mode)

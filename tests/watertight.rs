@@ -4,6 +4,7 @@
 //! sample.
 
 use proptest::prelude::*;
+use rastty::Choice;
 use rastty::raster::{RasterStats, rasterize};
 use rastty::transform::Grid;
 use rastty::{Cull, Traversal};
@@ -216,7 +217,7 @@ proptest! {
             [fx(coarsen(c[0] + (x - c[0]) / scale, g)), fx(coarsen(c[1] + (y - c[1]) / scale, g))]
         });
         let mut seen = Vec::new();
-        for t in Traversal::ALL {
+        for &t in Traversal::ALL {
             let mut hits = Vec::new();
             let mut stats = RasterStats::default();
             rasterize(tri, grid, Cull::None, t, &mut stats, |x, y, e| hits.push((x, y, e)));

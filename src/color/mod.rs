@@ -22,7 +22,10 @@
 pub(crate) mod palette;
 pub(crate) mod srgb;
 
-pub use palette::{ANSI16, Dither, Metric, Palette, Quantizer, nearest, oklab_distance, xterm256};
+pub use palette::{
+    ANSI16, Dither, GREY_CHROMA, Metric, Palette, Quantizer, chroma, nearest, oklab_distance,
+    xterm256,
+};
 
 use std::fmt;
 use std::str::FromStr;
@@ -164,7 +167,6 @@ impl From<Rgb> for Lin {
 
 /// How colour numbers in a file are to be read.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ColorSpace {
     /// Proportional to light (what Blender and most exporters write for
     /// MTL `Kd`).
@@ -174,15 +176,12 @@ pub enum ColorSpace {
     Srgb,
 }
 
-impl ColorSpace {
-    /// The name the command line uses.
-    pub const fn name(self) -> &'static str {
-        match self {
-            ColorSpace::Linear => "linear",
-            ColorSpace::Srgb => "srgb",
-        }
-    }
+crate::choice::choice!(ColorSpace {
+    Linear => "linear": "Proportional to light (what Blender and most exporters write for MTL `Kd`)",
+    Srgb => "srgb": "sRGB-encoded, as `#rrggbb` is",
+});
 
+impl ColorSpace {
     /// Values in [0, 1] in this space, as linear light (clamped; NaN is 0).
     pub fn decode(self, c: [f32; 3]) -> Lin {
         match self {

@@ -81,7 +81,6 @@ pub fn xterm256(i: u8) -> Rgb {
 
 /// How "nearest" is measured when a colour is mapped onto a palette.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Metric {
     /// Squared distance of the sRGB bytes: cheap, and visibly wrong for
     /// darks and blues.
@@ -94,23 +93,14 @@ pub enum Metric {
     Oklch,
 }
 
-impl Metric {
-    /// Every metric.
-    pub const ALL: [Metric; 3] = [Metric::Rgb, Metric::Oklab, Metric::Oklch];
-
-    /// The name the command line uses.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Metric::Rgb => "rgb",
-            Metric::Oklab => "oklab",
-            Metric::Oklch => "oklch",
-        }
-    }
-}
+crate::choice::choice!(Metric {
+    Rgb => "rgb": "Squared distance of the sRGB bytes: cheap, and visibly wrong for darks and blues",
+    Oklab => "oklab": "Squared distance in OKLab, a perceptually uniform space: lightness outweighs hue (greys go cyan in 16 colours)",
+    Oklch => "oklch": "OKLCh: greys only to greys, hue weighted to stay in its family",
+});
 
 /// Whether colours between palette entries are drawn as patterns of two.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Dither {
     /// Ordered at 16 and 256 colours (truecolor never needs it).
     #[default]
@@ -121,19 +111,13 @@ pub enum Dither {
     Ordered,
 }
 
+crate::choice::choice!(Dither {
+    Auto => "auto": "Ordered at 16 and 256 colours (truecolor never needs it)",
+    None => "none": "Each colour to its nearest entry",
+    Ordered => "ordered": "A 4×4 Bayer pattern of the entries that mix to the colour",
+});
+
 impl Dither {
-    /// Every setting.
-    pub const ALL: [Dither; 3] = [Dither::Auto, Dither::None, Dither::Ordered];
-
-    /// The name the command line uses.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Dither::Auto => "auto",
-            Dither::None => "none",
-            Dither::Ordered => "ordered",
-        }
-    }
-
     /// What `auto` is at `depth`.
     pub fn resolve(self, depth: ColorDepth) -> Dither {
         match (self, depth) {
@@ -199,7 +183,6 @@ pub fn oklab_distance(a: Rgb, b: Rgb) -> f32 {
 }
 
 /// A colour's OKLab chroma.
-#[cfg_attr(not(feature = "bench"), allow(dead_code))]
 pub fn chroma(c: Rgb) -> f32 {
     let [_, a, b] = lab(c);
     a.hypot(b)
@@ -676,6 +659,7 @@ impl Quantizer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::choice::Choice;
 
     #[test]
     fn xterm_palette_values() {
@@ -688,7 +672,7 @@ mod tests {
 
     #[test]
     fn nearest_finds_exact_palette_colours() {
-        for metric in Metric::ALL {
+        for &metric in Metric::ALL {
             for i in 16..=255u8 {
                 let c = xterm256(i);
                 let j = nearest(ColorDepth::Ansi256, metric, c);

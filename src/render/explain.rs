@@ -2,6 +2,7 @@
 //! the plan's decisions beside the work each stage did. Kept next to the
 //! renderer, whose statistics it reads; the planner only decides.
 
+use crate::choice::Choice;
 use std::fmt::Write as _;
 use std::time::Duration;
 

@@ -411,7 +411,6 @@ impl Mesh {
 /// Which triangles to discard by their winding on screen (y up;
 /// counter-clockwise faces the viewer, as in OpenGL).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Cull {
     /// Draw both windings.
     #[default]
@@ -421,6 +420,12 @@ pub enum Cull {
     /// Drop counter-clockwise (front-facing) triangles.
     Front,
 }
+
+crate::choice::choice!(Cull {
+    None => "none": "Draw both windings",
+    Back => "back": "Drop clockwise (back-facing) triangles",
+    Front => "front": "Drop counter-clockwise (front-facing) triangles",
+});
 
 /// Most lights a scene may have.
 pub const MAX_LIGHTS: usize = 8;

@@ -8,8 +8,10 @@
 //! parsed by `roxmltree`. What a cell should look like comes from the same
 //! frame written as ANSI and read back through `vt100`.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
+use rastty::Choice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -35,7 +37,7 @@ fn run(args: &[&str]) -> Vec<u8> {
 fn rastty(args: &[&str]) -> Command {
     let mut cmd = Command::new(BIN);
     cmd.args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .env("TERM", "xterm-256color")
         .env("SHELL", "/bin/zsh")
         .env("SOURCE_DATE_EPOCH", "1700000000");

@@ -1,13 +1,18 @@
 //! The accuracy knobs of `rastty bench`, under criterion, for tracking
 //! regressions: a frame of the bunny at 200×60 cells with each coverage,
 //! interpolation, two-colour and precision setting, and a frame's encoding
-//! with each colour depth and metric. (Traversals: `benches/raster.rs`.)
+//! with each colour depth and metric. (Traversals: the library's `benches/raster.rs`.)
 //!
 //! `cargo bench --bench accuracy`
 
 use std::path::Path;
 
+#[allow(dead_code, unused_imports)]
+#[path = "../src/bench.rs"]
+mod bench;
+
 use criterion::{Criterion, criterion_group, criterion_main};
+use rastty::Choice;
 use rastty::Precision;
 use rastty::Split;
 use rastty::color::Metric;
@@ -17,18 +22,18 @@ use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
 
 fn knobs(c: &mut Criterion) {
     let scene = Scene::of_model(Path::new(&format!(
-        "{}/tests/models/bunny.obj",
+        "{}/../tests/models/bunny.obj",
         env!("CARGO_MANIFEST_DIR")
     )))
     .unwrap();
-    let base = rastty::bench::base();
+    let base = bench::base();
     let mut group = c.benchmark_group("accuracy");
     let mut frame = |name: String, opts: RenderOptions| {
         let mut r = Renderer::new();
         group.bench_function(name, |b| b.iter(|| r.render(&scene, &opts).cols()));
     };
-    for glyphs in rastty::bench::COVERAGE_MODES {
-        for aa in Aa::ALL {
+    for glyphs in bench::COVERAGE_MODES {
+        for &aa in Aa::ALL {
             frame(
                 format!("coverage/{glyphs:?}/{aa:?}"),
                 RenderOptions { glyphs, aa, ..base },
@@ -54,7 +59,7 @@ fn knobs(c: &mut Criterion) {
             },
         );
     }
-    for precision in Precision::ALL {
+    for &precision in Precision::ALL {
         frame(
             format!("precision/{}", precision.name()),
             RenderOptions { precision, ..base },

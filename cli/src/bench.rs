@@ -17,6 +17,7 @@
 //! | palette matching | 256 and 16 colours, nearest in RGB, OKLab or OKLCh | mean OKLab distance to the colour sent; greys sent to a colour; hues moved over 45° |
 //! | dithering | 256 and 16 colours, none or ordered | OKLab error of 2×2-cell areas against truecolor; bytes of a first and a next frame |
 
+use rastty::Choice;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -24,16 +25,16 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use crate::accuracy::{Poly, area_in_rect};
-use crate::blit::{GlyphMode, Split};
-use crate::color::{self, ColorDepth, Dither, Ink, Lin, Metric, Palette, Rgb};
-use crate::encode::{Encoder, TermCell};
-use crate::options::{Aa, Interpolation, RenderOptions};
-use crate::raster::{Precision, Traversal};
-use crate::render::Renderer;
-use crate::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
-use crate::texture::FilterMode;
-use crate::transform::Grid;
+use rastty::Renderer;
+use rastty::accuracy::{Poly, area_in_rect};
+use rastty::color::{self, ColorDepth, Dither, Ink, Lin, Metric, Palette, Rgb};
+use rastty::encode::{Encoder, TermCell};
+use rastty::raster::{Precision, Traversal};
+use rastty::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
+use rastty::texture::FilterMode;
+use rastty::transform::Grid;
+use rastty::{Aa, Interpolation, RenderOptions};
+use rastty::{GlyphMode, Split};
 
 /// A scene to time, and whether it turns from frame to frame.
 pub struct Workload {
@@ -71,12 +72,15 @@ pub fn workloads(models: &Path) -> (Vec<Workload>, Vec<String>) {
     let mut w = vec![
         Workload {
             name: "torus (built-in)".into(),
-            scene: crate::scene::default_scene(),
+            scene: rastty::scene::default_scene(),
         },
         Workload {
             name: "tiles (2D)".into(),
-            scene: Scene::parse(include_str!("../examples/scenes/tiles.toml"), "tiles.toml")
-                .expect("tiles parse"),
+            scene: Scene::parse(
+                include_str!("../../examples/scenes/tiles.toml"),
+                "tiles.toml",
+            )
+            .expect("tiles parse"),
         },
         Workload {
             name: "textured floor".into(),
@@ -195,7 +199,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
     }
 
     // 2. Precision.
-    for precision in Precision::ALL {
+    for &precision in Precision::ALL {
         let (cracks, doubles) = precision_errors(precision);
         rows.push(Row {
             knob: "precision",
@@ -209,7 +213,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
     }
 
     // 3. Traversal.
-    for traversal in Traversal::ALL {
+    for &traversal in Traversal::ALL {
         rows.push(Row {
             knob: "traversal",
             setting: traversal.name().into(),
@@ -239,7 +243,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
     }
 
     // 5. Texture filtering.
-    for filter in FilterMode::ALL {
+    for &filter in FilterMode::ALL {
         let (max, mean) = filter_error(filter);
         rows.push(Row {
             knob: "texture filtering",
@@ -268,7 +272,7 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
 
     // 7. Palette matching.
     for depth in [ColorDepth::Ansi256, ColorDepth::Ansi16] {
-        for metric in Metric::ALL {
+        for &metric in Metric::ALL {
             let q = matching_error(depth, metric);
             let palette = Palette {
                 depth,
@@ -693,8 +697,8 @@ fn floor_uv(x: f64, z: f64) -> [f64; 2] {
 /// seen from the origin with the horizon in view: near the eye a texel
 /// covers several samples, far off a sample covers many texels.
 pub fn textured_floor() -> Scene {
-    use crate::scene::{Geometry, MaterialRun, Mesh};
-    use crate::texture::{Sampler, Texture};
+    use rastty::scene::{Geometry, MaterialRun, Mesh};
+    use rastty::texture::{Sampler, Texture};
     use std::sync::Arc;
     let corners = [
         (-FLOOR_X, FLOOR_Z[0]),
@@ -862,7 +866,7 @@ fn encode_times(workloads: &[Workload], palette: Palette, reps: usize) -> Vec<Du
     workloads
         .iter()
         .map(|w| {
-            let frame = crate::render(&w.scene, &base());
+            let frame = rastty::render(&w.scene, &base());
             median((0..reps).map(|_| {
                 let mut e = Encoder::new(palette.depth)
                     .with_metric(palette.metric)
@@ -890,7 +894,7 @@ pub struct MatchingError {
 /// Seeded random colours (4,096 of any kind, 4,096 near-greys) mapped to
 /// `depth` by `metric`.
 pub fn matching_error(depth: ColorDepth, metric: Metric) -> MatchingError {
-    use color::palette::{GREY_CHROMA, chroma};
+    use color::{GREY_CHROMA, chroma};
     let lab = |c: Rgb| {
         let [r, g, b] = c.0;
         let l = oklab::srgb_to_oklab(oklab::Rgb { r, g, b });
@@ -950,7 +954,7 @@ pub fn dither_cost(workloads: &[Workload], palette: Palette) -> DitherCost {
     let opts = base();
     let (mut err, mut blocks, mut full, mut next) = (0.0f64, 0usize, 0usize, 0usize);
     for w in workloads {
-        let frame = crate::render(&w.scene, &opts);
+        let frame = rastty::render(&w.scene, &opts);
         let mut e = Encoder::new(palette.depth)
             .with_metric(palette.metric)
             .with_dither(palette.dither);
@@ -960,7 +964,7 @@ pub fn dither_cost(workloads: &[Workload], palette: Palette) -> DitherCost {
             turn: opts.turn + Vec3::new(0.0, 3.0, 0.0),
             ..opts
         };
-        e.prepare(&crate::render(&w.scene, &turned));
+        e.prepare(&rastty::render(&w.scene, &turned));
         next += e.last_bytes().len();
         // Each cell's light: its two colours weighted by the glyph's share.
         let mut q = color::Quantizer::of(palette);
@@ -1218,7 +1222,7 @@ mod tests {
     fn the_split_error_is_measured_through_the_blitter() {
         let w = vec![Workload {
             name: "torus".into(),
-            scene: crate::scene::default_scene(),
+            scene: rastty::scene::default_scene(),
         }];
         let exhaustive = split_error(&w, Split::Exhaustive);
         let widest = split_error(&w, Split::WidestChannel);
@@ -1238,7 +1242,8 @@ mod tests {
 
     #[test]
     fn trilinear_filtering_errs_least_on_the_receding_floor() {
-        let [nearest, bilinear, trilinear] = FilterMode::ALL.map(filter_error);
+        let [nearest, bilinear, trilinear]: [_; 3] =
+            std::array::from_fn(|i| filter_error(FilterMode::ALL[i]));
         assert!(trilinear.1 < bilinear.1 && bilinear.1 < nearest.1);
         assert!(trilinear.1 < nearest.1 / 2.0);
     }
@@ -1260,5 +1265,23 @@ mod tests {
         }
         // In 16 colours plain OKLab sends greys to colours.
         assert!(matching_error(ColorDepth::Ansi16, Metric::Oklab).greys_coloured > 0.0);
+    }
+
+    #[test]
+    fn perspective_correct_colours_match_f64_and_differ_from_affine() {
+        // A floor from 1 to 8 units in front of the eye (w differs eightfold),
+        // red near and blue far; every drawn sample against the floor point
+        // behind it, found by casting the ray in f64 (the measure of the
+        // table).
+        let (max, mean) = interpolation_error(rastty::Interpolation::Perspective);
+        assert!(
+            max <= 2.0 && mean <= 0.5,
+            "perspective-correct: max {max}, mean {mean}"
+        );
+        let (affine_max, affine_mean) = interpolation_error(rastty::Interpolation::Affine);
+        assert!(
+            affine_max > 100.0 && affine_mean > 40.0,
+            "affine: max {affine_max}, mean {affine_mean}"
+        );
     }
 }

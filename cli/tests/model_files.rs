@@ -458,7 +458,7 @@ fn a_sparse_4_gib_file_is_refused_by_its_size_and_the_flag_lifts_the_limit() {
     // A small limit refuses a real model; a large one lets it through.
     let tux = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/models/linux-mascot-tux.obj"
+        "/../tests/models/linux-mascot-tux.obj"
     );
     assert_eq!(
         fails(&["render", tux, "--max-file-size", "1M"]),
@@ -628,7 +628,7 @@ fn an_extension_rastty_does_not_read_is_an_error_listing_those_it_does() {
 #[test]
 #[cfg(feature = "gltf")]
 fn a_textured_model_reads_its_texture_as_filter_says() {
-    let crate_glb = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/models/crate.glb");
+    let crate_glb = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/models/crate.glb");
     let run = |filter: Option<&str>| {
         let mut args = vec!["render", crate_glb, "--cols", "40", "--rows", "16"];
         args.extend(["--color", "truecolor", "--explain"]);

@@ -31,8 +31,8 @@ use std::time::{Duration, Instant};
 use rustix::fs::{Mode, OFlags};
 use rustix::termios::{self, OptionalActions, Termios};
 
-use crate::color::ColorDepth;
-use crate::options::MAX_CELLS;
+use rastty::MAX_CELLS;
+use rastty::color::ColorDepth;
 
 /// Whether stdout is a terminal.
 pub fn stdout_is_terminal() -> bool {
@@ -160,12 +160,9 @@ pub fn is_dumb(term: Option<&str>) -> bool {
 /// (`SendEnv COLORTERM`, with `AcceptEnv COLORTERM` on the server) or
 /// `--color truecolor` is given. `env` looks up a variable (a parameter so
 /// that tests need not touch the process's environment).
-pub fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -> ColorDepth {
-    detect_color_why(stdout_is_tty, env).0
-}
-
-/// [`detect_color`], and why: the rule that decided, as `--explain` says
-/// it (the environment's values escaped).
+///
+/// Returns the depth and why: the rule that decided, as `--explain` says it
+/// (the environment's values escaped).
 pub fn detect_color_why(
     stdout_is_tty: bool,
     env: impl Fn(&str) -> Option<String>,
@@ -178,7 +175,7 @@ pub fn detect_color_why(
         return (ColorDepth::None, "stdout is not a terminal".into());
     }
     let term = set("TERM");
-    let shown = |v: &str| crate::text::line(v);
+    let shown = |v: &str| rastty::text::line(v);
     if is_dumb(term.as_deref()) {
         let why = match &term {
             None => "TERM is unset".to_string(),
@@ -476,11 +473,6 @@ impl Screen {
         &self.tty
     }
 
-    /// Whether frames are drawn full screen (not as plain lines).
-    pub fn full_screen(&self) -> bool {
-        self.full_screen
-    }
-
     /// Puts the terminal back as it was (for a suspend; [`Screen::resume`]
     /// takes it over again).
     pub fn suspend(&mut self) {
@@ -551,6 +543,10 @@ pub fn install_panic_hook() {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn detect_color(stdout_is_tty: bool, env: impl Fn(&str) -> Option<String>) -> ColorDepth {
+        detect_color_why(stdout_is_tty, env).0
+    }
 
     fn env<'a>(vars: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
         move |k| {

@@ -1,9 +1,14 @@
 //! The command line: clap's derive structs. The settings themselves are the
-//! library's enums (they derive `clap::ValueEnum`); only `--color auto` is
-//! the command line's own. Nothing here renders.
+//! library's enums, parsed by their [`Choice`] names through [`named`]; only
+//! `--color auto` is the command line's own. Nothing here renders.
 
+use rastty::Choice;
 use std::path::PathBuf;
 
+use std::ffi::OsStr;
+use std::marker::PhantomData;
+
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use rastty::Shading;
@@ -35,15 +40,13 @@ pub enum Command {
     /// Print one frame of a scene or model to stdout.
     Render(RenderArgs),
     /// Spin a scene or model in the terminal (q quits).
-    #[command(after_help = rastty::live::KEYS)]
+    #[command(after_help = crate::live::KEYS)]
     Spin(SpinArgs),
     /// Measure what accuracy costs: every accuracy knob's time per frame
     /// and error, as a Markdown table on stdout and an SVG plot.
-    #[cfg(feature = "bench")]
     Bench(BenchArgs),
 }
 
-#[cfg(feature = "bench")]
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// Where to find models to time (bunny, teapot, fox, shiba-inu,
@@ -98,7 +101,7 @@ pub struct SpinArgs {
     #[command(flatten)]
     pub view: ViewArgs,
     /// The world axis to turn about
-    #[arg(long, value_enum, default_value_t = Axis::Y, help_heading = "Spin")]
+    #[arg(long, value_parser = named::<Axis>(), default_value = Axis::Y.name(), help_heading = "Spin")]
     pub axis: Axis,
     /// Degrees turned per frame
     #[arg(help_heading = "Spin", long, value_name = "DEG", default_value_t = 3.0, allow_negative_numbers = true, value_parser = parse_angle)]
@@ -141,7 +144,7 @@ pub struct InputArgs {
     /// default scene.
     pub scene: Option<PathBuf>,
     /// A model's up axis [default: z for STL, y otherwise]
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = named::<Axis>())]
     pub up: Option<Axis>,
     /// Faces meeting at a sharper angle keep their own normals along the
     /// edge (computed normals only)
@@ -149,7 +152,7 @@ pub struct InputArgs {
     pub crease: f32,
     /// How MTL Kd colours are read: linear light (as Blender and most
     /// exporters write them) or sRGB
-    #[arg(long, value_enum, default_value_t = ColorSpace::Linear)]
+    #[arg(long, value_parser = named::<ColorSpace>(), default_value = ColorSpace::Linear.name())]
     pub mtl_colors: ColorSpace,
 }
 
@@ -159,19 +162,19 @@ pub struct InputArgs {
 #[command(next_help_heading = "Accuracy and speed knobs")]
 pub struct KnobArgs {
     /// How the rasterizer walks samples (all give the same picture)
-    #[arg(long, value_enum, default_value_t = Traversal::Spans)]
+    #[arg(long, value_parser = named::<Traversal>(), default_value = Traversal::Spans.name())]
     pub traversal: Traversal,
     /// How attributes are interpolated (affine is wrong under perspective:
     /// for comparison)
-    #[arg(long, value_enum, default_value_t = Interpolation::Perspective)]
+    #[arg(long, value_parser = named::<Interpolation>(), default_value = Interpolation::Perspective.name())]
     pub interpolation: Interpolation,
     /// How cells of more than two colours are split (widest-channel is
     /// chafa's fast path: for comparison)
-    #[arg(long, value_enum, default_value_t = Split::Exhaustive)]
+    #[arg(long, value_parser = named::<Split>(), default_value = Split::Exhaustive.name())]
     pub split: Split,
     /// How edge functions are evaluated (f64 and f32 skip the snap and are
     /// not watertight: for comparison)
-    #[arg(long, value_enum, default_value_t = Precision::Fixed)]
+    #[arg(long, value_parser = named::<Precision>(), default_value = Precision::Fixed.name())]
     pub precision: Precision,
     /// Run every pipeline stage on every primitive, even those the scene
     /// does not need (the same picture, slower: for comparison)
@@ -222,7 +225,7 @@ pub struct ViewArgs {
     /// How samples become glyphs (samples per cell: ascii and block 1,
     /// half 2, quadrant 4, sextant 6, octant and braille 8) [default: half,
     /// or ascii when TERM is dumb]
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = named::<GlyphMode>())]
     pub glyphs: Option<GlyphMode>,
     /// Paint the cells the scene leaves uncovered #rrggbb (a dark model on
     /// a dark terminal shows against a lighter one), or `terminal` to keep
@@ -246,14 +249,14 @@ pub struct ViewArgs {
     pub cell_aspect: Option<f32>,
     /// Draw colours between palette entries as patterns of entries (auto:
     /// ordered in 16 and 256 colours; none sends each colour's nearest)
-    #[arg(long, value_enum, default_value_t = Dither::Auto)]
+    #[arg(long, value_parser = named::<Dither>(), default_value = Dither::Auto.name())]
     pub dither: Dither,
     /// How surfaces are lit (by the scene's lights)
-    #[arg(long, value_enum, default_value_t = Shading::Smooth)]
+    #[arg(long, value_parser = named::<Shading>(), default_value = Shading::Smooth.name())]
     pub shading: Shading,
     /// Which faces to discard [default: back faces of meshes, none of loose
     /// triangles]
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = named::<Cull>())]
     pub cull: Option<Cull>,
     /// Turn the scene about the world's y axis, in degrees
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
@@ -266,11 +269,11 @@ pub struct ViewArgs {
     pub roll: f32,
     /// Anti-aliasing: 4 or 16 sub-samples per sample, or each triangle's
     /// exact area in the sample's square
-    #[arg(long, value_enum, default_value_t = Aa::None)]
+    #[arg(long, value_parser = named::<Aa>(), default_value = Aa::None.name())]
     pub aa: Aa,
     /// Texture filtering for every texture (default: as each model's
     /// sampler says; trilinear where it says nothing)
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = named::<FilterMode>())]
     pub filter: Option<FilterMode>,
 }
 
@@ -399,5 +402,47 @@ fn parse_aspect(s: &str) -> Result<f32, String> {
         Ok(r)
     } else {
         Err(format!("{s} is not between 0.05 and 20"))
+    }
+}
+
+/// A clap parser for one of the library's settings ([`Choice`]): its names,
+/// each with its one line of help, listed in `--help` and in the error for
+/// a name that is not one of them.
+#[derive(Clone, Copy, Debug)]
+pub struct Named<T>(PhantomData<T>);
+
+/// The parser of setting `T`'s names.
+pub fn named<T>() -> Named<T> {
+    Named(PhantomData)
+}
+
+impl<T: Choice + Send + Sync> Named<T> {
+    fn values() -> impl Iterator<Item = PossibleValue> {
+        T::ALL
+            .iter()
+            .map(|v| PossibleValue::new(v.name()).help(v.about()))
+    }
+}
+
+impl<T: Choice + Send + Sync> TypedValueParser for Named<T> {
+    type Value = T;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &OsStr,
+    ) -> Result<T, clap::Error> {
+        let name = PossibleValuesParser::new(Self::values()).parse_ref(cmd, arg, value)?;
+        // The parser above accepts only the names of `T::ALL`.
+        T::ALL
+            .iter()
+            .copied()
+            .find(|v| v.name() == name)
+            .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::InvalidValue).with_cmd(cmd))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(Self::values()))
     }
 }

@@ -4,6 +4,7 @@
 //! before the work, no file makes it panic, and memory stays bounded (each
 //! child's own peak, from `wait4`).
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 #[path = "support/run.rs"]
 mod support;
@@ -489,7 +490,7 @@ fn no_file_makes_it_panic() {
         )
     );
     // Inputs the fuzzers found, kept.
-    for entry in std::fs::read_dir("tests/fuzzed").unwrap() {
+    for entry in std::fs::read_dir("../tests/fuzzed").unwrap() {
         let path = entry.unwrap().path();
         let r = render(&path, &[]);
         assert_eq!(r.code, Some(1), "{}: {}", path.display(), r.stderr);

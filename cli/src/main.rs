@@ -1,8 +1,12 @@
 //! The `rastty` command: parse the command line, run, report errors in one
 //! line. Everything else lives in the library.
 
+mod bench;
 mod cli;
+mod live;
+mod terminal;
 
+use rastty::Choice;
 use std::fs::File;
 use std::io::{self, Write};
 use std::path::Path;
@@ -13,15 +17,13 @@ use std::time::Duration;
 use clap::Parser as _;
 
 use cli::{Cli, Command, RenderArgs, SpinArgs, ViewArgs};
+use live::{Exit, LiveOptions};
 use rastty::Pipeline;
 use rastty::animate;
 use rastty::animate::{Player, Spin};
 use rastty::cast::{self, Recorder};
 use rastty::encode::Encoder;
-use rastty::live;
-use rastty::live::{Exit, LiveOptions};
 use rastty::picture::{self, Format, Theme};
-use rastty::terminal;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, encode};
 
 fn main() -> ExitCode {
@@ -151,12 +153,10 @@ fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
     match command {
         Command::Render(args) => render(&args).map(|()| ExitCode::SUCCESS),
         Command::Spin(args) => spin(&args),
-        #[cfg(feature = "bench")]
         Command::Bench(args) => bench(&args).map(|()| ExitCode::SUCCESS),
     }
 }
 
-#[cfg(feature = "bench")]
 fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     let models = match &args.models {
         Some(dir) if !dir.is_dir() => {
@@ -169,10 +169,10 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
         None => std::path::PathBuf::from("../shared/models"),
     };
     let (workloads, notes) = if models.is_dir() {
-        rastty::bench::workloads(&models)
+        bench::workloads(&models)
     } else {
         (
-            rastty::bench::workloads(&models).0,
+            bench::workloads(&models).0,
             vec![format!(
                 "{}: not found: the built-in scenes alone are timed (--models names a folder)",
                 models.display()
@@ -183,7 +183,7 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
         say("note", note);
     }
     let mut out = stdout()?;
-    let report = rastty::bench::run(&workloads, args.reps as usize);
+    let report = bench::run(&workloads, args.reps as usize);
     writeln!(
         out,
         "Time per frame at 200×60 cells (median of {} frames; rendering, or encoding for quantisation), and each knob's error.",

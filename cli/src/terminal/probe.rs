@@ -22,7 +22,7 @@ use std::time::{Duration, Instant};
 
 use super::Tty;
 use super::input::{Input, Parser};
-use crate::blit::{GlyphFamily, GlyphMode, GlyphSupport};
+use rastty::{GlyphFamily, GlyphMode, GlyphSupport};
 
 /// The longest the probe waits for answers, in total.
 pub const DEADLINE: Duration = Duration::from_millis(150);
@@ -153,6 +153,7 @@ pub fn probe(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rastty::Choice;
 
     fn cpr(col: u16) -> Input {
         Input::CursorPosition { row: 1, col }

@@ -36,17 +36,18 @@
 //! process again. SIGWINCH resizes. The handlers are the loop's own and are
 //! given back when it returns.
 
+use rastty::Choice;
 use std::collections::VecDeque;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use crate::animate::{Command, LiveStatus, Player};
-use crate::cast::Recorder;
-use crate::color::ColorDepth;
 use crate::terminal::input::{Input, Key, Parser};
 use crate::terminal::probe::{self, Capabilities};
 use crate::terminal::signals::{self, Signals};
 use crate::terminal::{self, Interest, Read, Screen, Tty, TtyError};
+use rastty::animate::{Command, LiveStatus, Player};
+use rastty::cast::Recorder;
+use rastty::color::ColorDepth;
 
 /// How the loop runs.
 #[derive(Clone, Copy, Debug, PartialEq)]

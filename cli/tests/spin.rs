@@ -2,6 +2,7 @@
 //! the terminal it leaves behind when it is one (a pseudo-terminal run by
 //! `expectrl`), whichever way it ends.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use std::io::{Read, Write};
@@ -13,11 +14,13 @@ use expectrl::Expect;
 use expectrl::session::OsSession as Session;
 
 const BIN: &str = env!("CARGO_BIN_EXE_rastty");
+/// The repository's root, where the README's commands run and the models live.
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
 fn run(args: &[&str]) -> Vec<u8> {
     let out = Command::new(BIN)
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(ROOT)
         .output()
         .unwrap();
     assert!(
@@ -80,7 +83,8 @@ fn spin_without_a_terminal_needs_frames() {
 fn spawn(args: &[&str]) -> Session {
     let mut cmd = Command::new(BIN);
     cmd.args(["spin", "--cols", "60", "--rows", "20"])
-        .args(args);
+        .args(args)
+        .current_dir(ROOT);
     cmd.env("TERM", "xterm-256color");
     let mut session = Session::spawn(cmd).expect("a pty");
     session.get_process_mut().set_window_size(80, 24).unwrap();
@@ -356,7 +360,7 @@ struct Fake {
 impl Fake {
     fn spawn(args: &[&str], answer: bool, cpr_cols: &[u16], rate: Option<f64>) -> Fake {
         let mut cmd = Command::new(BIN);
-        cmd.arg("spin").args(args);
+        cmd.arg("spin").args(args).current_dir(ROOT);
         cmd.env("TERM", "xterm-256color").env_remove("COLORTERM");
         let mut session = Session::spawn(cmd).expect("a pty");
         session.get_process_mut().set_window_size(80, 24).unwrap();
