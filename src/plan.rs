@@ -29,15 +29,16 @@
 //! every plane with room for the vertex stage's f32 rounding
 //! ([`Clipper::box_inside`]).
 //!
-//! One decision is about speed alone, never about the picture: whether a
-//! mesh's triangles are tested for a bounding box without a sample centre
-//! before they are set up ([`Plan::pretests_boxes`]). That pays where most
-//! triangles are smaller than a sample (Tux at 200×120 samples: 8 % fewer
-//! instructions a frame) and costs where few are (the bunny at the same
-//! size: 4 % more when always on), so the plan turns it on for a mesh whose
-//! projected box has less than one sample per triangle. The triangles it
-//! finds are exactly those the set-up finds covering nothing, counted the
-//! same way (a test compares every count with the full pipeline's).
+//! One decision is about speed alone, never about the picture: which path
+//! a triangle inside every clip plane takes ([`Plan::lean`]). On the lean
+//! path (the planned pipeline's fixed point, sampled, walked within each
+//! box) culling and area come from the snapped vertices, an empty box from
+//! their centre keys, and a triangle is lit and filled only if it covers a
+//! sample; a triangle it stops early is counted exactly as its set-up and
+//! walk would count it (a test compares every count with the full
+//! pipeline's). The general path sets up every triangle in the options'
+//! precision and walks it with their traversal: the full pipeline, exact
+//! coverage and the comparison modes take it.
 //!
 //! The other speed decision is how many bands of rows the frame is drawn
 //! in, one thread each ([`Plan::bands`]): as many as there are cores for
@@ -50,7 +51,7 @@
 
 use std::fmt;
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
 use crate::options::{
@@ -121,12 +122,16 @@ pub struct Plan {
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
     pub full: bool,
+    /// Whether triangles inside every clip plane take the lean path
+    /// (culled, sized and found empty from their snapped vertices, lit and
+    /// filled only if they cover a sample) rather than the general one
+    /// (every triangle set up in the options' precision, walked with their
+    /// traversal). Speed alone: both draw the same samples and count the
+    /// same work.
+    pub lean: Decision,
     /// Per group (each mesh in order, then the loose triangles): whether
     /// its vertices are tested against the clip planes.
     clip_tests: Vec<bool>,
-    /// Per mesh: whether its triangles are tested for an empty box before
-    /// set-up (see [`Plan::pretests_boxes`]).
-    box_pretests: Vec<bool>,
     /// How many bands of rows the frame is drawn in, one thread each.
     pub bands: Bands,
 }
@@ -197,13 +202,6 @@ fn bands(opts: &RenderOptions) -> Bands {
     }
 }
 
-/// Screen area (in samples) per triangle of a mesh's projected bounding
-/// box below which most of its triangles' boxes hold no sample centre, and
-/// testing for that before set-up pays: about 50 instructions a triangle,
-/// against about 200 saved for each empty one (callgrind: Tux, 0.3 samples
-/// a triangle, −8 %; the bunny at 200×120, 2.4, +4 % when always on).
-const PRETEST_AREA: f32 = 1.0;
-
 const FORCED: &str = "forced on by the full pipeline";
 
 impl Plan {
@@ -229,8 +227,8 @@ impl Plan {
             filter: opts.filter,
             shading: opts.shading,
             full: true,
+            lean: Decision::skip(FORCED),
             clip_tests: Vec::new(),
-            box_pretests: Vec::new(),
             bands: Bands {
                 count: 1,
                 why: "not planned yet",
@@ -320,22 +318,6 @@ impl Plan {
             let mvp = (vp.as_dmat4() * model.as_dmat4()).as_mat4();
             full || !bounds.is_some_and(|[lo, hi]| clipper.box_inside(mvp, lo, hi))
         }));
-        self.box_pretests.clear();
-        let (w, h) = opts.glyphs.cell_size();
-        let samples = (opts.cols as u32 * w) as f32 * (opts.rows as u32 * h) as f32;
-        self.box_pretests
-            .extend(scene.meshes.iter().enumerate().map(|(i, m)| {
-                // Exact coverage needs every triangle's area, and only the
-                // fixed-point set-up has snapped vertices to test.
-                !full
-                    && !self.clip_tests[i]
-                    && opts.aa != Aa::Exact
-                    && opts.precision == Precision::Fixed
-                    && {
-                        let area = screen_share(vp * turn * m.model, m.bounds) * samples;
-                        area < PRETEST_AREA * m.faces.len() as f32
-                    }
-            }));
         let clip = if full {
             Decision::run(FORCED)
         } else if self.clip_tests.contains(&true) {
@@ -354,20 +336,10 @@ impl Plan {
             filter: opts.filter,
             shading,
             full,
+            lean: lean(opts),
             clip_tests: std::mem::take(&mut self.clip_tests),
-            box_pretests: std::mem::take(&mut self.box_pretests),
             bands: bands(opts),
         };
-    }
-
-    /// Whether mesh `i`'s triangles are tested for a bounding box without
-    /// a sample centre before they are set up (and, when it has none, only
-    /// counted): for a mesh drawn without clip tests whose triangles are
-    /// small on screen, where most boxes are empty. Never in the full
-    /// pipeline. Speed alone: the test finds exactly the triangles the
-    /// set-up would find covering nothing, and counts them as it would.
-    pub fn pretests_boxes(&self, mesh: usize) -> bool {
-        self.box_pretests.get(mesh).copied().unwrap_or(false)
     }
 
     /// Whether group `i` (mesh `i`, or the loose triangles after the last
@@ -404,6 +376,23 @@ impl Plan {
             "the plan skipped interpolation, yet a triangle has several colours"
         );
         self.full || !one
+    }
+}
+
+/// Which path triangles inside every clip plane take (see [`Plan::lean`]).
+fn lean(opts: &RenderOptions) -> Decision {
+    if opts.pipeline == Pipeline::Full {
+        Decision::skip("the full pipeline sets up, lights and fills every triangle")
+    } else if opts.aa == Aa::Exact {
+        Decision::skip("exact coverage adds up every triangle's area")
+    } else if opts.precision != Precision::Fixed {
+        Decision::skip("the f64 and f32 set-ups are comparison modes")
+    } else if opts.traversal == Traversal::Scan {
+        Decision::skip("a scan tests every sample of the grid")
+    } else {
+        Decision::run(
+            "culled, sized and found empty from the snapped vertices; lit only if covering a sample",
+        )
     }
 }
 
@@ -445,27 +434,6 @@ fn loose_bounds(scene: &Scene) -> Option<[Vec3; 2]> {
     Some([lo, hi])
 }
 
-/// The share of the screen (the canonical square, of area 4) covered by
-/// the projected bounding box of `bounds` drawn with `mvp`, for a box inside
-/// every clip plane (0 for unknown bounds).
-fn screen_share(mvp: Mat4, bounds: Option<[Vec3; 2]>) -> f32 {
-    let Some([lo, hi]) = bounds else { return 0.0 };
-    let (mut min, mut max) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
-        let c = mvp * corner.extend(1.0);
-        let p = Vec2::new(c.x, c.y) / c.w;
-        min = min.min(p);
-        max = max.max(p);
-    }
-    let size = (max.min(Vec2::ONE) - min.max(Vec2::NEG_ONE)).max(Vec2::ZERO);
-    size.x * size.y / 4.0
-}
-
 impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "clip           {}", self.clip)?;
@@ -475,6 +443,7 @@ impl fmt::Display for Plan {
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         writeln!(f, "perspective    {}", self.perspective)?;
+        writeln!(f, "lean path      {}", self.lean)?;
         write!(f, "bands          {}", self.bands)
     }
 }

@@ -206,11 +206,10 @@ fn last_sample(hi: i64) -> i64 {
 
 /// Whether a snapped triangle's bounding box, clamped to `grid`'s columns
 /// and `band`'s rows, holds no sample centre (the same box
-/// [`Setup::from_fixed_in`] finds): then sampling finds nothing in it, and
-/// [`Setup::signed_area2`] tells all a sampling caller counts (most
-/// triangles of a detailed model seen small).
-#[inline(always)]
-pub fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
+/// [`Setup::from_fixed_in`] finds): the slow twin [`CentreKey`]'s test is
+/// checked against.
+#[cfg(test)]
+fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
     let [x0, x1, y0, y1] = clamped_box(&extent(p), grid, band);
     x0 > x1 || y0 > y1
 }

@@ -85,8 +85,7 @@ use crate::framebuffer::Framebuffer;
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
 use crate::raster::{
-    self, CentreKey, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, SmallSetup,
-    Traversal,
+    CentreKey, Coverage, FloatSetup, Precision, RasterStats, Rejected, Setup, SmallSetup, Traversal,
 };
 use crate::scene::{Camera, Cull, Mesh, Projection, Scene};
 use crate::shade::{Lights, Shading};
@@ -270,8 +269,6 @@ struct Faces<'a> {
     mesh: &'a Mesh,
     transforms: &'a Transforms,
     cull: Cull,
-    /// Whether boxes are tested for a sample centre before set-up.
-    pretest: bool,
 }
 
 /// Per-frame constants of the vertex and triangle stages.
@@ -548,10 +545,6 @@ impl Renderer {
                 mesh,
                 transforms: &transforms,
                 cull: opts.cull.unwrap_or(mesh.cull),
-                // Where the plan says so, a triangle inside every clip
-                // plane whose box holds no sample centre is only counted,
-                // as its set-up would count it.
-                pretest: p.pretests_boxes(i),
             };
             // Borrowed out of `self` for the loop, and put back.
             let verts = std::mem::take(&mut self.verts);
@@ -618,7 +611,6 @@ impl Renderer {
                     mesh,
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
-                    pretest: p.pretests_boxes(i),
                 };
                 band.faces(stage, &faces, &verts[range.clone()]);
             }
@@ -677,17 +669,13 @@ impl Renderer {
     /// into `verts`.
     fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert]) {
         let p = stage.plan;
-        let (grid, band) = (self.fb.grid(), self.fb.band());
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
             let texture = p.texture(run.texture);
-            // What most triangles of a model take: inside every clip plane,
-            // one colour or interpolated, sampled in fixed point.
-            let lean = texture.is_none()
-                && !p.full
-                && !stage.exact
-                && stage.precision == Precision::Fixed
-                && stage.traversal != Traversal::Scan;
+            // The plan's path; a run with a texture takes the general one,
+            // which on the lean path skips (and counts) a triangle that
+            // covers no sample once it is set up.
+            let lean = p.lean.run && texture.is_none();
             // Converted to lanes once a run, not once a face.
             let run_color = run.color.to_lanes();
             // Every face is handed to the pipeline: counted once a run.
@@ -716,17 +704,6 @@ impl Renderer {
                     // only if it covers a sample.
                     if !CentreKey::box_is_empty(v.map(|v| v.key)) {
                         self.inside_triangle(stage, v, base, area2);
-                    }
-                    continue;
-                }
-                if inside
-                    && !lean
-                    && f.pretest
-                    && raster::box_is_empty(&v.map(|v| v.fixed), grid, band)
-                {
-                    match Setup::signed_area2(&v.map(|v| v.fixed), f.cull) {
-                        Ok(_) => self.stats.raster.triangles_drawn += 1,
-                        Err(r) => self.stats.raster.count_rejected(r),
                     }
                     continue;
                 }
@@ -890,14 +867,11 @@ impl Renderer {
                 Precision::Fixed => {
                     let setup = Setup::from_fixed_in(fixed, grid, self.fb.band(), cull);
                     if let Some(s) = self.setup(&setup, stage.exact) {
-                        // A small triangle between sample centres is not lit
-                        // or filled (the full pipeline fills it anyway: the
+                        // On the lean path (textured and loose triangles), a small
+                        // triangle between sample centres is not lit or
+                        // filled (the full pipeline fills it anyway: the
                         // same nothing). Counted as its walk would count it.
-                        if early.is_none()
-                            && !stage.exact
-                            && stage.traversal != Traversal::Scan
-                            && !s.covers_any()
-                        {
+                        if stage.plan.lean.run && !s.covers_any() {
                             self.stats.raster.samples_tested += s.bbox_samples();
                             return;
                         }
@@ -990,11 +964,10 @@ impl Renderer {
         self.poly = poly;
     }
 
-    /// What [`Renderer::triangle`] does for a triangle inside every clip
-    /// plane without a texture, in the planned pipeline's fixed point (not
-    /// the full pipeline, nor exact coverage, nor the full-grid scan), once
-    /// it is counted as drawn with signed area `area2`: set it up, and
-    /// light and fill it only if it covers a sample.
+    /// What a triangle inside every clip plane without a texture takes on
+    /// the plan's lean path ([`Plan::lean`]), once it is counted as drawn
+    /// with signed area `area2`: set it up, and light and fill it only if
+    /// it covers a sample.
     #[inline(always)]
     fn inside_triangle(
         &mut self,

@@ -231,9 +231,7 @@ fn no_source_file_is_over_800_lines_outside_its_tests() {
         let n = lines_outside_tests(&fs::read_to_string(f).unwrap());
         match (n > MAX_LINES, NOT_YET_SPLIT.contains(&name.as_str())) {
             (true, false) => over.push(format!("{name}: {n} lines")),
-            (false, true) => {
-                over.push(format!("{name}: {n} lines: take it off NOT_YET_SPLIT"))
-            }
+            (false, true) => over.push(format!("{name}: {n} lines: take it off NOT_YET_SPLIT")),
             _ => {}
         }
     }

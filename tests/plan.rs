@@ -12,6 +12,7 @@ use rastty::Aa;
 use rastty::Cull;
 use rastty::Pipeline;
 use rastty::Shading;
+use rastty::Traversal;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
 use rastty::{ColorDepth, Encoder, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Threads};
 
@@ -648,35 +649,50 @@ fn skipped_stages_do_no_work() {
     assert!(r.plan().unwrap().clip.run && r.stats().clip_tests > 0);
 }
 
-/// A mesh of triangles small on screen has each triangle's box tested for
-/// a sample centre before set-up, and those without one only counted: the
-/// samples, the frame and every raster count are those of the full
-/// pipeline, which sets every triangle up. Drawn large, it is not tested.
+/// Triangles small on screen, most of whose boxes hold no sample centre,
+/// take the plan's lean path and are counted as their set-up and walk
+/// would count them: the samples, the frame and every raster count are
+/// those of the full pipeline, which sets every triangle up; the same for
+/// a textured mesh; and a scan, which tests every sample, takes the
+/// general path.
 #[test]
-fn small_triangles_are_pretested_and_counted_as_their_set_up_would() {
-    let scene = Scene::of_mesh(Shape::Sphere.mesh(Rgb::WHITE));
-    for (cols, rows, pretest) in [(12, 4, true), (30, 10, true), (120, 40, false)] {
+fn small_triangles_take_the_lean_path_and_are_counted_as_their_set_up_would() {
+    let sphere = Scene::of_mesh(Shape::Sphere.mesh(Rgb::WHITE));
+    let mut cases = vec![
+        (sphere.clone(), 12, 4, Traversal::Incremental, true),
+        (sphere.clone(), 30, 10, Traversal::Incremental, true),
+        (sphere.clone(), 120, 40, Traversal::Incremental, true),
+        (sphere, 12, 4, Traversal::Scan, false),
+    ];
+    #[cfg(feature = "gltf")]
+    {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/crate.glb");
+        let textured = Scene::of_model(&path).unwrap();
+        assert!(textured.meshes.iter().all(|m| m.textured()));
+        cases.push((textured.clone(), 6, 2, Traversal::Incremental, true));
+        cases.push((textured, 40, 12, Traversal::Incremental, true));
+    }
+    for (scene, cols, rows, traversal, lean) in &cases {
+        let (scene, cols, rows, traversal, lean) = (scene, *cols, *rows, *traversal, *lean);
         let opts = RenderOptions {
             cols,
             rows,
+            traversal,
             turn: Vec3::new(10.0, 35.0, 5.0),
             ..RenderOptions::default()
         };
         let mut planned = Renderer::new();
-        planned.render(&scene, &opts);
-        assert_eq!(
-            planned.plan().unwrap().pretests_boxes(0),
-            pretest,
-            "{cols}×{rows}"
-        );
+        planned.render(scene, &opts);
+        assert_eq!(planned.plan().unwrap().lean.run, lean, "{cols}×{rows}");
         let mut full = Renderer::new();
         full.render(
-            &scene,
+            scene,
             &RenderOptions {
                 pipeline: Pipeline::Full,
                 ..opts
             },
         );
+        assert!(!full.plan().unwrap().lean.run);
         assert_eq!(
             planned.framebuffer().samples(),
             full.framebuffer().samples()

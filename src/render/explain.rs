@@ -91,6 +91,15 @@ impl Renderer {
                         .map_or("each texture's own filter", |f| f.name())
                 ),
             ),
+            (
+                "lean path",
+                plan.lean,
+                format!(
+                    "{} set-up, {} walk",
+                    opts.precision.name(),
+                    opts.traversal.name()
+                ),
+            ),
         ];
         for (name, d, work) in &rows {
             let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
