@@ -237,3 +237,47 @@ fn no_source_file_is_over_800_lines_outside_its_tests() {
     }
     assert!(over.is_empty(), "{}", over.join("\n"));
 }
+
+/// Comparisons by which a stage would choose a path from the options
+/// itself, a choice that is the plan's ([`rastty::Plan::lean`]).
+const PATH_CHOICES: &[&str] = &[
+    "Pipeline::",
+    "Traversal::Scan",
+    "== Precision::",
+    "!= Precision::",
+    "== Traversal::",
+    "!= Traversal::",
+    "== Aa::",
+    "!= Aa::",
+];
+
+/// The modules above the plan that run a frame, whose paths the plan
+/// chooses.
+const RUNNERS: &[&str] = &["render"];
+
+/// Where `src` (a module's code, without comments and tests) chooses a
+/// path the plan chooses.
+fn path_choices(src: &str) -> Vec<&'static str> {
+    PATH_CHOICES
+        .iter()
+        .copied()
+        .filter(|c| src.contains(c))
+        .collect()
+}
+
+#[test]
+fn no_module_above_the_plan_decides_a_path() {
+    let order = declared(&lib());
+    let sources = sources(&order);
+    let plan = order.iter().position(|m| m == "plan").unwrap();
+    for m in RUNNERS {
+        assert!(order.iter().position(|o| o == m).unwrap() > plan, "{m}");
+        let found = path_choices(&sources[*m]);
+        assert!(found.is_empty(), "{m} chooses a path itself: {found:?}");
+    }
+    // The check sees a choice the plan should make.
+    assert_eq!(
+        path_choices("let lean = !p.full && opts.traversal != Traversal::Scan;"),
+        ["Traversal::Scan", "!= Traversal::"]
+    );
+}
