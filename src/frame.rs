@@ -199,6 +199,55 @@ impl Frame {
         let w = self.cols as usize;
         &self.cells[row as usize * w..(row as usize + 1) * w]
     }
+
+    /// The frame as text with its colours, for snapshots a colour change
+    /// fails: the glyphs row by row (as [`Frame`]'s `Display` writes them),
+    /// then each row's runs of cells of one foreground and background, as
+    /// ratatui's `Buffer` shows its styles. `-` is the terminal's default
+    /// colour; a run is `first..end fg/bg` in columns:
+    ///
+    /// ```text
+    /// ▗▄▖
+    /// ▝▀▘
+    /// colours (columns fg/bg):
+    /// 0: 0..3 #ffa040/-
+    /// 1: 0..1 #ffa040/- 1..2 #ffa040/#102030 2..3 #ffa040/-
+    /// ```
+    ///
+    /// One line a row, so an insta diff shows which rows changed colour.
+    #[must_use]
+    pub fn with_colors(&self) -> WithColors<'_> {
+        WithColors(self)
+    }
+}
+
+/// A [`Frame`] written as its glyphs and its runs of colour
+/// ([`Frame::with_colors`]).
+#[derive(Clone, Copy, Debug)]
+pub struct WithColors<'a>(&'a Frame);
+
+impl fmt::Display for WithColors<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let frame = self.0;
+        write!(f, "{frame}")?;
+        f.write_str("colours (columns fg/bg):\n")?;
+        let colour = |c: Option<Rgb>| c.map_or_else(|| "-".to_string(), |c| c.to_string());
+        for r in 0..frame.rows {
+            write!(f, "{r}:")?;
+            let row = frame.row(r);
+            let mut start = 0;
+            for end in 1..=row.len() {
+                let (a, b) = (row[start], row.get(end));
+                if b.is_some_and(|b| (b.fg, b.bg) == (a.fg, a.bg)) {
+                    continue;
+                }
+                write!(f, " {start}..{end} {}/{}", colour(a.fg), colour(a.bg))?;
+                start = end;
+            }
+            f.write_str("\n")?;
+        }
+        Ok(())
+    }
 }
 
 impl fmt::Display for Frame {

@@ -115,7 +115,7 @@ pub use choice::Choice;
 pub use color::{ColorDepth, Rgb};
 pub use encode::Encoder;
 pub use error::{Error, Result};
-pub use frame::{Cell, Frame};
+pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
 pub use options::{
     Aa, DEFAULT_MAX_SAMPLES, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS, Pipeline,

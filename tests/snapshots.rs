@@ -1,5 +1,6 @@
-//! Plain-text snapshots of whole frames: the scenes in `examples/scenes`,
-//! rendered through the whole pipeline in ascii mode without colour.
+//! Text snapshots of whole frames: the scenes in `examples/scenes`,
+//! rendered through the whole pipeline in ascii mode without colour, and
+//! one in sextants with its colours (`Frame::with_colors`).
 
 use rastty::Choice;
 use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene, render};
@@ -84,4 +85,93 @@ fn every_glyph_mode() {
             frame_in("notes-triangle", 24, 8, mode)
         );
     }
+}
+
+/// A frame's text with its colours: the glyphs, then one line a row of
+/// runs of one foreground and background, `-` for the terminal's own.
+#[test]
+fn with_colors_writes_glyphs_then_runs_of_colour() {
+    use rastty::{Cell, Frame, Rgb};
+    let mut f = Frame::new(3, 2);
+    let orange = Some(Rgb::new(0xff, 0xa0, 0x40));
+    let navy = Some(Rgb::new(0x10, 0x20, 0x30));
+    f.set(
+        0,
+        0,
+        Cell {
+            ch: '▗',
+            fg: orange,
+            bg: None,
+        },
+    );
+    f.set(
+        1,
+        0,
+        Cell {
+            ch: '▄',
+            fg: orange,
+            bg: None,
+        },
+    );
+    f.set(
+        2,
+        0,
+        Cell {
+            ch: '▖',
+            fg: orange,
+            bg: None,
+        },
+    );
+    f.set(
+        1,
+        1,
+        Cell {
+            ch: '▀',
+            fg: orange,
+            bg: navy,
+        },
+    );
+    assert_eq!(
+        f.with_colors().to_string(),
+        "▗▄▖\n ▀ \ncolours (columns fg/bg):\n0: 0..3 #ffa040/-\n1: 0..1 -/- 1..2 #ffa040/#102030 2..3 -/-\n"
+    );
+    // Its glyphs alone are the frame's Display.
+    assert!(f.with_colors().to_string().starts_with(&f.to_string()));
+}
+
+/// The two-triangle scene in sextants and truecolor, with its colours:
+/// the snapshot fails on a colour change that leaves every glyph as it
+/// was, which the glyphs alone would not.
+#[test]
+fn colours_are_in_the_snapshot() {
+    let path = format!(
+        "{}/examples/scenes/shared-edge.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let scene = Scene::load(path.as_ref()).unwrap();
+    let opts = RenderOptions {
+        cols: 24,
+        rows: 8,
+        glyphs: GlyphMode::Sextant,
+        color: ColorDepth::TrueColor,
+        ..RenderOptions::default()
+    };
+    let frame = render(&scene, &opts);
+    insta::assert_snapshot!(frame.with_colors().to_string());
+
+    // One triangle a shade darker: the same glyphs, other colours.
+    let mut darker = scene.clone();
+    let c = &mut darker.triangles[0].color;
+    *c = match *c {
+        rastty::scene::TriangleColor::Flat(rgb) => rastty::scene::TriangleColor::Flat(
+            rastty::Rgb::new(rgb.0[0] / 2, rgb.0[1] / 2, rgb.0[2] / 2),
+        ),
+        other => other,
+    };
+    let other = render(&darker, &opts);
+    assert_eq!(other.to_string(), frame.to_string());
+    assert_ne!(
+        other.with_colors().to_string(),
+        frame.with_colors().to_string()
+    );
 }
