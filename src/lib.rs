@@ -88,6 +88,7 @@ mod shade;
 pub mod clip;
 pub mod raster;
 mod framebuffer;
+mod fill;
 mod frame;
 mod blit;
 pub mod encode;

@@ -142,6 +142,7 @@ fn lib_declares_the_stages_in_data_flow_order() {
         "clip",
         "raster",
         "framebuffer",
+        "fill",
         "frame",
         "blit",
         "encode",
