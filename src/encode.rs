@@ -1030,20 +1030,6 @@ fn move_to(
     }
 }
 
-/// The cells of `next` whose picture differs from `prev`'s (see
-/// [`TermCell::same_picture`]), as `(index, cell)`, in order. Allocates
-/// nothing.
-pub fn diff<'a>(
-    prev: &'a [TermCell],
-    next: &'a [TermCell],
-) -> impl Iterator<Item = (usize, &'a TermCell)> + 'a {
-    prev.iter()
-        .zip(next)
-        .enumerate()
-        .filter(|(_, (p, n))| p != n && !p.same_picture(n))
-        .map(|(i, (_, n))| (i, n))
-}
-
 /// Lists in `changes` the indices of the cells of `region` (of a frame
 /// `cols` wide) unequal between `next` and `shown`, in order, and returns
 /// how many. Eight equal cells, most of a large frame, cost one test; in a

@@ -200,7 +200,7 @@ impl Framebuffer {
     }
 
     /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
-    /// holds (strictly, as [`Framebuffer::set_if_nearer`] decides).
+    /// holds (strictly: of two equal depths the first drawn stays).
     #[inline(always)]
     pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
         let i = self.index(x, y);
@@ -228,35 +228,6 @@ impl Framebuffer {
     #[inline(always)]
     pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
         self.samples[i] = Some(c);
-    }
-
-    /// Writes `c` at depth `z` if `z` is nearer than what the sample holds
-    /// (strictly: of two equal depths the first drawn stays). Returns
-    /// whether it was written.
-    #[inline(always)]
-    pub fn set_if_nearer(&mut self, x: u32, y: u32, z: f32, c: Lin) -> bool {
-        let i = self.index(x, y);
-        if z > self.depth[i] {
-            self.touch(Rect::at(x, y));
-            self.depth[i] = z;
-            self.samples[i] = Some(c);
-            true
-        } else {
-            false
-        }
-    }
-
-    /// Writes `c` if nothing was drawn on the sample yet: what the depth
-    /// test does for primitives of equal depth. Returns whether it wrote.
-    #[inline(always)]
-    pub fn set_if_empty(&mut self, x: u32, y: u32, c: Lin) -> bool {
-        let i = self.index(x, y);
-        let empty = self.samples[i].is_none();
-        if empty {
-            self.touch(Rect::at(x, y));
-            self.samples[i] = Some(c);
-        }
-        empty
     }
 
     #[inline(always)]

@@ -48,8 +48,6 @@
 //!
 //! | feature | default | what it adds |
 //! |---|---|---|
-//! | `cli` | yes | the `rastty` program, and the terminal it runs in (`terminal`, `live`) |
-//! | `bench` | yes | `bench`: every accuracy knob timed and measured, and its plot |
 //! | `share` | yes | `picture`: a frame as PNG or SVG; `cast`: frames as an asciicast v2 recording |
 //! | `gltf` | yes | `scene::gltf`: glTF 2.0 and GLB models, with their textures |
 //! | `ply` | yes | `scene::ply`: PLY models |
@@ -58,14 +56,16 @@
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
 //! With `default-features = false` the crate is the renderer alone (glam,
-//! the model loaders and the scene format).
+//! the model loaders and the scene format). The `rastty` program (command
+//! line, terminal, live loop, bench) is another crate, `rastty-cli`, none of
+//! whose dependencies a library user gets.
 //!
 //! Conventions: y points up (sample row 0 is the bottom; terminal row `r`
 //! shows sample row `H − 1 − r`), sample `(x, y)` sits at `(x + 0.5, y + 0.5)`,
 //! and the projection is given the physical aspect of the view
 //! ([`RenderOptions::aspect`]), since cells are not square.
 
-#![warn(missing_docs)]
+#![warn(missing_docs, missing_debug_implementations)]
 
 // Modules are declared in layers, and a module uses only modules declared
 // before it (tests/architecture.rs checks this): foundations, then the

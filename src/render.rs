@@ -1,4 +1,4 @@
-//! The pipeline, end to end: scene → transform → clip → raster →
+//! The pipeline, end to end: scene → transform → clip → raster → fill →
 //! framebuffer → blit, into a [`Frame`].
 //!
 //! A [`Renderer`] owns the framebuffer, the frame and a per-vertex scratch
@@ -18,9 +18,9 @@
 //! **Triangles.** A triangle whose three vertices are inside every clip
 //! plane goes straight to the rasterizer; one that is not is clipped in
 //! homogeneous space first ([`crate::clip`]). Culling is decided on the
-//! snapped screen-space winding, exactly. Most triangles of a model take a
-//! lean path (inside every plane, no texture, the planned pipeline's fixed
-//! point): no clip-path arguments are gathered, the signed area (culled,
+//! snapped screen-space winding, exactly. Where the plan says so
+//! ([`Plan::lean`]), untextured triangles inside every plane take a lean
+//! path: no clip-path arguments are gathered, the signed area (culled,
 //! no area) is found first and handed on, a bounding box of at most
 //! eight samples is tested sample by sample at set-up
 //! ([`crate::raster::SmallSetup`]), and a triangle that covers no sample is
@@ -29,21 +29,12 @@
 //! the set-up (`raster`), of the planned pipeline against the full one and
 //! of one band against several (`tests/plan.rs`).
 //!
-//! **Fragments.** Depth is the canonical cube's z, interpolated in screen
-//! space (where it is linear), clamped to its vertices' range, and tested
-//! per sample: larger is nearer, and of equal depths the first drawn wins.
-//! Colours are linear light ([`crate::color`]), lit and interpolated
-//! perspective-correctly: the rasterizer's screen-space weights `e_i` are
-//! divided by each vertex's `w` and renormalised. The three `1/w` are
-//! scaled by a power of two so that the largest is in [1, 2) only when one
-//! lies outside [2^−40, 2^40): within it, scaling changes no bit of a
-//! colour, and most triangles skip it. A camera that frames a
-//! model is placed for the view's aspect first ([`crate::scene::Camera::resolved`]). A triangle of one colour is written without any
-//! interpolation, and a sample's colour is computed only where the depth
-//! test lets it be written. Colours are added and multiplied in SIMD lanes
-//! (`Vec3A`): the same operations on each channel as three `f32`s, so the
-//! same results bit for bit; so is their rounding to whole steps
-//! (`Lin::round_lanes`, `Lin::from_lanes`).
+//! **Fragments** are the fill stage's ([`crate::fill`]): depth in screen
+//! space, tested per sample (larger is nearer; of equal depths the first
+//! drawn wins), colours in linear light ([`crate::color`]) interpolated
+//! through `1/w`, written only where the depth test lets them. A camera
+//! that frames a model is placed for the view's aspect first
+//! ([`crate::scene::Camera::resolved`]).
 //!
 //! **Textures.** A triangle whose material has a texture (as the plan says:
 //! [`Plan::texture`]) multiplies its lit colour by the texture at each
@@ -64,10 +55,9 @@
 //! the fixed-point edge values are exact integers from any starting row, so
 //! the frame is the same bit for bit. The costs: each band sets up every
 //! triangle that reaches it (a triangle across two bands is set up, and may
-//! be lit, twice), the copy, and a second framebuffer's memory. On this
-//! 2-core machine two bands draw a 1000×300 frame in 0.63–0.76 of one
-//! band's time and a 200×60 one in 0.91–1.66 of it, which is why small
-//! frames stay on one thread ([`crate::PARALLEL_CELLS`]).
+//! be lit, twice), the copy, and a second framebuffer's memory, which is
+//! why small frames stay on one thread ([`crate::PARALLEL_CELLS`]; what
+//! bands save is in docs/figures.md and docs/planner.md).
 
 mod explain;
 mod vertices;

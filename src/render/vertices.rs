@@ -6,15 +6,13 @@
 //! lights. Most of that is the same arithmetic on x, y and z, so here four
 //! vertices go through it together, structure of arrays: the x of four
 //! clip positions in one vector, their y in another, and so on, each
-//! operation done once for four. On Tux's 20,594 vertices the stage went
-//! from about 256 instructions a vertex to about 133 (callgrind); it was
-//! about 140 with the centre keys found one vertex at a time after the
-//! lanes, and is about 115 with the snap's rounding and the keys done in
-//! four `i32` lanes (the `wide` crate: SSE2's integer instructions, with
-//! no `unsafe` here, and plain code on targets without them). The normals' scaling by powers of two (`pow2_unit`) is one pair
-//! of factors for all four lanes when they share the first one's binade,
-//! and four scalar look-ups only otherwise: about 16 instructions a vertex
-//! less on Tux.
+//! operation done once for four (about half the instructions of one at a
+//! time, by callgrind on Tux; the frame's cost is in docs/figures.md). The
+//! snap's rounding and the centre keys are done in four `i32` lanes (the
+//! `wide` crate: SSE2's integer instructions, with no `unsafe` here, and
+//! plain code on targets without them). The normals' scaling by powers of
+//! two (`pow2_unit`) is one pair of factors for all four lanes when they
+//! share the first one's binade, and four scalar look-ups only otherwise.
 //!
 //! **The same numbers, bit for bit.** Each lane does exactly the operations
 //! [`vertex`] does, in the same order: glam's matrix products are a product

@@ -6,9 +6,9 @@
 //! `Cursor`, which reads short decimals eight digits
 //! at a time and converts them exactly (others go to `fast-float2`), and
 //! every error names the file, line and column of what is wrong. rastty's
-//! own parser rather than `tobj`: tobj parsed Tux (41k triangles) in 209M
-//! instructions and reports no positions; this parser reads it in 72M, and
-//! the whole load (normals, connectivity) is 97M.
+//! own parser rather than `tobj`, which reports no positions and, measured
+//! on Tux with callgrind, took about three times the instructions (the
+//! current load's cost is in docs/figures.md, "Loading").
 //!
 //! What is read: `v` (with an optional `w`, and vertex colours `v x y z r g
 //! b`), `vn`, `vt`, `f` (any number of corners, `v`, `v/vt`, `v//vn` or
