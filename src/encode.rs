@@ -214,6 +214,7 @@ struct Inks {
 }
 
 impl Inks {
+    #[cfg(test)]
     fn of(pen: Pen) -> Inks {
         Inks {
             fg: pack_ink(pen.fg),
@@ -727,8 +728,10 @@ fn sgr_cost(from: Inks, to: Inks) -> usize {
 }
 
 /// Appends the shortest SGR taking the terminal from `from` to `to`;
-/// nothing when they are equal.
-pub fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
+/// nothing when they are equal: the unpacked twin the packed pens' path
+/// is tested against.
+#[cfg(test)]
+fn push_sgr(buf: &mut Vec<u8>, from: Pen, to: Pen) {
     push_inks(buf, Inks::of(from), Inks::of(to));
 }
 

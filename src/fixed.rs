@@ -23,7 +23,7 @@ pub const MAX_COORD: f32 = (1u32 << 21) as f32;
 
 /// A coordinate in samples, snapped to 1/256 of a sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Fixed(pub i64);
+pub struct Fixed(pub(crate) i64);
 
 impl Fixed {
     /// Snaps a coordinate in samples to the nearest 1/256 (ties away from

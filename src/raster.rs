@@ -660,7 +660,7 @@ pub const SMALL_BOX: u64 = 8;
 /// weights and counts as [`Setup::from_fixed_in`] and its walk (a test
 /// compares the two).
 #[derive(Clone, Copy, Debug)]
-pub struct SmallSetup {
+pub(crate) struct SmallSetup {
     /// The vertices in `order`.
     p: [FixedPoint; 3],
     order: [u8; 3],
@@ -682,8 +682,9 @@ impl SmallSetup {
     /// Sets up a snapped triangle as [`Setup::from_fixed_in`] does, when
     /// its box clamped to `grid`'s columns and `band`'s rows holds at most
     /// [`SMALL_BOX`] samples: `Ok(None)` when it holds more, and the same
-    /// rejection otherwise.
-    #[inline(always)]
+    /// rejection otherwise. The twin [`SmallSetup::new_snapped`] is
+    /// tested against.
+    #[cfg(test)]
     pub fn new(
         p: [FixedPoint; 3],
         grid: Grid,
