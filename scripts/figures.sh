@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# docs/figures.md, regenerated: every performance figure the documentation
+# quotes, from the repository's measuring scripts, run here and written
+# verbatim with the commit they measured. Needs valgrind and GNU time; takes
+# about ten minutes (the 4M-triangle load under callgrind is most of it).
+#
+#   scripts/figures.sh            # rewrites docs/figures.md
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=docs/figures.md
+commit=$(git rev-parse --short HEAD)
+dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (with uncommitted changes)" || true)
+section() { # title, what it shows, script
+  printf '\n## %s\n\n%s\n\n```\n$ %s\n' "$1" "$2" "$3"
+  bash "$3"
+  printf '```\n'
+}
+{
+  cat <<HEAD
+# Figures
+
+Every performance figure of rastty in one place, written by
+\`scripts/figures.sh\` (do not edit by hand: run it) on this repository at
+commit $commit$dirty, on $(nproc) cores of $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -1).
+Instruction counts come from callgrind and repeat exactly on the same
+binary; times wander by ±20 % on this machine and are given only where
+the script says so. Module documentation keeps the reasons and the
+invariants; the numbers live here. \`rastty bench\`'s accuracy and time
+of every knob is [its own page](bench.md) (\`cargo run --release -- bench
+--svg docs/bench.svg > docs/bench.md\`).
+HEAD
+  section "Frame cost" "Instructions a frame, (40 frames − 10) / 30: Tux at 200×60 cells in half blocks, render alone and through \`spin\` (render, blit, encode), and the torus at 1000×300 cells on one thread and in bands." scripts/frame-cost.sh
+  section "What the planner saves" "Instructions a frame, planned and full pipeline, for the planner's four scenes (docs/planner.md)." scripts/plan-cost.sh
+  section "Against euc" "Instructions a frame, rastty against the euc crate, the bunny at 200×120 samples (docs/accuracy.md)." scripts/vs-euc.sh
+  section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." scripts/load-cost.sh
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "wrote $out"
