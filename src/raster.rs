@@ -54,7 +54,7 @@
 //! a bounding box of a few samples and cover none of them; many hold
 //! no sample centre at all, which the vertices' centre keys (computed once
 //! per vertex) tell in a few comparisons, once the signed area (culling,
-//! zero area) is known. [`SmallSetup`]
+//! zero area) is known. `SmallSetup`
 //! tests each sample of a box of at most [`SMALL_BOX`] once, at set-up,
 //! and keeps only the vertices and a bit per covered sample: a triangle
 //! that covers nothing is known without a [`Setup`] built (a couple of

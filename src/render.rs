@@ -23,7 +23,7 @@
 //! path: no clip-path arguments are gathered, the signed area (culled,
 //! no area) is found first and handed on, a bounding box of at most
 //! eight samples is tested sample by sample at set-up
-//! ([`crate::raster::SmallSetup`]), and a triangle that covers no sample is
+//! (`raster::SmallSetup`), and a triangle that covers no sample is
 //! neither lit nor filled, nor are its colours read. The trade-off: a
 //! second code path beside the general one, kept equal to it by tests of
 //! the set-up (`raster`), of the planned pipeline against the full one and
