@@ -658,6 +658,7 @@ fn skipped_stages_do_no_work() {
 #[test]
 fn small_triangles_take_the_lean_path_and_are_counted_as_their_set_up_would() {
     let sphere = Scene::of_mesh(Shape::Sphere.mesh(Rgb::WHITE));
+    #[cfg_attr(not(feature = "gltf"), allow(unused_mut))]
     let mut cases = vec![
         (sphere.clone(), 12, 4, Traversal::Incremental, true),
         (sphere.clone(), 30, 10, Traversal::Incremental, true),
