@@ -33,7 +33,8 @@
 
 use glam::{Vec3, Vec4};
 
-use super::{Stage, Transforms, Vert, vertex};
+use super::Stage;
+use super::vertex::{Transforms, Vert, vertex};
 use crate::fixed::FixedPoint;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
@@ -190,7 +191,8 @@ mod tests {
     use crate::color::Rgb;
     use crate::options::RenderOptions;
     use crate::plan::Plan;
-    use crate::render::{Eye, Transforms};
+    use crate::render::Eye;
+    use crate::render::vertex::Transforms;
     use crate::scene::{Scene, Shape};
     use crate::shade::Lights;
     use crate::transform::Viewport;

@@ -1,0 +1,335 @@
+//! The pipeline, end to end: scene → transform → clip → raster → fill →
+//! framebuffer → blit, into a [`Frame`].
+//!
+//! A [`Renderer`] owns the framebuffer, the frame and a per-vertex scratch
+//! buffer and reuses them, so rendering frame after frame allocates nothing
+//! once the sizes are stable. [`render`] is the one-call form for tests and
+//! tools.
+//!
+//! The stages, each in a file: the vertex stage (`vertex.rs`, and its
+//! lane twin `vertex_lanes.rs`), the triangle stage (`triangle.rs`: clip,
+//! cull, set-up, light, then [`crate::fill`]), anti-aliasing (`aa.rs`),
+//! bands (`bands.rs`) and what a frame cost (`stats.rs`). This file holds
+//! the renderer and the frame: the plan made (or remade) first, then the
+//! stages as it says. Fragments are the fill stage's ([`crate::fill`]):
+//! depth in screen space, tested per sample (larger is nearer; of equal
+//! depths the first drawn wins), colours in linear light
+//! ([`crate::color`]) interpolated through `1/w`, written only where the
+//! depth test lets them. A camera that frames a model is placed for the
+//! view's aspect first ([`crate::scene::Camera::resolved`]).
+
+mod aa;
+mod bands;
+mod explain;
+mod stats;
+mod triangle;
+mod vertex;
+mod vertex_lanes;
+
+pub use stats::{FrameStats, FrameTimes};
+
+use std::time::{Duration, Instant};
+
+use glam::{Mat4, Vec3};
+
+use crate::blit;
+use crate::clip::{Clipper, Polygon};
+use crate::color::Rgb;
+use crate::frame::{Frame, Known};
+use crate::framebuffer::Framebuffer;
+use crate::options::{Aa, RenderOptions};
+use crate::plan::Plan;
+use crate::raster::{Precision, Traversal};
+use crate::scene::{Camera, Projection, Scene};
+use crate::shade::Lights;
+use crate::transform::{self, Grid};
+use triangle::Faces;
+use vertex::{Transforms, Vert};
+
+/// Per-frame constants of the vertex and triangle stages.
+#[derive(Clone, Copy)]
+struct Stage<'a> {
+    /// Accumulate exact area coverage instead of sampling.
+    exact: bool,
+    clipper: Clipper,
+    viewport: transform::Viewport,
+    lights: Lights,
+    traversal: Traversal,
+    precision: Precision,
+    /// What the stages do: depth-test or not, interpolate (through 1/w) or
+    /// not, which shading, which groups are clip-tested, the full pipeline
+    /// (light before culling, interpolate one-colour triangles).
+    plan: &'a Plan,
+    /// Where the viewer is, to tell which side of a face is seen: a point
+    /// (perspective) or a direction towards the viewer (parallel views).
+    eye: Eye,
+}
+
+#[derive(Clone, Copy)]
+enum Eye {
+    At(Vec3),
+    Towards(Vec3),
+}
+
+impl Eye {
+    fn to_eye(self, p: Vec3) -> Vec3 {
+        match self {
+            Eye::At(e) => e - p,
+            Eye::Towards(d) => d,
+        }
+    }
+}
+
+/// A reusable renderer.
+#[derive(Debug)]
+pub struct Renderer {
+    fb: Framebuffer,
+    frame: Frame,
+    verts: Vec<Vert>,
+    poly: Polygon,
+    stats: FrameStats,
+    plan: Option<Plan>,
+    times: FrameTimes,
+    /// Anti-aliasing's per-sample sums: red, green, blue, weight.
+    acc: Vec<[f32; 4]>,
+    /// The last frame's anti-aliasing.
+    aa: Aa,
+    /// The bands of the last frame drawn in parallel, each a renderer of
+    /// its own with a framebuffer of its rows (empty until one is).
+    bands: Vec<Renderer>,
+    /// The last camera resolved, the aspect it was resolved for, and the
+    /// result ([`Camera::resolved`]).
+    camera: Option<(Camera, u32, Camera)>,
+    /// Where each mesh's vertices are in `verts`, and its matrices, for a
+    /// frame drawn in bands.
+    meshes: Vec<(std::ops::Range<usize>, Transforms)>,
+    /// What a band's blit knows of its cells (a frame drawn in bands).
+    known: Known,
+}
+
+impl Default for Renderer {
+    fn default() -> Self {
+        Renderer::new()
+    }
+}
+
+impl Renderer {
+    /// A renderer with no memory yet: the first frame allocates it.
+    pub fn new() -> Renderer {
+        Renderer {
+            fb: Framebuffer::new(Grid::new(0, 0)),
+            frame: Frame::default(),
+            verts: Vec::new(),
+            poly: Polygon::default(),
+            stats: FrameStats::default(),
+            plan: None,
+            times: FrameTimes::default(),
+            acc: Vec::new(),
+            aa: Aa::None,
+            bands: Vec::new(),
+            camera: None,
+            meshes: Vec::new(),
+            known: Known::default(),
+        }
+    }
+
+    /// Renders `scene` and returns the frame, kept in the renderer.
+    pub fn render(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
+        let mut frame = std::mem::take(&mut self.frame);
+        self.render_into(scene, opts, &mut frame);
+        self.frame = frame;
+        &self.frame
+    }
+
+    /// Renders `scene` into the caller's `frame`, resizing it to the
+    /// options' `cols × rows`. The renderer keeps only its working memory
+    /// (samples, depths, vertices, the plan) between calls: once the sizes
+    /// are stable, a frame allocates nothing. (A frame drawn in bands hands
+    /// its work to rayon, whose queue for jobs from outside its pool takes
+    /// a block of 63 slots every 63 frames.)
+    ///
+    /// ```
+    /// use rastty::{Frame, RenderOptions, Renderer, Rgb, Scene};
+    ///
+    /// let scene = Scene::of_mesh(rastty::scene::Shape::Cube.mesh(Rgb::WHITE));
+    /// let opts = RenderOptions { cols: 40, rows: 12, ..Default::default() };
+    /// let (mut renderer, mut frame) = (Renderer::new(), Frame::default());
+    /// for yaw in [0.0, 10.0, 20.0] {
+    ///     let opts = RenderOptions { turn: rastty::glam::Vec3::new(0.0, yaw, 0.0), ..opts };
+    ///     renderer.render_into(&scene, &opts, &mut frame);
+    /// }
+    /// assert_eq!((frame.cols(), frame.rows()), (40, 12));
+    /// assert!(frame.cells().iter().any(|c| c.ch != ' '));
+    /// ```
+    pub fn render_into(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
+        let grid = opts.glyphs.grid(opts.cols, opts.rows);
+        frame.set_plain(matches!(
+            opts.glyphs,
+            blit::GlyphMode::Ascii | blit::GlyphMode::Braille
+        ));
+        self.stats = FrameStats::default();
+        self.times = FrameTimes::default();
+        let mut clock = Instant::now();
+        let mut lap = move || {
+            let now = Instant::now();
+            let t = now - clock;
+            clock = now;
+            t
+        };
+
+        let turn = transform::rotation(opts.turn);
+        // A camera that frames a model is placed for this view's aspect
+        // (a few hundred thousand instructions), once while neither changes.
+        let cam = &self.resolved(&scene.camera, opts.aspect());
+        let vp = cam.view_projection(opts.aspect());
+        let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
+        // The plan is taken out of `self` for the frame (the stages borrow
+        // it) and put back: replanning reuses its memory.
+        let mut plan = self.plan.take();
+        let p: &Plan = match &mut plan {
+            Some(p) => {
+                p.replan(scene, opts, vp, turn, &clipper);
+                p
+            }
+            None => plan.insert(Plan::new(scene, opts, vp, turn, &clipper)),
+        };
+        let eye = match cam.projection {
+            Projection::Perspective { .. } => Eye::At(cam.eye),
+            Projection::Orthographic { .. } => Eye::Towards(cam.eye - cam.target),
+            Projection::None => Eye::Towards(Vec3::Z),
+        };
+        let stage = Stage {
+            exact: false,
+            clipper,
+            plan: p,
+            viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
+            lights: {
+                let lights = Lights::new(if p.lighting.run { &scene.lights } else { &[] });
+                match opts.rim {
+                    Some(c) if p.rim.run => lights.with_rim(c, cam.eye - cam.target),
+                    _ if p.rim.run => lights.with_rim(Rgb::BLACK, cam.eye - cam.target),
+                    _ => lights,
+                }
+            },
+            traversal: opts.traversal,
+            precision: opts.precision,
+            eye,
+        };
+
+        self.times.plan += lap();
+        self.aa = opts.aa;
+        let mut banded = false;
+        match opts.aa {
+            Aa::None if p.bands.count > 1 => {
+                self.draw_bands(scene, opts, &stage, (vp, turn), frame, &mut lap);
+                banded = true;
+            }
+            Aa::None => {
+                self.fb.reset(grid, p.depth.run);
+                self.geometry(scene, opts, &stage, vp, turn, &mut lap);
+            }
+            Aa::X4 | Aa::X16 | Aa::Exact => {
+                self.antialiased(scene, opts, &stage, (vp, turn), &mut lap);
+            }
+        }
+        self.times.triangles += lap();
+        // Bands blit their own rows.
+        if !banded {
+            blit::blit(
+                &self.fb,
+                opts.glyphs,
+                opts.color,
+                scene.background,
+                opts.split,
+                frame,
+            );
+            self.times.blit += lap();
+        }
+        self.plan = plan;
+    }
+    /// `camera` resolved for `aspect`: the last frame's result when both are
+    /// the same (bit for bit), otherwise found afresh.
+    fn resolved(&mut self, camera: &Camera, aspect: f32) -> Camera {
+        match self.camera {
+            Some((c, a, resolved)) if c.same_bits(camera) && a == aspect.to_bits() => resolved,
+            _ => {
+                let resolved = camera.resolved(aspect);
+                self.camera = Some((*camera, aspect.to_bits(), resolved));
+                resolved
+            }
+        }
+    }
+    /// Draws every mesh and loose triangle into the framebuffer (or, for
+    /// exact coverage, the accumulator).
+    fn geometry(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        stage: &Stage<'_>,
+        vp: Mat4,
+        turn: Mat4,
+        lap: &mut impl FnMut() -> Duration,
+    ) {
+        let p = stage.plan;
+        for (i, mesh) in scene.meshes.iter().enumerate() {
+            let transforms = Transforms::new(vp, turn * mesh.model);
+            self.verts.clear();
+            self.vertex_stage(
+                stage,
+                &transforms,
+                &mesh.positions,
+                &mesh.normals,
+                p.clip_tests(i),
+            );
+            self.times.vertices += lap();
+            let faces = Faces {
+                mesh,
+                transforms: &transforms,
+                cull: opts.cull.unwrap_or(mesh.cull),
+            };
+            // Borrowed out of `self` for the loop, and put back.
+            let verts = std::mem::take(&mut self.verts);
+            self.faces(stage, &faces, &verts);
+            self.verts = verts;
+            self.times.triangles += lap();
+        }
+        self.loose(scene, opts, stage, vp, turn);
+    }
+
+    /// The last frame [`Renderer::render`] drew (not one drawn with
+    /// [`Renderer::render_into`]).
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// The last frame, to draw over (a status line, say).
+    pub fn frame_mut(&mut self) -> &mut Frame {
+        &mut self.frame
+    }
+
+    /// The samples of the last frame.
+    pub fn framebuffer(&self) -> &Framebuffer {
+        &self.fb
+    }
+
+    /// What the last frame cost.
+    pub fn stats(&self) -> &FrameStats {
+        &self.stats
+    }
+
+    /// The plan of the last frame.
+    pub fn plan(&self) -> Option<&Plan> {
+        self.plan.as_ref()
+    }
+
+    /// Where the last frame's time went.
+    pub fn times(&self) -> &FrameTimes {
+        &self.times
+    }
+}
+
+/// Renders one frame of `scene`.
+#[must_use]
+pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
+    Renderer::new().render(scene, opts).clone()
+}

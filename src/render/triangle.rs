@@ -1,0 +1,520 @@
+//! The triangle stage: a mesh's faces, and the loose triangles, from
+//! their vertices to the fill stage.
+//!
+//! A triangle whose three vertices are inside every clip plane goes
+//! straight to the rasterizer; one that is not is clipped in homogeneous
+//! space first ([`crate::clip`]). Culling is decided on the snapped
+//! screen-space winding, exactly. Where the plan says so
+//! ([`crate::Plan::lean`]), untextured triangles inside every plane take a
+//! lean path: no clip-path arguments are gathered, the signed area
+//! (culled, no area) is found first and handed on, a bounding box of at
+//! most eight samples is tested sample by sample at set-up
+//! (`raster::SmallSetup`), and a triangle that covers no sample is neither
+//! lit nor filled, nor are its colours read. The trade-off: a second code
+//! path beside the general one, kept equal to it by tests of the set-up
+//! (`raster`), of the planned pipeline against the full one and of one
+//! band against several (`tests/plan.rs`).
+//!
+//! Lighting is evaluated here per face for flat shading, and per corner
+//! for what the vertex stage did not light (back faces, the rim). Colours
+//! are rounded to whole steps of linear light before they are
+//! interpolated, so that a one-colour triangle interpolated (the full
+//! pipeline) is the planned pipeline's plain write, bit for bit.
+
+use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
+
+use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
+use super::{Renderer, Stage};
+use crate::clip::{ClipVertex, Clipped, Snapped};
+use crate::color::Lin;
+use crate::fill::{self, Attributes, ScreenTriangle, UvPlanes};
+use crate::options::RenderOptions;
+use crate::raster::{CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup};
+use crate::scene::{Cull, Mesh, Scene};
+use crate::shade::Shading;
+use crate::texture::{Sampler, Texture};
+use crate::transform;
+
+/// Where a triangle's model-space vertices are, and the matrix taking them
+/// to clip space: read only if it must be clipped.
+#[derive(Clone, Copy)]
+pub(super) struct Model<'a> {
+    pub(super) positions: &'a [Vec3],
+    pub(super) face: [u32; 3],
+    pub(super) mvp: &'a DMat4,
+    /// Model to the turned world, where facing is told.
+    pub(super) world: &'a Mat4,
+}
+/// A triangle's texture, how to read it, and its vertices' coordinates.
+#[derive(Clone, Copy)]
+pub(super) struct Tex<'a> {
+    pub(super) texture: &'a Texture,
+    pub(super) sampler: Sampler,
+    pub(super) uv: [Vec2; 3],
+}
+/// One mesh's faces as the triangle stage needs them.
+pub(super) struct Faces<'a> {
+    pub(super) mesh: &'a Mesh,
+    pub(super) transforms: &'a Transforms,
+    pub(super) cull: Cull,
+}
+
+impl Renderer {
+    /// Draws one mesh's faces, whose vertices went through the vertex stage
+    /// into `verts`.
+    pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert]) {
+        let p = stage.plan;
+        let mesh = f.mesh;
+        for run in mesh.runs(Lin::from_srgb(mesh.color)) {
+            let texture = p.texture(run.texture);
+            // The plan's path; a run with a texture takes the general one,
+            // which on the lean path skips (and counts) a triangle that
+            // covers no sample once it is set up.
+            let lean = p.lean.run && texture.is_none();
+            // Converted to lanes once a run, not once a face.
+            let run_color = run.color.to_lanes();
+            // Every face is handed to the pipeline: counted once a run.
+            self.stats.triangles_in += run.faces.len() as u64;
+            for face in &mesh.faces[run.faces] {
+                let v = face.map(|i| &verts[i as usize]);
+                let inside = v[0].code | v[1].code | v[2].code == 0;
+                let base = || match &mesh.colors {
+                    Some(c) => face.map(|i| c[i as usize].to_lanes()),
+                    None => [run_color; 3],
+                };
+                if inside && lean {
+                    // Culled or without area: rejected before anything
+                    // else, as its set-up would reject it (snapped, so in
+                    // range).
+                    let area2 = match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
+                        Ok(a) => a,
+                        Err(r) => {
+                            self.stats.raster.count_rejected(r);
+                            continue;
+                        }
+                    };
+                    self.stats.raster.triangles_drawn += 1;
+                    // No sample centre in its box, known from its vertices'
+                    // keys: nothing more to count. The colours are read
+                    // only if it covers a sample.
+                    if !CentreKey::box_is_empty(v.map(|v| v.key)) {
+                        self.inside_triangle(stage, v, base, area2);
+                    }
+                    continue;
+                }
+                let base = base();
+                let tex = texture.map(|(texture, sampler)| Tex {
+                    texture,
+                    sampler,
+                    uv: match &mesh.uvs {
+                        Some(uv) => face.map(|i| uv[i as usize]),
+                        None => [Vec2::ZERO; 3],
+                    },
+                });
+                let model = Model {
+                    positions: &mesh.positions,
+                    face: *face,
+                    mvp: &f.transforms.mvp64,
+                    world: &f.transforms.model,
+                };
+                self.triangle(stage, v, base, f.cull, model, tex);
+            }
+        }
+    }
+    /// Draws the loose triangles, each through the vertex stage on its own.
+    pub(super) fn loose(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        stage: &Stage<'_>,
+        vp: Mat4,
+        turn: Mat4,
+    ) {
+        let p = stage.plan;
+        let cull = opts.cull.unwrap_or(Cull::None);
+        let loose = Transforms::new(vp, turn);
+        let loose_tests = p.clip_tests(scene.meshes.len());
+        self.stats.triangles_in += scene.triangles.len() as u64;
+        for tri in &scene.triangles {
+            let [a, b, c] = tri.vertices;
+            let normal = transform::face_normal(a, b, c);
+            self.verts.clear();
+            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
+            let verts = std::mem::take(&mut self.verts);
+            self.triangle(
+                stage,
+                [&verts[0], &verts[1], &verts[2]],
+                tri.color
+                    .at_vertices()
+                    .map(|c| Lin::from_srgb(c).to_lanes()),
+                cull,
+                Model {
+                    positions: &tri.vertices,
+                    face: [0, 1, 2],
+                    mvp: &loose.mvp64,
+                    world: &loose.model,
+                },
+                p.texture(None).map(|(texture, sampler)| Tex {
+                    texture,
+                    sampler,
+                    uv: [Vec2::ZERO; 3],
+                }),
+            );
+            self.verts = verts;
+        }
+    }
+
+    /// Sets up, lights, clips if it must, and rasterizes one triangle;
+    /// `model` is its vertices' model-space positions and the matrix taking
+    /// them to clip space, for the clip path. The caller counts it in
+    /// [`FrameStats::triangles_in`].
+    pub(super) fn triangle(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Vec3A; 3],
+        cull: Cull,
+        model: Model<'_>,
+        tex: Option<Tex<'_>>,
+    ) {
+        let (texture, uv) = match tex {
+            Some(t) => (Some((t.texture, t.sampler)), t.uv),
+            None => (None, [Vec2::ZERO; 3]),
+        };
+        if (v[0].code | v[1].code | v[2].code) & BAD_NORMAL != 0 {
+            self.stats.dropped_non_finite_normals += 1;
+            return;
+        }
+        if v[0].code & v[1].code & v[2].code & PLANES != 0 {
+            self.stats.clip_rejected += 1;
+            return;
+        }
+        if v[0].code | v[1].code | v[2].code == 0 {
+            // Inside every clip plane: set up first, so that culled
+            // triangles and those covering no sample are never lit (the
+            // full pipeline lights them all, first).
+            let early = stage
+                .plan
+                .full
+                .then(|| self.shade(stage, v, base, !front_facing(v)));
+            let fixed = v.map(|v| v.fixed);
+            let xy = v.map(|v| v.xy.map(f64::from));
+            let screen = |color| ScreenTriangle {
+                xy,
+                z: v.map(|v| v.z),
+                inv_w: v.map(|v| v.inv_w),
+                color,
+                uv,
+            };
+            let grid = self.fb.grid();
+            match stage.precision {
+                Precision::Fixed => {
+                    let setup = Setup::from_fixed_in(fixed, grid, self.fb.band(), cull);
+                    if let Some(s) = self.setup(&setup, stage.exact) {
+                        // On the lean path (textured and loose triangles), a small
+                        // triangle between sample centres is not lit or
+                        // filled (the full pipeline fills it anyway: the
+                        // same nothing). Counted as its walk would count it.
+                        if stage.plan.lean.run && !s.covers_any() {
+                            self.stats.raster.samples_tested += s.bbox_samples();
+                            return;
+                        }
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
+                        self.fill(s, &screen(c), stage, texture);
+                    }
+                }
+                Precision::F64 => {
+                    let setup = FloatSetup::<f64>::new(xy, grid, cull);
+                    if let Some(s) = self.setup(&setup, stage.exact) {
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
+                        self.fill(s, &screen(c), stage, texture);
+                    }
+                }
+                Precision::F32 => {
+                    let setup = FloatSetup::<f32>::new(xy, grid, cull);
+                    if let Some(s) = self.setup(&setup, stage.exact) {
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
+                        self.fill(s, &screen(c), stage, texture);
+                    }
+                }
+            }
+            return;
+        }
+        // Clipped: lit before clipping (colours are interpolated along the
+        // cut edges), facing told in the world.
+        let Model {
+            positions,
+            face,
+            mvp,
+            world,
+        } = model;
+        let w = face.map(|i| world.transform_point3(positions[i as usize]));
+        let normal = transform::face_normal(w[0], w[1], w[2]);
+        let back = normal.dot(transform::direction(stage.eye.to_eye(w[0]))) < 0.0;
+        let color = self.shade(stage, v, base, back);
+        let verts = [0, 1, 2].map(|i| ClipVertex {
+            pos: positions[face[i] as usize].as_dvec3().extend(1.0),
+            color: color[i],
+            uv: uv[i],
+            snapped: (v[i].code == 0).then_some(Snapped {
+                fixed: v[i].fixed,
+                xy: v[i].xy,
+                z: v[i].z,
+                inv_w: v[i].inv_w,
+            }),
+        });
+        let mut poly = self.poly;
+        match stage.clipper.clip(&verts, mvp, &stage.viewport, &mut poly) {
+            Clipped::Rejected => self.stats.clip_rejected += 1,
+            Clipped::Clipped | Clipped::Inside => {
+                self.stats.clipped += 1;
+                for tri in poly.triangles() {
+                    let screen = ScreenTriangle {
+                        xy: tri.map(|v| v.xy),
+                        z: tri.map(|v| v.z),
+                        inv_w: tri.map(|v| v.inv_w),
+                        color: tri.map(|v| v.color),
+                        uv: tri.map(|v| v.uv),
+                    };
+                    let grid = self.fb.grid();
+                    match stage.precision {
+                        Precision::Fixed => {
+                            let setup = Setup::from_fixed_in(
+                                tri.map(|v| v.fixed),
+                                grid,
+                                self.fb.band(),
+                                cull,
+                            );
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
+                            }
+                        }
+                        Precision::F64 => {
+                            let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
+                            }
+                        }
+                        Precision::F32 => {
+                            let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
+                            if let Some(s) = self.setup(&setup, stage.exact) {
+                                self.fill(s, &screen, stage, texture);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.poly = poly;
+    }
+    /// What a triangle inside every clip plane without a texture takes on
+    /// the plan's lean path ([`Plan::lean`]), once it is counted as drawn
+    /// with signed area `area2`: set it up, and light and fill it only if
+    /// it covers a sample.
+    #[inline(always)]
+    pub(super) fn inside_triangle(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: impl Fn() -> [Vec3A; 3],
+        area2: i64,
+    ) {
+        let (grid, band) = (self.fb.grid(), self.fb.band());
+        let fixed = v.map(|v| v.fixed);
+        match SmallSetup::new_snapped(fixed, area2, grid, band) {
+            Some(s) => self.inside_fill(stage, v, &base, &s),
+            None => {
+                let s = Setup::from_snapped(fixed, area2, grid, band);
+                self.inside_fill(stage, v, &base, &s);
+            }
+        }
+    }
+    /// Lights and fills a set-up triangle of [`Renderer::inside_triangle`]
+    /// if it covers a sample; counts its box's samples as tested if not.
+    #[inline(always)]
+    pub(super) fn inside_fill<C: Coverage>(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: &impl Fn() -> [Vec3A; 3],
+        s: &C,
+    ) {
+        if !s.covers_any() {
+            self.stats.raster.samples_tested += s.bbox_samples();
+            return;
+        }
+        let color = self.shade(stage, v, base(), !s.ccw());
+        let a = Attributes::new(
+            s.order(),
+            s.inv_area(),
+            [v.map(|v| v.z), v.map(|v| v.inv_w)],
+            color,
+            stage.plan.perspective.run,
+        );
+        let flat = !stage.plan.interpolates(&color);
+        self.fill_colour(s, &a, flat, stage);
+    }
+
+    /// The triangle's colour at each vertex. `back`: seen from behind, so
+    /// lit on its other side (two-sided lighting).
+    /// Colours are linear light in [0, 65535], rounded to whole steps, so
+    /// that interpolating three equal colours gives back exactly that
+    /// colour (the full pipeline's interpolation of a one-colour triangle
+    /// then matches the planned pipeline's plain write, bit for bit).
+    #[inline(always)]
+    pub(super) fn shade(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Vec3A; 3],
+        back: bool,
+    ) -> [Vec3; 3] {
+        let round = |c: Vec3A| Vec3::from(Lin::round_lanes(c));
+        let c = self.light(stage, v, base, back);
+        [round(c[0]), round(c[1]), round(c[2])]
+    }
+    /// [`Renderer::shade`] before rounding, in SIMD lanes (the same
+    /// operations per channel as three f32s).
+    #[inline(always)]
+    pub(super) fn light(
+        &mut self,
+        stage: &Stage<'_>,
+        v: [&Vert; 3],
+        base: [Vec3A; 3],
+        back: bool,
+    ) -> [Vec3A; 3] {
+        let b = |i: usize| base[i];
+        match stage.plan.shading {
+            Shading::None => [b(0), b(1), b(2)],
+            Shading::Flat => {
+                self.stats.lighting_evaluations += 1;
+                let side = if back { -1.0 } else { 1.0 };
+                let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
+                let light = stage.lights.lambert_a(face * side);
+                let lit = [b(0) * light, b(1) * light, b(2) * light];
+                if !stage.plan.rim.run {
+                    return lit;
+                }
+                let rim = stage.lights.rim_a(face * side);
+                lit.map(|c| c + rim)
+            }
+            Shading::Smooth if back => {
+                self.stats.lighting_evaluations += 3;
+                let rim = stage.plan.rim.run;
+                let l = |i: usize| {
+                    let lit = b(i) * stage.lights.lambert_a(-v[i].normal);
+                    if rim {
+                        lit + stage.lights.rim_a(-v[i].normal)
+                    } else {
+                        lit
+                    }
+                };
+                [l(0), l(1), l(2)]
+            }
+            Shading::Smooth if stage.plan.rim.run => {
+                // The rim from each corner's normal, here rather than in the
+                // vertex stage: a frame without a rim keeps its vertices as
+                // small and its vertex loop as short as before.
+                let l = |i: usize| b(i) * Vec3A::from(v[i].light) + stage.lights.rim_a(v[i].normal);
+                [l(0), l(1), l(2)]
+            }
+            Shading::Smooth => {
+                let l = |i: usize| b(i) * Vec3A::from(v[i].light);
+                [l(0), l(1), l(2)]
+            }
+        }
+    }
+
+    /// A set-up screen triangle, counted; `None` when it was rejected or
+    /// covers no sample.
+    /// Borrowed, not moved: a set-up triangle is a few hundred bytes.
+    #[inline(always)]
+    pub(super) fn setup<'s, C: Coverage>(
+        &mut self,
+        setup: &'s Result<C, Rejected>,
+        exact: bool,
+    ) -> Option<&'s C> {
+        match setup {
+            Ok(s) => {
+                self.stats.raster.triangles_drawn += 1;
+                // Exact coverage counts area, which a triangle between
+                // sample centres still has.
+                (s.bbox_samples() > 0 || exact).then_some(s)
+            }
+            Err(r) => {
+                self.stats.raster.count_rejected(*r);
+                None
+            }
+        }
+    }
+    /// Walks a set-up triangle and writes its samples: depth-tested, or
+    /// (when the plan skips depth) only where still empty; one colour, or
+    /// interpolated, through `1/w` where the plan asks for it; times its
+    /// texture, where it has one.
+    pub(super) fn fill<C: Coverage>(
+        &mut self,
+        setup: &C,
+        t: &ScreenTriangle,
+        stage: &Stage,
+        texture: Option<(&Texture, Sampler)>,
+    ) {
+        if stage.exact {
+            let done = fill::accumulate_exact(&mut self.acc, self.fb.grid(), t, texture);
+            self.stats.textured_samples += done.written;
+            self.stats.raster.samples_covered += done.covered;
+            self.stats.raster.samples_tested += done.tested;
+            return;
+        }
+        let o = setup.order();
+        let a = Attributes::new(
+            o,
+            setup.inv_area(),
+            [t.z, t.inv_w],
+            t.color,
+            stage.plan.perspective.run,
+        );
+        let flat = !stage.plan.interpolates(&t.color);
+        match texture {
+            Some((texture, sampler)) => {
+                // Texture coordinates are planes over the screen, found
+                // from the triangle as given (their order does not matter).
+                let planes = UvPlanes::new(t, stage.plan.perspective.run);
+                let done = self
+                    .sink(stage)
+                    .textured(setup, &a, flat, (texture, sampler, &planes));
+                self.stats.textured_samples += done.written;
+                // Texture coordinates are interpolated, whatever the colour.
+                self.count_fill(stage, done);
+            }
+            None => self.fill_colour(setup, &a, flat, stage),
+        }
+    }
+    /// Where a triangle's samples go, as the plan says to test them.
+    #[inline(always)]
+    pub(super) fn sink(&mut self, stage: &Stage) -> fill::Sink<'_> {
+        fill::Sink {
+            fb: &mut self.fb,
+            depth: stage.plan.depth.run,
+            traversal: stage.traversal,
+        }
+    }
+    /// [`Renderer::fill`] of a triangle without a texture, counted.
+    #[inline(always)]
+    pub(super) fn fill_colour<C: Coverage>(
+        &mut self,
+        setup: &C,
+        a: &Attributes,
+        flat: bool,
+        stage: &Stage,
+    ) {
+        let done = self.sink(stage).colour(setup, a, flat);
+        self.count_fill(stage, done);
+    }
+}
+
+/// Whether the snapped screen triangle is counter-clockwise (the same
+/// test `Setup` makes).
+fn front_facing(v: [&Vert; 3]) -> bool {
+    let [a, b, c] = v.map(|v| v.fixed);
+    (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0) > 0
+}
