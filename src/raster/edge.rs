@@ -76,7 +76,7 @@ pub(super) fn last_sample(hi: i64) -> i64 {
 
 /// Whether a snapped triangle's bounding box, clamped to `grid`'s columns
 /// and `band`'s rows, holds no sample centre (the same box
-/// [`Setup::from_fixed_in`] finds): the slow twin [`CentreKey`]'s test is
+/// [`Setup::of`] finds): the slow twin [`CentreKey`]'s test is
 /// checked against.
 #[cfg(test)]
 pub(super) fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool {
@@ -136,12 +136,13 @@ impl CentreKey {
 }
 
 /// Whether every coordinate is within ±[`MAX_COORD`] samples, as the
-/// vertex stage's snapped vertices are (checked in debug builds where a
-/// set-up relies on it).
+/// vertex stage's snapped vertices are: what [`SnappedTriangle::new`]
+/// checks first.
+#[inline(always)]
 pub(super) fn snapped_in_range(p: &[FixedPoint; 3]) -> bool {
-    let limit = (MAX_COORD as i64) * ONE;
+    let range = -(MAX_COORD as i64) * ONE..=(MAX_COORD as i64) * ONE;
     p.iter()
-        .all(|q| q.x.0.abs() <= limit && q.y.0.abs() <= limit)
+        .all(|q| range.contains(&q.x.0) && range.contains(&q.y.0))
 }
 
 /// A snapped triangle's extent in fixed point: `[min x, max x, min y,

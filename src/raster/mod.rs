@@ -18,7 +18,9 @@
 //!   a separate, explicit [`Cull`] choice.
 //! * A triangle of zero area after snapping draws nothing; one with a NaN or
 //!   infinite coordinate, or one beyond [`MAX_COORD`], is dropped and
-//!   counted in [`RasterStats`].
+//!   counted in [`RasterStats`]. Range, area and culling are decided in one
+//!   place, [`SnappedTriangle`], from which every fixed-point set-up
+//!   derives.
 //!
 //! **Bit widths.** Vertices lie within ±[`MAX_COORD`] = ±2^21 samples, so a
 //! snapped coordinate is below 2^29 in magnitude; sample centres inside the
@@ -76,6 +78,7 @@ mod edge;
 mod float;
 mod setup;
 mod small;
+mod snapped;
 
 use edge::*;
 
@@ -84,6 +87,8 @@ pub use float::{FloatSetup, Real};
 pub use setup::{Rejected, Setup};
 pub use small::SMALL_BOX;
 pub(crate) use small::SmallSetup;
+pub use snapped::SnappedTriangle;
+pub(crate) use snapped::signed_area2;
 
 /// How the rasterizer walks the samples. All give identical coverage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -282,18 +287,10 @@ mod tests {
             let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
             let grid = Grid::new(6, 5);
             let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
-            // In range, the snapped vertices' set-up is the same.
-            proptest::prop_assert_eq!(
-                format!("{:?}", Setup::signed_area2_in_range(&p, cull)
-                    .map(|a| SmallSetup::new_snapped(p, a, grid, band))),
-                format!("{:?}", SmallSetup::new(p, grid, band, cull))
-            );
-            proptest::prop_assert_eq!(
-                format!("{:?}", Setup::signed_area2_in_range(&p, cull)
-                    .map(|a| Setup::from_snapped(p, a, grid, band))),
-                format!("{:?}", Setup::from_fixed_in(p, grid, band, cull))
-            );
-            match (SmallSetup::new(p, grid, band, cull), Setup::from_fixed_in(p, grid, band, cull)) {
+            // In range, the vertex stage's acceptance is the same.
+            proptest::prop_assert_eq!(SnappedTriangle::in_range(p, cull), SnappedTriangle::new(p, cull));
+            let t = SnappedTriangle::new(p, cull);
+            match (t.map(|t| SmallSetup::of(&t, grid, band)), t.map(|t| Setup::of(&t, grid, band))) {
                 (Err(a), Err(b)) => proptest::prop_assert_eq!(a, b),
                 (Ok(None), Ok(s)) => proptest::prop_assert!(s.bbox_samples() > SMALL_BOX),
                 (Ok(Some(small)), Ok(s)) => {
@@ -333,7 +330,7 @@ mod tests {
             let p = [0, 2, 4].map(|i| FixedPoint { x: Fixed(c[i]), y: Fixed(c[i + 1]) });
             let grid = Grid::new(37, 40);
             let band = Band { y0: rows.0.min(rows.1), y1: rows.0.max(rows.1) + 1 };
-            if let Ok(s) = Setup::from_fixed_in(p, grid, band, cull) {
+            if let Ok(s) = SnappedTriangle::new(p, cull).map(|t| Setup::of(&t, grid, band)) {
                 let mut incremental = Vec::new();
                 s.walk(grid, Traversal::Incremental, |x, y, e| incremental.push((x, y, e)));
                 let mut spans = Vec::new();

@@ -50,56 +50,32 @@ impl Setup {
         Setup::from_fixed(p, grid, cull)
     }
 
-    /// Sets up a triangle already snapped. One whose bounding box holds no
-    /// sample centre (most triangles of a detailed model seen small) is
-    /// set up without its edges: nothing will evaluate them.
+    /// Sets up a triangle already snapped, or says why it draws nothing
+    /// ([`SnappedTriangle::new`]).
     #[inline]
     pub fn from_fixed(p: [FixedPoint; 3], grid: Grid, cull: Cull) -> Result<Setup, Rejected> {
-        Setup::from_fixed_in(p, grid, grid.all_rows(), cull)
+        Ok(Setup::of(
+            &SnappedTriangle::new(p, cull)?,
+            grid,
+            grid.all_rows(),
+        ))
     }
 
-    /// [`Setup::from_fixed`] with the bounding box clamped to `band`'s rows
-    /// as well: the part of the triangle one band of a parallel frame
-    /// draws. The edge values at a sample are exact integers, whatever row
-    /// the walk starts from, so the bands together cover exactly the
-    /// samples the whole grid's set-up covers, with the same weights.
-    #[inline]
-    pub fn from_fixed_in(
-        p: [FixedPoint; 3],
-        grid: Grid,
-        band: Band,
-        cull: Cull,
-    ) -> Result<Setup, Rejected> {
-        // Twice the signed area, the same from any starting vertex: cull
-        // and drop degenerates before anything else.
-        let extent = extent(&p);
-        let area2 = Setup::signed_area2_in(&p, &extent, cull)?;
-        Ok(Setup::with_area(p, &extent, area2, grid, band))
-    }
-
-    /// [`Setup::from_fixed_in`] of a triangle the vertex stage snapped
-    /// (every coordinate within ±[`MAX_COORD`] samples), whose
-    /// [`Setup::signed_area2`] is `area2`: the same set-up.
+    /// The set-up of an accepted triangle, its bounding box clamped to
+    /// `grid`'s columns and `band`'s rows: the part of the triangle one band
+    /// of a parallel frame draws (`grid.all_rows()` for the whole). The
+    /// edge values at a sample are exact integers, whatever row the walk
+    /// starts from, so the bands together cover exactly the samples the
+    /// whole grid's set-up covers, with the same weights. One whose box
+    /// holds no sample centre (most triangles of a detailed model seen
+    /// small) is set up without its edges: nothing will evaluate them.
     #[inline(always)]
-    pub(crate) fn from_snapped(p: [FixedPoint; 3], area2: i64, grid: Grid, band: Band) -> Setup {
-        debug_assert!(snapped_in_range(&p));
-        Setup::with_area(p, &extent(&p), area2, grid, band)
-    }
-
-    /// The set-up of a triangle whose extent and signed area (not zero) are
-    /// known.
-    #[inline(always)]
-    pub(super) fn with_area(
-        p: [FixedPoint; 3],
-        extent: &[i64; 4],
-        area2: i64,
-        grid: Grid,
-        band: Band,
-    ) -> Setup {
+    pub fn of(t: &SnappedTriangle, grid: Grid, band: Band) -> Setup {
+        let (p, area2) = (t.vertices(), t.signed_area2());
         let ccw = area2 > 0;
-        let [x0, x1, y0, y1] = clamped_box(extent, grid, band);
+        let [x0, x1, y0, y1] = clamped_box(&extent(&p), grid, band);
         if x0 > x1 || y0 > y1 {
-            // A return of its own rather than one `Ok(Setup { .. })` below
+            // A return of its own rather than one `Setup { .. }` below
             // with the edges chosen by an `if`: 3 % fewer instructions on a
             // Tux frame (callgrind).
             return Setup {
@@ -123,44 +99,6 @@ impl Setup {
             x1,
             y0,
             y1,
-        }
-    }
-
-    /// Twice the signed area of a snapped triangle (positive when
-    /// counter-clockwise), or why [`Setup::from_fixed`] rejects it before
-    /// looking at its bounding box: a coordinate out of range, no area, or
-    /// culled.
-    #[inline(always)]
-    pub fn signed_area2(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
-        Setup::signed_area2_in(p, &extent(p), cull)
-    }
-
-    /// [`Setup::signed_area2`] of a triangle whose [`extent`] is known.
-    #[inline(always)]
-    pub(super) fn signed_area2_in(
-        p: &[FixedPoint; 3],
-        e: &[i64; 4],
-        cull: Cull,
-    ) -> Result<i64, Rejected> {
-        // Every coordinate within ±limit: the extent's ends are.
-        let limit = (MAX_COORD as i64) * ONE;
-        if e[0] < -limit || e[1] > limit || e[2] < -limit || e[3] > limit {
-            return Err(Rejected::OutOfRange);
-        }
-        Setup::signed_area2_in_range(p, cull)
-    }
-
-    /// [`Setup::signed_area2`] of a triangle whose coordinates are known to
-    /// be within ±[`MAX_COORD`] samples.
-    #[inline(always)]
-    pub(crate) fn signed_area2_in_range(p: &[FixedPoint; 3], cull: Cull) -> Result<i64, Rejected> {
-        let area2 = Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0);
-        if area2 == 0 {
-            return Err(Rejected::Degenerate);
-        }
-        match (cull, area2 > 0) {
-            (Cull::Back, false) | (Cull::Front, true) => Err(Rejected::Culled),
-            _ => Ok(area2),
         }
     }
 

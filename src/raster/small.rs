@@ -15,7 +15,7 @@ pub const SMALL_BOX: u64 = 8;
 /// cover nothing: that is then known without a [`Setup`] built and walked.
 /// Small, so that it stays in registers: the vertices and which samples
 /// are covered, whose weights the walk finds again. The same samples,
-/// weights and counts as [`Setup::from_fixed_in`] and its walk (a test
+/// weights and counts as [`Setup::of`] and its walk (a test
 /// compares the two).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SmallSetup {
@@ -37,47 +37,13 @@ pub(crate) struct SmallSetup {
 }
 
 impl SmallSetup {
-    /// Sets up a snapped triangle as [`Setup::from_fixed_in`] does, when
-    /// its box clamped to `grid`'s columns and `band`'s rows holds at most
-    /// [`SMALL_BOX`] samples: `Ok(None)` when it holds more, and the same
-    /// rejection otherwise. The twin [`SmallSetup::new_snapped`] is
-    /// tested against.
-    #[cfg(test)]
-    pub fn new(
-        p: [FixedPoint; 3],
-        grid: Grid,
-        band: Band,
-        cull: Cull,
-    ) -> Result<Option<SmallSetup>, Rejected> {
-        let extent = extent(&p);
-        let area2 = Setup::signed_area2_in(&p, &extent, cull)?;
-        Ok(SmallSetup::with_area(p, &extent, area2, grid, band))
-    }
-
-    /// [`SmallSetup::new`] for vertices the vertex stage snapped (each
-    /// coordinate is within ±[`MAX_COORD`] samples: `Fixed::snap` accepts no
-    /// other), whose [`Setup::signed_area2`] is `area2`, found by the caller
-    /// before anything else: `None` when its box holds more than
-    /// [`SMALL_BOX`] samples.
+    /// Sets up an accepted triangle as [`Setup::of`] does, when its box
+    /// clamped to `grid`'s columns and `band`'s rows holds at most
+    /// [`SMALL_BOX`] samples: `None` when it holds more.
     #[inline(always)]
-    pub(crate) fn new_snapped(
-        p: [FixedPoint; 3],
-        area2: i64,
-        grid: Grid,
-        band: Band,
-    ) -> Option<SmallSetup> {
-        debug_assert!(snapped_in_range(&p));
-        SmallSetup::with_area(p, &extent(&p), area2, grid, band)
-    }
-
-    #[inline(always)]
-    pub(super) fn with_area(
-        p: [FixedPoint; 3],
-        extent: &[i64; 4],
-        area2: i64,
-        grid: Grid,
-        band: Band,
-    ) -> Option<SmallSetup> {
+    pub(crate) fn of(t: &SnappedTriangle, grid: Grid, band: Band) -> Option<SmallSetup> {
+        let (p, area2) = (t.vertices(), t.signed_area2());
+        let extent = &extent(&p);
         let ccw = area2 > 0;
         let [x0, x1, y0, y1] = clamped_box(extent, grid, band);
         if x0 > x1 || y0 > y1 {

@@ -247,6 +247,7 @@ impl Renderer {
         }
         self.plan = plan;
     }
+
     /// `camera` resolved for `aspect`: the last frame's result when both are
     /// the same (bit for bit), otherwise found afresh.
     fn resolved(&mut self, camera: &Camera, aspect: f32) -> Camera {
@@ -259,6 +260,7 @@ impl Renderer {
             }
         }
     }
+
     /// Draws every mesh and loose triangle into the framebuffer (or, for
     /// exact coverage, the accumulator).
     fn geometry(

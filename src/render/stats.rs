@@ -73,6 +73,7 @@ impl FrameStats {
         self.raster.samples_covered += band.raster.samples_covered;
     }
 }
+
 /// Where one frame's time went (wall clock; kept apart from
 /// [`FrameStats`], which is deterministic).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

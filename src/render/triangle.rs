@@ -29,7 +29,9 @@ use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
 use crate::fill::{self, Attributes, ScreenTriangle, UvPlanes};
 use crate::options::RenderOptions;
-use crate::raster::{CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup};
+use crate::raster::{
+    self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup, SnappedTriangle,
+};
 use crate::scene::{Cull, Mesh, Scene};
 use crate::shade::Shading;
 use crate::texture::{Sampler, Texture};
@@ -45,6 +47,7 @@ pub(super) struct Model<'a> {
     /// Model to the turned world, where facing is told.
     pub(super) world: &'a Mat4,
 }
+
 /// A triangle's texture, how to read it, and its vertices' coordinates.
 #[derive(Clone, Copy)]
 pub(super) struct Tex<'a> {
@@ -52,6 +55,7 @@ pub(super) struct Tex<'a> {
     pub(super) sampler: Sampler,
     pub(super) uv: [Vec2; 3],
 }
+
 /// One mesh's faces as the triangle stage needs them.
 pub(super) struct Faces<'a> {
     pub(super) mesh: &'a Mesh,
@@ -86,8 +90,8 @@ impl Renderer {
                     // Culled or without area: rejected before anything
                     // else, as its set-up would reject it (snapped, so in
                     // range).
-                    let area2 = match Setup::signed_area2_in_range(&v.map(|v| v.fixed), f.cull) {
-                        Ok(a) => a,
+                    let t = match SnappedTriangle::in_range(v.map(|v| v.fixed), f.cull) {
+                        Ok(t) => t,
                         Err(r) => {
                             self.stats.raster.count_rejected(r);
                             continue;
@@ -98,7 +102,7 @@ impl Renderer {
                     // keys: nothing more to count. The colours are read
                     // only if it covers a sample.
                     if !CentreKey::box_is_empty(v.map(|v| v.key)) {
-                        self.inside_triangle(stage, v, base, area2);
+                        self.inside_triangle(stage, v, base, &t);
                     }
                     continue;
                 }
@@ -121,6 +125,7 @@ impl Renderer {
             }
         }
     }
+
     /// Draws the loose triangles, each through the vertex stage on its own.
     pub(super) fn loose(
         &mut self,
@@ -209,7 +214,9 @@ impl Renderer {
             let grid = self.fb.grid();
             match stage.precision {
                 Precision::Fixed => {
-                    let setup = Setup::from_fixed_in(fixed, grid, self.fb.band(), cull);
+                    let band = self.fb.band();
+                    let setup =
+                        SnappedTriangle::new(fixed, cull).map(|t| Setup::of(&t, grid, band));
                     if let Some(s) = self.setup(&setup, stage.exact) {
                         // On the lean path (textured and loose triangles), a small
                         // triangle between sample centres is not lit or
@@ -279,12 +286,9 @@ impl Renderer {
                     let grid = self.fb.grid();
                     match stage.precision {
                         Precision::Fixed => {
-                            let setup = Setup::from_fixed_in(
-                                tri.map(|v| v.fixed),
-                                grid,
-                                self.fb.band(),
-                                cull,
-                            );
+                            let band = self.fb.band();
+                            let setup = SnappedTriangle::new(tri.map(|v| v.fixed), cull)
+                                .map(|t| Setup::of(&t, grid, band));
                             if let Some(s) = self.setup(&setup, stage.exact) {
                                 self.fill(s, &screen, stage, texture);
                             }
@@ -307,28 +311,29 @@ impl Renderer {
         }
         self.poly = poly;
     }
+
     /// What a triangle inside every clip plane without a texture takes on
-    /// the plan's lean path ([`Plan::lean`]), once it is counted as drawn
-    /// with signed area `area2`: set it up, and light and fill it only if
-    /// it covers a sample.
+    /// the plan's lean path ([`crate::Plan::lean`]), once it is accepted
+    /// and counted as drawn: set it up, and light and fill it only if it
+    /// covers a sample.
     #[inline(always)]
     pub(super) fn inside_triangle(
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
         base: impl Fn() -> [Vec3A; 3],
-        area2: i64,
+        t: &SnappedTriangle,
     ) {
         let (grid, band) = (self.fb.grid(), self.fb.band());
-        let fixed = v.map(|v| v.fixed);
-        match SmallSetup::new_snapped(fixed, area2, grid, band) {
+        match SmallSetup::of(t, grid, band) {
             Some(s) => self.inside_fill(stage, v, &base, &s),
             None => {
-                let s = Setup::from_snapped(fixed, area2, grid, band);
+                let s = Setup::of(t, grid, band);
                 self.inside_fill(stage, v, &base, &s);
             }
         }
     }
+
     /// Lights and fills a set-up triangle of [`Renderer::inside_triangle`]
     /// if it covers a sample; counts its box's samples as tested if not.
     #[inline(always)]
@@ -373,6 +378,7 @@ impl Renderer {
         let c = self.light(stage, v, base, back);
         [round(c[0]), round(c[1]), round(c[2])]
     }
+
     /// [`Renderer::shade`] before rounding, in SIMD lanes (the same
     /// operations per channel as three f32s).
     #[inline(always)]
@@ -447,6 +453,7 @@ impl Renderer {
             }
         }
     }
+
     /// Walks a set-up triangle and writes its samples: depth-tested, or
     /// (when the plan skips depth) only where still empty; one colour, or
     /// interpolated, through `1/w` where the plan asks for it; times its
@@ -489,6 +496,7 @@ impl Renderer {
             None => self.fill_colour(setup, &a, flat, stage),
         }
     }
+
     /// Where a triangle's samples go, as the plan says to test them.
     #[inline(always)]
     pub(super) fn sink(&mut self, stage: &Stage) -> fill::Sink<'_> {
@@ -498,6 +506,7 @@ impl Renderer {
             traversal: stage.traversal,
         }
     }
+
     /// [`Renderer::fill`] of a triangle without a texture, counted.
     #[inline(always)]
     pub(super) fn fill_colour<C: Coverage>(
@@ -513,8 +522,7 @@ impl Renderer {
 }
 
 /// Whether the snapped screen triangle is counter-clockwise (the same
-/// test `Setup` makes).
+/// signed area every set-up finds).
 fn front_facing(v: [&Vert; 3]) -> bool {
-    let [a, b, c] = v.map(|v| v.fixed);
-    (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0) > 0
+    raster::signed_area2(&v.map(|v| v.fixed)) > 0
 }

@@ -40,6 +40,7 @@ impl Transforms {
         }
     }
 }
+
 /// A vertex after the vertex stage.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
@@ -63,6 +64,7 @@ pub(super) struct Vert {
     pub(super) z: f32,
     pub(super) inv_w: f32,
 }
+
 /// An outcode bit of no clip plane: the vertex's f32 clip position is not
 /// finite (coordinates near f32's largest overflow in the product) or its
 /// screen position could not be snapped; it takes the clip path, which
