@@ -44,16 +44,39 @@ pub(crate) struct Sink<'a> {
     pub traversal: Traversal,
 }
 
-/// What one fill did, for the renderer's counts.
+/// What one fill did, counted by the loop that did it, for the renderer's
+/// counts: a path that skips work cannot report it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Filled {
-    /// Samples covered (each depth-tested where the sink tests depth).
+    /// Samples covered.
     pub covered: u64,
+    /// Of those, depth-tested: all, by the loops that test depth; none by
+    /// the others.
+    pub depth_tested: u64,
     /// Samples written with an interpolated colour or a texel (for exact
     /// coverage: the texture reads).
     pub written: u64,
+    /// Of those, interpolated through `1/w` (the attributes' weights are
+    /// perspective weights).
+    pub perspective: u64,
     /// Samples tested for coverage.
     pub tested: u64,
+}
+
+impl Filled {
+    /// What a loop did: `covered` samples, all depth-tested if it tested
+    /// depth, `written` with attributes `a` (through `1/w` if they carry
+    /// perspective weights), `tested` for coverage.
+    #[inline(always)]
+    fn of(covered: u64, depth_tested: bool, written: u64, a: &Attributes, tested: u64) -> Filled {
+        Filled {
+            covered,
+            depth_tested: if depth_tested { covered } else { 0 },
+            written,
+            perspective: if a.perspective { written } else { 0 },
+            tested,
+        }
+    }
 }
 
 impl Sink<'_> {
@@ -78,32 +101,31 @@ impl Sink<'_> {
             Lin::from_lanes(lit * Vec3A::from(texel))
         };
         let tr = self.traversal;
-        let tested = if self.depth {
-            setup.walk_samples(grid, tr, |x, y, e| {
+        // Each loop says whether it tested depth.
+        let (tested, depth) = if self.depth {
+            let tested = setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 let z = a.depth(C::f32(e));
                 if let Some(i) = fb.nearer(x, y, z) {
                     written += 1;
                     fb.write(i, z, shade(x, y, e));
                 }
-            })
+            });
+            (tested, true)
         } else {
-            setup.walk_samples(grid, tr, |x, y, e| {
+            let tested = setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 if let Some(i) = fb.empty(x, y) {
                     written += 1;
                     fb.write_color(i, shade(x, y, e));
                 }
-            })
+            });
+            (tested, false)
         };
         if written > 0 {
             fb.touch(setup.bounds());
         }
-        Filled {
-            covered,
-            written,
-            tested,
-        }
+        Filled::of(covered, depth, written, a, tested)
     }
 
     /// Fills a set-up triangle without a texture: one colour (`flat`), or
@@ -118,45 +140,54 @@ impl Sink<'_> {
         let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
         let depth = |e: C::Weights| a.depth(C::f32(e));
         let tr = self.traversal;
-        // One tight loop per combination, so that each inlines.
-        let tested = match (flat, self.depth) {
-            (true, false) => setup.walk_samples(grid, tr, |x, y, _| {
-                covered += 1;
-                if let Some(i) = fb.empty(x, y) {
-                    fb.write_color(i, one);
-                }
-            }),
-            (true, true) => setup.walk_samples(grid, tr, |x, y, e| {
-                covered += 1;
-                let z = depth(e);
-                if let Some(i) = fb.nearer(x, y, z) {
-                    fb.write(i, z, one);
-                }
-            }),
-            (false, false) => setup.walk_samples(grid, tr, |x, y, e| {
-                covered += 1;
-                if let Some(i) = fb.empty(x, y) {
-                    written += 1;
-                    fb.write_color(i, interpolate(e));
-                }
-            }),
-            (false, true) => setup.walk_samples(grid, tr, |x, y, e| {
-                covered += 1;
-                let z = depth(e);
-                if let Some(i) = fb.nearer(x, y, z) {
-                    written += 1;
-                    fb.write(i, z, interpolate(e));
-                }
-            }),
+        // One tight loop per combination, so that each inlines; each says
+        // whether it tested depth.
+        let (tested, depth_tested) = match (flat, self.depth) {
+            (true, false) => {
+                let tested = setup.walk_samples(grid, tr, |x, y, _| {
+                    covered += 1;
+                    if let Some(i) = fb.empty(x, y) {
+                        fb.write_color(i, one);
+                    }
+                });
+                (tested, false)
+            }
+            (true, true) => {
+                let tested = setup.walk_samples(grid, tr, |x, y, e| {
+                    covered += 1;
+                    let z = depth(e);
+                    if let Some(i) = fb.nearer(x, y, z) {
+                        fb.write(i, z, one);
+                    }
+                });
+                (tested, true)
+            }
+            (false, false) => {
+                let tested = setup.walk_samples(grid, tr, |x, y, e| {
+                    covered += 1;
+                    if let Some(i) = fb.empty(x, y) {
+                        written += 1;
+                        fb.write_color(i, interpolate(e));
+                    }
+                });
+                (tested, false)
+            }
+            (false, true) => {
+                let tested = setup.walk_samples(grid, tr, |x, y, e| {
+                    covered += 1;
+                    let z = depth(e);
+                    if let Some(i) = fb.nearer(x, y, z) {
+                        written += 1;
+                        fb.write(i, z, interpolate(e));
+                    }
+                });
+                (tested, true)
+            }
         };
         if covered > 0 {
             fb.touch(setup.bounds());
         }
-        Filled {
-            covered,
-            written,
-            tested,
-        }
+        Filled::of(covered, depth_tested, written, a, tested)
     }
 }
 
@@ -243,6 +274,8 @@ pub(crate) struct Attributes {
     /// In SIMD lanes: the same operations on each channel as three f32s,
     /// so the same results, in fewer instructions.
     color: [Vec3A; 3],
+    /// Whether `w` holds perspective weights.
+    perspective: bool,
 }
 
 impl Attributes {
@@ -275,6 +308,7 @@ impl Attributes {
                 [1.0; 3]
             },
             color: order.map(|i| Vec3A::from(color[i])),
+            perspective,
         }
     }
 
@@ -429,7 +463,66 @@ fn perspective_weights(v: [f32; 3]) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixed::FixedPoint;
+    use crate::raster::{Setup, SnappedTriangle, Traversal};
+    use crate::scene::Cull;
+    use glam::Vec3;
     use proptest::prelude::*;
+
+    /// A fill's counts are its loops' own: the loops that test depth count
+    /// every covered sample as depth-tested and leave a depth at each, the
+    /// others count none and leave none; samples written through
+    /// perspective weights are counted as such, and only they.
+    #[test]
+    fn a_fill_counts_the_depth_tests_and_perspective_writes_it_made() {
+        let grid = Grid::new(8, 8);
+        let p = [[0.3, 0.2], [7.6, 1.1], [2.2, 7.4]].map(|v| FixedPoint::snap(v).unwrap());
+        let s = Setup::of(
+            &SnappedTriangle::new(p, Cull::None).unwrap(),
+            grid,
+            grid.all_rows(),
+        );
+        let (z, inv_w) = ([0.5, 0.26, 0.75], [1.0, 0.5, 0.26]);
+        let colors = [
+            Vec3::new(65535.0, 0.0, 0.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, 65535.0),
+        ];
+        for depth in [false, true] {
+            for perspective in [false, true] {
+                for flat in [false, true] {
+                    let mut fb = Framebuffer::new(grid);
+                    fb.reset(grid, depth);
+                    let a =
+                        Attributes::new(s.order(), s.inv_area(), [z, inv_w], colors, perspective);
+                    let mut sink = Sink {
+                        fb: &mut fb,
+                        depth,
+                        traversal: Traversal::Spans,
+                    };
+                    let done = sink.colour(&s, &a, flat);
+                    let case = format!("depth {depth}, perspective {perspective}, flat {flat}");
+                    // The triangle's area is 25.4 samples.
+                    assert_eq!(done.covered, 26, "{case}");
+                    assert_eq!(done.depth_tested, if depth { 26 } else { 0 }, "{case}");
+                    // An empty framebuffer: every covered sample is written,
+                    // with an interpolated colour unless flat.
+                    let written = if flat { 0 } else { 26 };
+                    assert_eq!(done.written, written, "{case}");
+                    assert_eq!(
+                        done.perspective,
+                        if perspective { written } else { 0 },
+                        "{case}"
+                    );
+                    let depths = (0..8)
+                        .flat_map(|y| (0..8).map(move |x| (x, y)))
+                        .filter(|&(x, y)| fb.depth(x, y) != f32::NEG_INFINITY)
+                        .count();
+                    assert_eq!(depths, if depth { 26 } else { 0 }, "{case}");
+                }
+            }
+        }
+    }
 
     proptest! {
         /// The power of two read from the largest weight's bits is the

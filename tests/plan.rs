@@ -563,6 +563,11 @@ fn every_example_scene_is_the_same_planned_or_full() {
     }
 }
 
+/// The stages the plan skips report no work: depth tests, clip tests,
+/// interpolated and perspective samples and lighting are counted by the
+/// loops that do them (the vertex stage's paths, the fill stage's loops),
+/// not from the plan's decisions, so a count of zero means no loop that
+/// does the work ran.
 #[test]
 fn skipped_stages_do_no_work() {
     let opts = RenderOptions {

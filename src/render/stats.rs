@@ -5,10 +5,9 @@
 
 use std::time::Duration;
 
-use super::{Renderer, Stage};
+use super::Renderer;
 use crate::fill;
 use crate::raster::RasterStats;
-use crate::shade::Shading;
 
 /// What one frame cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -92,36 +91,23 @@ pub struct FrameTimes {
 }
 
 impl Renderer {
-    /// Counts what the vertex stage does for `n` vertices.
-    pub(super) fn count_vertices(&mut self, stage: &Stage<'_>, n: usize, clip_tests: bool) {
-        let n = n as u64;
-        self.stats.vertices += n;
-        if stage.plan.shading == Shading::Smooth {
-            self.stats.lighting_evaluations += n;
-        }
-        if clip_tests {
-            self.stats.clip_tests += n;
-        }
-    }
-
-    /// Counts what one fill did: `covered` samples, each depth-tested where
-    /// the plan tests depth, of which `written` were written with an
-    /// interpolated colour; `tested` samples tested for coverage.
+    /// Counts what one fill did, as the fill stage counted it: `covered`
+    /// samples, `depth_tested` of them depth-tested, `written` of them
+    /// written with an interpolated colour, `perspective` of those through
+    /// `1/w`; `tested` samples tested for coverage.
     #[inline(always)]
-    pub(super) fn count_fill(&mut self, stage: &Stage, done: fill::Filled) {
+    pub(super) fn count_fill(&mut self, done: fill::Filled) {
         let fill::Filled {
             covered,
+            depth_tested,
             written: interpolated,
+            perspective,
             tested,
         } = done;
         let stats = &mut self.stats;
-        if stage.plan.depth.run {
-            stats.depth_tests += covered;
-        }
+        stats.depth_tests += depth_tested;
         stats.interpolated_samples += interpolated;
-        if stage.plan.perspective.run {
-            stats.perspective_samples += interpolated;
-        }
+        stats.perspective_samples += perspective;
         stats.raster.samples_tested += tested;
         stats.raster.samples_covered += covered;
     }

@@ -491,7 +491,7 @@ impl Renderer {
                     .textured(setup, &a, flat, (texture, sampler, &planes));
                 self.stats.textured_samples += done.written;
                 // Texture coordinates are interpolated, whatever the colour.
-                self.count_fill(stage, done);
+                self.count_fill(done);
             }
             None => self.fill_colour(setup, &a, flat, stage),
         }
@@ -517,7 +517,7 @@ impl Renderer {
         stage: &Stage,
     ) {
         let done = self.sink(stage).colour(setup, a, flat);
-        self.count_fill(stage, done);
+        self.count_fill(done);
     }
 }
 

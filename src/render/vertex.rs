@@ -88,9 +88,24 @@ impl Renderer {
         normals: &[Vec3],
         clip_tests: bool,
     ) {
-        self.count_vertices(stage, positions.len(), clip_tests);
-        vertex_lanes::vertices(stage, t, positions, normals, clip_tests, &mut self.verts);
+        let done =
+            vertex_lanes::vertices(stage, t, positions, normals, clip_tests, &mut self.verts);
+        self.stats.vertices += done.vertices;
+        self.stats.lighting_evaluations += done.lit;
+        self.stats.clip_tests += done.clip_tested;
     }
+}
+
+/// What the vertex stage did, counted where it did it (for
+/// [`super::FrameStats`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct VertexWork {
+    /// Vertices transformed.
+    pub(super) vertices: u64,
+    /// Of those, lit (smooth shading lights every vertex).
+    pub(super) lit: u64,
+    /// Of those, tested against the clip planes.
+    pub(super) clip_tested: u64,
 }
 
 /// One vertex through the vertex stage: its clip position and outcode

@@ -34,14 +34,15 @@
 use glam::{Vec3, Vec4};
 
 use super::Stage;
-use super::vertex::{Transforms, Vert, vertex};
+use super::vertex::{Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
 
 /// Appends the vertex stage's result for each of `positions` with its
-/// normal, in order, to `out`: what `vertex` gives for each.
+/// normal, in order, to `out`: what `vertex` gives for each; returns what
+/// it did, counted from the paths it took.
 #[inline(always)]
 pub(super) fn vertices(
     stage: &Stage<'_>,
@@ -50,15 +51,26 @@ pub(super) fn vertices(
     normals: &[Vec3],
     clip_tests: bool,
     out: &mut Vec<Vert>,
-) {
+) -> VertexWork {
     let n = positions.len().min(normals.len());
     let (positions, normals) = (&positions[..n], &normals[..n]);
     let one = |(&p, &n): (&Vec3, &Vec3)| vertex(stage, t, p, n, clip_tests);
     let shading = stage.plan.shading;
+    // `vertex` and the lanes light a vertex exactly when shading is smooth,
+    // and test it exactly when `clip_tests` says.
+    let work = VertexWork {
+        vertices: n as u64,
+        lit: if shading == Shading::Smooth {
+            n as u64
+        } else {
+            0
+        },
+        clip_tested: if clip_tests { n as u64 } else { 0 },
+    };
     if n < 4 || shading == Shading::Flat {
         // A loose triangle's three vertices, or flat shading.
         out.extend(positions.iter().zip(normals).map(one));
-        return;
+        return work;
     }
     let smooth = shading == Shading::Smooth;
     out.reserve(n);
@@ -71,6 +83,7 @@ pub(super) fn vertices(
     }
     let start = n - n % 4;
     out.extend(positions[start..].iter().zip(&normals[start..]).map(one));
+    work
 }
 
 /// A chunk of four as an array.
