@@ -15,9 +15,9 @@ pub struct Setup {
     pub(super) order: [usize; 3],
     /// Twice the snapped area in fixed-point units squared (> 0); the sum of
     /// the three edge values at any point.
-    pub area2: i64,
+    pub(super) area2: i64,
     /// Whether the triangle is counter-clockwise on screen (front-facing).
-    pub ccw: bool,
+    pub(super) ccw: bool,
     /// Inclusive sample bounds, clamped to the grid; empty when `x0 > x1` or
     /// `y0 > y1`.
     pub(super) x0: i64,
@@ -136,7 +136,7 @@ impl Setup {
 
     /// Walks the samples with `traversal`, calling `hit(x, y, e)` for each
     /// covered sample, where `e[k]` is the weight of vertex `order()[k]` (the
-    /// three sum to [`Setup::area2`]). Returns the number of samples tested.
+    /// three sum to twice the area). Returns the number of samples tested.
     #[inline(always)]
     pub fn walk<F: FnMut(u32, u32, [i64; 3])>(
         &self,

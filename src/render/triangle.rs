@@ -226,7 +226,7 @@ impl Renderer {
                             self.stats.raster.samples_tested += s.bbox_samples();
                             return;
                         }
-                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw));
+                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
                         self.fill(s, &screen(c), stage, texture);
                     }
                 }
