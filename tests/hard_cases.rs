@@ -941,7 +941,7 @@ fn the_near_touching_pair_leaves_no_hole_on_the_diagonal() {
 // 9. Perspective-correct interpolation.
 
 // Perspective-correct colours against an f64 ray cast: `rastty bench`'s
-// own measure, tested beside it (cli/src/bench.rs).
+// own measure, tested beside it (cli/src/bench/).
 
 // 10. Depth.
 

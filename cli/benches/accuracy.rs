@@ -8,7 +8,7 @@
 use std::path::Path;
 
 #[allow(dead_code, unused_imports)]
-#[path = "../src/bench.rs"]
+#[path = "../src/bench/mod.rs"]
 mod bench;
 
 use criterion::{Criterion, criterion_group, criterion_main};
