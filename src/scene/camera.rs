@@ -1,0 +1,351 @@
+//! The camera: where the eye is, what it looks at, its projection, and a
+//! camera that frames a model, placed for the view's aspect when drawn.
+
+use super::*;
+
+/// Where the viewer stands and how the view is projected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// How the view is projected.
+    pub projection: Projection,
+    /// Where the eye is.
+    pub eye: Vec3,
+    /// What it looks at.
+    pub target: Vec3,
+    /// Which way is up.
+    pub up: Vec3,
+    /// Frame a model: with this, `eye − target` is a direction and a zoom
+    /// (length 1: the model just fits), and the eye's distance is chosen
+    /// for each view's aspect ([`Camera::resolved`]).
+    pub fit: Option<Fit>,
+}
+
+/// What a camera frames: a model's outline, as the points of the model
+/// farthest out both ways along 13 axes (the coordinate axes, the face
+/// diagonals and the space diagonals of a cube: a 26-sided hull that hugs
+/// the model's convex hull, found with additions alone), so that the
+/// model's projected extent can be found for any view in a few hundred
+/// operations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    /// The outline's points.
+    pub points: [Vec3; Fit::POINTS],
+}
+
+impl Fit {
+    /// How many extreme points are kept: two for each of 13 axes.
+    pub const POINTS: usize = 26;
+    /// The share of the view's limiting dimension a framed model fills.
+    pub const FILL: f32 = 0.9;
+
+    /// The outline of `points` (at least one).
+    pub fn of(points: &[Vec3]) -> Fit {
+        // Along each axis, unnormalised (only the order matters), padded
+        // to 16 lanes so that the comparisons below go four at a time.
+        let along = |p: Vec3| -> [f32; 16] {
+            [
+                p.x,
+                p.y,
+                p.z,
+                p.x + p.y,
+                p.x - p.y,
+                p.x + p.z,
+                p.x - p.z,
+                p.y + p.z,
+                p.y - p.z,
+                p.x + p.y + p.z,
+                p.x + p.y - p.z,
+                p.x - p.y + p.z,
+                -p.x + p.y + p.z,
+                0.0,
+                0.0,
+                0.0,
+            ]
+        };
+        let (mut lo, mut hi) = ([f32::INFINITY; 16], [f32::NEG_INFINITY; 16]);
+        let (mut lo_at, mut hi_at) = ([0u32; 16], [0u32; 16]);
+        for (i, &p) in points.iter().enumerate() {
+            if !p.is_finite() {
+                continue;
+            }
+            let s = along(p);
+            for k in 0..16 {
+                let (below, above) = (s[k] < lo[k], s[k] > hi[k]);
+                lo[k] = if below { s[k] } else { lo[k] };
+                lo_at[k] = if below { i as u32 } else { lo_at[k] };
+                hi[k] = if above { s[k] } else { hi[k] };
+                hi_at[k] = if above { i as u32 } else { hi_at[k] };
+            }
+        }
+        let at = |i: u32| points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+        Fit {
+            points: std::array::from_fn(|i| {
+                if i < 13 {
+                    at(lo_at[i])
+                } else {
+                    at(hi_at[i - 13])
+                }
+            }),
+        }
+    }
+
+    /// The outline moved by `m`; exact for a turn that takes the 13 axes
+    /// to themselves (a model's up axis turned onto y).
+    pub fn transformed(self, m: Mat4) -> Fit {
+        Fit {
+            points: self.points.map(|p| m.transform_point3(p)),
+        }
+    }
+}
+
+/// The projection into the canonical cube.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// `fov_y` in degrees; `near` and `far` are distances in front of the
+    /// eye, `0 < near < far`.
+    Perspective {
+        /// The vertical field of view, in degrees.
+        fov_y: f32,
+        /// The near plane's distance.
+        near: f32,
+        /// The far plane's distance.
+        far: f32,
+    },
+    /// A box `height` tall, as wide as the aspect makes it.
+    Orthographic {
+        /// The box's height in world units.
+        height: f32,
+        /// The near plane's distance.
+        near: f32,
+        /// The far plane's distance.
+        far: f32,
+    },
+    /// The vertices are in the canonical cube already; eye, target and up
+    /// are ignored.
+    None,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            projection: Projection::Perspective {
+                fov_y: 45.0,
+                near: 0.1,
+                far: 100.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 5.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fit: None,
+        }
+    }
+}
+
+impl Camera {
+    /// This camera moved around its target: the eye turned `yaw` degrees
+    /// about the up axis and `pitch` degrees towards it, and its distance
+    /// from the target multiplied by `zoom`. What `spin`'s arrow keys and
+    /// the ratatui viewer's mouse do.
+    #[must_use]
+    pub fn orbited(&self, yaw: f32, pitch: f32, zoom: f32) -> Camera {
+        let offset = (self.eye - self.target) * zoom;
+        let yaw = glam::Quat::from_axis_angle(self.up.normalize_or_zero(), yaw.to_radians());
+        let right = offset.cross(self.up).normalize_or_zero();
+        let pitch = glam::Quat::from_axis_angle(right, pitch.to_radians());
+        Camera {
+            eye: self.target + yaw * (pitch * offset),
+            ..*self
+        }
+    }
+
+    /// Whether two cameras are the same bit for bit (`==` takes −0 for 0):
+    /// then [`Camera::resolved`] gives the same camera for both.
+    pub(crate) fn same_bits(&self, o: &Camera) -> bool {
+        let v = |v: Vec3| v.to_array().map(f32::to_bits);
+        let p = |p: Projection| match p {
+            Projection::Perspective { fov_y, near, far } => {
+                [1, fov_y.to_bits(), near.to_bits(), far.to_bits()]
+            }
+            Projection::Orthographic { height, near, far } => {
+                [2, height.to_bits(), near.to_bits(), far.to_bits()]
+            }
+            Projection::None => [0; 4],
+        };
+        let fit = |f: Option<Fit>| f.map(|f| f.points.map(v));
+        p(self.projection) == p(o.projection)
+            && [self.eye, self.target, self.up].map(v) == [o.eye, o.target, o.up].map(v)
+            && fit(self.fit) == fit(o.fit)
+    }
+
+    /// This camera for a view of `aspect` (width over height): where it
+    /// frames a model ([`Camera::fit`]), the eye moved along `eye − target`
+    /// to the distance at which the model's outline, turned any way about
+    /// the y axis (as `spin` and `--yaw` turn it), fills [`Fit::FILL`] of
+    /// the view's height or width, whichever limits, times the length of
+    /// `eye − target` (the zoom); and moved up or down to centre it (not
+    /// sideways, so that the turn's axis stays in the middle). Every frame
+    /// of a turn is then framed the same and none is cut off; a model
+    /// round about its axis fills 90 %, a long one less in any one view.
+    /// Otherwise the camera as it is.
+    pub fn resolved(&self, aspect: f32) -> Camera {
+        let (Some(fit), Projection::Perspective { fov_y, .. }) = (self.fit, self.projection) else {
+            return Camera { fit: None, ..*self };
+        };
+        let offset = self.eye - self.target;
+        let zoom = offset.length();
+        let back = offset / zoom;
+        let right = back.cross(self.up).normalize_or_zero();
+        let right = if right == Vec3::ZERO { Vec3::X } else { right };
+        let up = right.cross(back);
+        let t = (fov_y.to_radians() / 2.0).tan() * Fit::FILL;
+        let (kx, ky) = (t * aspect.max(1e-6), t);
+        // The outline turned every way about y (as `spin` turns it), 16
+        // steps a turn: the framing holds for every frame.
+        let target = self.target;
+        let outline = &fit.points;
+        let swept = || {
+            (0..16).flat_map(move |k| {
+                let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
+                outline.iter().map(move |&p| turn * p - target)
+            })
+        };
+        // A point p at distance d projects to x / (d − z), which must stay
+        // within kx (and y within ky): d ≥ z + |x| / kx. Seen from above
+        // (or below) the projection is lopsided, so the view is also moved
+        // up or down by `lift`, to centre it (not sideways: the turn's axis
+        // stays in the middle).
+        let fits = |lift: f32| {
+            swept().fold(0.0f32, |d, p| {
+                let z = p.dot(back);
+                d.max(z + p.dot(right).abs() / kx)
+                    .max(z + (p.dot(up) - lift).abs() / ky)
+            })
+        };
+        let mut lift = 0.0f32;
+        let mut d = fits(lift);
+        for _ in 0..4 {
+            // Where the projection's top and bottom are at this distance,
+            // as heights at the target's depth.
+            let (lo, hi) = swept().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                let y = (p.dot(up) - lift) * d / (d - p.dot(back));
+                (lo.min(y), hi.max(y))
+            });
+            if !(lo.is_finite() && hi.is_finite()) {
+                break;
+            }
+            lift += (lo + hi) / 2.0;
+            d = fits(lift);
+        }
+        let (d, lift) = if d.is_finite() && d > 0.0 && lift.is_finite() {
+            (d, lift)
+        } else {
+            (1.0, 0.0)
+        };
+        let target = self.target + up * lift;
+        Camera {
+            eye: target + back * d * zoom,
+            target,
+            fit: None,
+            ..*self
+        }
+    }
+
+    /// `M_projection · M_view` for a view whose physical width/height ratio
+    /// is `aspect`, composed in f64 and rounded once to f32 (so that an eye
+    /// 1e30 away, or a scene 1e-30 across, loses nothing in the product).
+    pub fn view_projection(&self, aspect: f32) -> Mat4 {
+        self.view_projection64(aspect).as_mat4()
+    }
+
+    /// [`Camera::view_projection`] in f64.
+    pub fn view_projection64(&self, aspect: f32) -> glam::DMat4 {
+        let view = transform::view64(
+            self.eye.as_dvec3(),
+            self.target.as_dvec3(),
+            self.up.as_dvec3(),
+        );
+        let aspect = aspect as f64;
+        match self.projection {
+            Projection::Perspective { fov_y, near, far } => {
+                transform::perspective64(fov_y as f64, aspect, near as f64, far as f64) * view
+            }
+            Projection::Orthographic { height, near, far } => {
+                transform::orthographic64(height as f64, aspect, near as f64, far as f64) * view
+            }
+            Projection::None => glam::DMat4::IDENTITY,
+        }
+    }
+
+    /// Why this camera cannot be used, if it cannot. Judged by direction and
+    /// by relative size (in f64), never by absolute size: an eye 1e30 away
+    /// and one 1e-30 from its target are both fine.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let finite = [self.eye, self.target, self.up]
+            .iter()
+            .all(|v| v.is_finite());
+        if !finite {
+            return Err("camera eye, target and up must be finite".into());
+        }
+        let (near, far) = match self.projection {
+            Projection::None => return Ok(()),
+            Projection::Perspective { fov_y, near, far } => {
+                if !(fov_y > 0.0 && fov_y < 180.0) {
+                    return Err(format!(
+                        "fov_y must be between 0 and 180 degrees, not {fov_y}"
+                    ));
+                }
+                if near.is_nan() || near <= 0.0 {
+                    return Err(format!(
+                        "near must be > 0 for a perspective camera, not {near}"
+                    ));
+                }
+                if near < f32::MIN_POSITIVE {
+                    return Err(format!(
+                        "near = {near:e} is subnormal: f32 keeps no precision there; use a near of at least {:e} (scale the scene up if it is that small)",
+                        f32::MIN_POSITIVE
+                    ));
+                }
+                (near, far)
+            }
+            Projection::Orthographic { height, near, far } => {
+                if !(height > 0.0 && height.is_finite()) {
+                    return Err(format!("height must be > 0, not {height}"));
+                }
+                if height < MIN_HEIGHT {
+                    return Err(format!(
+                        "height = {height:e} is too small: the projection's scale 2/height overflows f32 in a narrow view; use a height of at least {MIN_HEIGHT:e} (scale the scene up if it is that small)"
+                    ));
+                }
+                (near, far)
+            }
+        };
+        if !(far > near && far.is_finite() && near.is_finite()) {
+            return Err(format!(
+                "far ({far}) must be finite and greater than near ({near})"
+            ));
+        }
+        let (eye, target, up) = (
+            self.eye.as_dvec3(),
+            self.target.as_dvec3(),
+            self.up.as_dvec3(),
+        );
+        let forward = target - eye;
+        if forward == glam::DVec3::ZERO {
+            return Err(format!(
+                "camera eye and target are the same point, {}",
+                self.eye
+            ));
+        }
+        if up == glam::DVec3::ZERO {
+            return Err("camera up must not be zero".into());
+        }
+        // The angle between up and the view direction, scale-free.
+        let sin = forward.normalize().cross(up.normalize()).length();
+        if sin.is_nan() || sin <= 1e-6 {
+            return Err(
+                "camera up must not be parallel to the view direction (target − eye)".into(),
+            );
+        }
+        Ok(())
+    }
+}
