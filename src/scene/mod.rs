@@ -54,6 +54,7 @@ mod camera;
 mod file;
 mod load;
 mod mesh;
+mod normals;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 #[cfg(feature = "textures")]

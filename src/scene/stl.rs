@@ -24,7 +24,8 @@ use glam::Vec3;
 
 use super::LoadOptions;
 use super::file::{self, Cursor, Lines};
-use super::mesh::{Geometry, PositionSet};
+use super::mesh::Geometry;
+use super::normals::PositionSet;
 use super::obj::Loaded;
 use crate::error::{Error, Result};
 

@@ -28,6 +28,8 @@
 //! is not an error, but the faces that use it are not drawn, and the loader
 //! says so.
 
+mod mtl;
+
 use std::path::Path;
 
 use std::path::PathBuf;
@@ -43,6 +45,7 @@ use super::polygon::{self, Point, Triangulator};
 use crate::color::{ColorSpace, Lin};
 use crate::error::{Error, Result};
 use crate::texture::{Sampler, Texture, Wrap};
+use mtl::{Map, Material, mtl};
 
 /// A model read from a file, and what the reader has to tell.
 #[derive(Debug)]
@@ -86,25 +89,6 @@ const UNSET: u64 = u64::MAX;
 /// A corner's texture coordinate and normal, as one key.
 fn attrs(vt: u32, vn: u32) -> u64 {
     u64::from(vt) << 32 | u64::from(vn)
-}
-
-/// A material of an MTL file.
-#[derive(Clone, Debug, Default)]
-struct Material {
-    /// Its `Kd`.
-    color: Option<Lin>,
-    /// Its `map_Kd`.
-    map: Option<Map>,
-}
-
-/// A `map_Kd`: the image, and where the MTL file names it.
-#[derive(Clone, Debug)]
-struct Map {
-    path: PathBuf,
-    sampler: Sampler,
-    mtl: String,
-    line: usize,
-    column: usize,
 }
 
 /// Everything gathered while reading.
@@ -683,126 +667,6 @@ fn corner_offset(line: &[u8], k: usize) -> usize {
         c.word();
     });
     c.word().map_or(0, |(_, at)| at)
-}
-
-/// A material library: each material's diffuse colour and texture, and
-/// notes on the files it names.
-#[allow(clippy::type_complexity)]
-fn mtl(path: &Path, options: &LoadOptions) -> Result<(FxHashMap<Vec<u8>, Material>, Vec<String>)> {
-    let (file, _) = file::open(path, options.max_bytes)?;
-    let name = path.display().to_string();
-    let at = |line: usize, column: usize, message: String| Error::Parse {
-        path: name.clone(),
-        line,
-        column,
-        message,
-    };
-    let at_byte = |text: &[u8], line: usize, offset: usize, message: String| {
-        at(line, file::column(text, offset), message)
-    };
-    let mut out = FxHashMap::default();
-    let mut notes = Vec::new();
-    let mut current: Option<Vec<u8>> = None;
-    let mut lines = Lines::new(file);
-    loop {
-        let (n, line) = match lines.next_line() {
-            Ok(Some(next)) => next,
-            Ok(None) => break,
-            Err((n, e)) => return Err(at(n, 1, e)),
-        };
-        let mut c = Cursor::new(line);
-        match c.word() {
-            Some((b"newmtl", _)) => {
-                let m = c.rest().to_vec();
-                out.insert(m.clone(), Material::default());
-                current = Some(m);
-            }
-            Some((b"map_Kd", kcol)) => {
-                let mut sampler = Sampler::default();
-                // Options first (`-clamp on` is read; others are skipped
-                // with their arguments), then the file name, spaces and all.
-                let mut rest = c;
-                loop {
-                    // Looked at on a copy, taken only if it is an option.
-                    let mut next = rest;
-                    let Some((w, _)) = next.word().filter(|(w, _)| w.starts_with(b"-")) else {
-                        break;
-                    };
-                    rest = next;
-                    let args = match w {
-                        b"-o" | b"-s" | b"-t" => 3,
-                        b"-mm" => 2,
-                        _ => 1,
-                    };
-                    for _ in 0..args {
-                        let arg = rest.word();
-                        if w == b"-clamp" && arg.is_some_and(|(a, _)| a == b"on") {
-                            sampler.wrap_u = Wrap::ClampToEdge;
-                            sampler.wrap_v = Wrap::ClampToEdge;
-                        }
-                    }
-                }
-                let file = rest.rest();
-                if file.is_empty() {
-                    return Err(at_byte(line, n, kcol, "`map_Kd` names no file".into()));
-                }
-                let Some(m) = &current else {
-                    return Err(at_byte(
-                        line,
-                        n,
-                        kcol,
-                        "`map_Kd` before any `newmtl`".into(),
-                    ));
-                };
-                let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
-                let r =
-                    file::reference(path.parent().unwrap_or(Path::new(".")), &name, &lossy(file));
-                notes.extend(r.note);
-                let map = Map {
-                    path: r.path,
-                    sampler,
-                    mtl: name.clone(),
-                    line: n,
-                    column,
-                };
-                out.entry(m.clone()).or_default().map = Some(map);
-            }
-            Some((b"Kd", kcol)) => {
-                let mut v = [0.0f32; 3];
-                let mut k = 0;
-                while let Some(x) = c.number() {
-                    let x = x.ok().filter(|x| x.is_finite() && k < 3);
-                    let Some(x) = x else {
-                        let (w, col) = c_word_at(line, k + 1);
-                        return Err(at_byte(
-                            line,
-                            n,
-                            col,
-                            format!("`Kd`: {:?} is not a colour component", lossy(w)),
-                        ));
-                    };
-                    v[k] = x;
-                    k += 1;
-                }
-                if k == 1 {
-                    v = [v[0]; 3];
-                } else if k != 3 {
-                    return Err(at_byte(
-                        line,
-                        n,
-                        kcol,
-                        format!("`Kd` needs 3 numbers, found {k}"),
-                    ));
-                }
-                let Some(m) = &current else {
-                    return Err(at_byte(line, n, kcol, "`Kd` before any `newmtl`".into()));
-                };
-                out.entry(m.clone()).or_default().color = Some(options.mtl_colors.decode(v));
-            }
-            _ => {}
-        }
-    }
-    Ok((out, notes))
 }
 
 /// The `k`th word of `line` (from 0) and its offset.

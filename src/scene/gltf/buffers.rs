@@ -1,0 +1,120 @@
+//! A glTF document's buffers and the bytes its URIs name: the binary
+//! chunk, `data:` URIs decoded, files named relative to the model opened
+//! and read as the model itself was (`file::reference`, `file::read`,
+//! under the same byte budget); nothing fetched from the network. Each
+//! buffer at least as long as it says.
+
+use super::*;
+
+/// The document's buffers, read as the model was read (data URIs decoded,
+/// files found beside the model with [`file::reference`]), each at least
+/// as long as it says; every buffer view is checked to lie inside its
+/// buffer.
+pub(super) fn buffers(
+    document: &::gltf::Document,
+    mut blob: Option<Vec<u8>>,
+    base: Option<&Path>,
+    owner: &str,
+    max_bytes: u64,
+    notes: &mut Vec<String>,
+) -> std::result::Result<Vec<Data>, String> {
+    let mut out = Vec::new();
+    for b in document.buffers() {
+        let what = format!("buffer {}", b.index());
+        let mut data = match b.source() {
+            ::gltf::buffer::Source::Bin => blob
+                .take()
+                .ok_or_else(|| format!("{what}: the file has no binary chunk"))?,
+            ::gltf::buffer::Source::Uri(uri) => {
+                fetch(uri, base, owner, max_bytes, notes).map_err(|e| format!("{what}: {e}"))?
+            }
+        };
+        if data.len() < b.length() {
+            return Err(format!(
+                "{what} has {} bytes, fewer than its byteLength of {}",
+                data.len(),
+                b.length()
+            ));
+        }
+        while data.len() % 4 != 0 {
+            data.push(0);
+        }
+        out.push(Data(data));
+    }
+    for v in document.views() {
+        let len = v.buffer().length();
+        if v.offset()
+            .checked_add(v.length())
+            .is_none_or(|end| end > len)
+        {
+            return Err(format!(
+                "buffer view {} ({} bytes at offset {}) runs past the {len} bytes of buffer {}",
+                v.index(),
+                v.length(),
+                v.offset(),
+                v.buffer().index()
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// The bytes a buffer's or an image's URI names: a `data:` URI decoded, or
+/// the file it names beside the model (percent-encoding decoded, `file:`
+/// taken as a path), opened and read as the model itself was. Nothing is
+/// fetched from the network.
+pub(super) fn fetch(
+    uri: &str,
+    base: Option<&Path>,
+    owner: &str,
+    max_bytes: u64,
+    notes: &mut Vec<String>,
+) -> std::result::Result<Vec<u8>, String> {
+    if uri.starts_with("data:") {
+        return Data::from_source(::gltf::buffer::Source::Uri(uri), None)
+            .map(|d| d.0)
+            .map_err(|e| describe(&e));
+    }
+    let shown = crate::text::name(uri, 80);
+    let path = if let Some(rest) = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+    {
+        rest
+    } else if let Some(scheme) = scheme(uri) {
+        return Err(
+            if matches!(scheme.to_ascii_lowercase().as_str(), "http" | "https") {
+                format!(
+                    "{shown} is on the network: rastty fetches nothing (download it beside the model)"
+                )
+            } else {
+                format!(
+                    "{shown}: rastty reads data: URIs and files, not {} URIs",
+                    crate::text::name(scheme, 20)
+                )
+            },
+        );
+    } else {
+        uri
+    };
+    let path = urlencoding::decode(path)
+        .map_err(|_| format!("{shown}: its percent-encoding is not UTF-8"))?;
+    let Some(base) = base else {
+        return Err(format!(
+            "{shown} names a file, and the model was not read from one"
+        ));
+    };
+    let r = file::reference(base, owner, &path);
+    notes.extend(r.note);
+    file::read(&r.path, max_bytes).map_err(|e| e.to_string())
+}
+
+/// A URI's scheme (`http` of `http://…`), if it has one; a drive letter
+/// (`C:\x`) is not one.
+pub(super) fn scheme(uri: &str) -> Option<&str> {
+    let (scheme, _) = uri.split_once(':')?;
+    let mut chars = scheme.chars();
+    let ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
+    (ok && scheme.len() > 1).then_some(scheme)
+}
