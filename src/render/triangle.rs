@@ -217,32 +217,15 @@ impl Renderer {
                     let band = self.fb.band();
                     let setup =
                         SnappedTriangle::new(fixed, cull).map(|t| Setup::of(&t, grid, band));
-                    if let Some(s) = self.setup(&setup, stage.exact) {
-                        // On the lean path (textured and loose triangles), a small
-                        // triangle between sample centres is not lit or
-                        // filled (the full pipeline fills it anyway: the
-                        // same nothing). Counted as its walk would count it.
-                        if stage.plan.lean.run && !s.covers_any() {
-                            self.stats.raster.samples_tested += s.bbox_samples();
-                            return;
-                        }
-                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(s, &screen(c), stage, texture);
-                    }
+                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
                 }
                 Precision::F64 => {
                     let setup = FloatSetup::<f64>::new(xy, grid, cull);
-                    if let Some(s) = self.setup(&setup, stage.exact) {
-                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(s, &screen(c), stage, texture);
-                    }
+                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
                 }
                 Precision::F32 => {
                     let setup = FloatSetup::<f32>::new(xy, grid, cull);
-                    if let Some(s) = self.setup(&setup, stage.exact) {
-                        let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-                        self.fill(s, &screen(c), stage, texture);
-                    }
+                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
                 }
             }
             return;
@@ -289,27 +272,62 @@ impl Renderer {
                             let band = self.fb.band();
                             let setup = SnappedTriangle::new(tri.map(|v| v.fixed), cull)
                                 .map(|t| Setup::of(&t, grid, band));
-                            if let Some(s) = self.setup(&setup, stage.exact) {
-                                self.fill(s, &screen, stage, texture);
-                            }
+                            self.set_up_and_fill(&setup, &screen, stage, texture);
                         }
                         Precision::F64 => {
                             let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
-                            if let Some(s) = self.setup(&setup, stage.exact) {
-                                self.fill(s, &screen, stage, texture);
-                            }
+                            self.set_up_and_fill(&setup, &screen, stage, texture);
                         }
                         Precision::F32 => {
                             let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
-                            if let Some(s) = self.setup(&setup, stage.exact) {
-                                self.fill(s, &screen, stage, texture);
-                            }
+                            self.set_up_and_fill(&setup, &screen, stage, texture);
                         }
                     }
                 }
             }
         }
         self.poly = poly;
+    }
+
+    /// A triangle inside every clip plane, set up with the frame's
+    /// precision, on the general path: counted, then lit (unless the full
+    /// pipeline lit it `early`) and filled. On the lean path (textured and
+    /// loose triangles) one that covers no sample is neither lit nor filled
+    /// (the full pipeline fills it anyway: the same nothing), and is
+    /// counted as its walk would count it.
+    #[inline(always)]
+    pub(super) fn inside_setup<C: Coverage>(
+        &mut self,
+        stage: &Stage<'_>,
+        setup: &Result<C, Rejected>,
+        (v, base): ([&Vert; 3], [Vec3A; 3]),
+        early: Option<[Vec3; 3]>,
+        screen: impl Fn([Vec3; 3]) -> ScreenTriangle,
+        texture: Option<(&Texture, Sampler)>,
+    ) {
+        if let Some(s) = self.setup(setup, stage.exact) {
+            if stage.plan.lean.run && !s.covers_any() {
+                self.stats.raster.samples_tested += s.bbox_samples();
+                return;
+            }
+            let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
+            self.fill(s, &screen(c), stage, texture);
+        }
+    }
+
+    /// A clipped piece, set up with the frame's precision: counted and
+    /// filled (it was lit before clipping).
+    #[inline(always)]
+    pub(super) fn set_up_and_fill<C: Coverage>(
+        &mut self,
+        setup: &Result<C, Rejected>,
+        screen: &ScreenTriangle,
+        stage: &Stage<'_>,
+        texture: Option<(&Texture, Sampler)>,
+    ) {
+        if let Some(s) = self.setup(setup, stage.exact) {
+            self.fill(s, screen, stage, texture);
+        }
     }
 
     /// What a triangle inside every clip plane without a texture takes on
