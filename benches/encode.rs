@@ -6,7 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use rastty::encode::Encoder;
-use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Scene};
+use rastty::{Frame, GlyphMode, RenderOptions, color::ColorDepth, scene::Scene};
 
 fn frames(name: &str, turns: [f32; 2]) -> [Frame; 2] {
     let path = format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));

@@ -13,7 +13,7 @@ mod euc_pipeline;
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rastty::{Renderer, Scene};
+use rastty::{Renderer, scene::Scene};
 
 fn vs_euc(c: &mut Criterion) {
     let root = env!("CARGO_MANIFEST_DIR");

@@ -3,7 +3,7 @@
 
 use euc::{Pipeline, Target, buffer::Buffer2d, rasterizer};
 use glam::{Mat4, Vec3};
-use rastty::{RenderOptions, Scene};
+use rastty::{RenderOptions, scene::Scene};
 
 /// The mesh drawn by euc as rastty draws it: the vertex shader transforms
 /// and lights each vertex (Gouraud, the same Lambert term), the fragment
@@ -50,7 +50,7 @@ pub fn options() -> RenderOptions {
         cols: 200,
         rows: 60,
         glyphs: rastty::GlyphMode::Half,
-        color: rastty::ColorDepth::TrueColor,
+        color: rastty::color::ColorDepth::TrueColor,
         turn: Vec3::new(10.0, 30.0, 0.0),
         ..RenderOptions::default()
     }

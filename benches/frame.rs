@@ -8,9 +8,10 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rastty::animate::{Axis, LiveStatus, Player, Spin};
+use rastty::animate::{LiveStatus, Player, Spin};
 use rastty::encode::Encoder;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene};
+use rastty::transform::Axis;
+use rastty::{GlyphMode, RenderOptions, color::ColorDepth, scene::Scene};
 
 fn frames(c: &mut Criterion) {
     let root = env!("CARGO_MANIFEST_DIR");

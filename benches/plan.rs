@@ -9,7 +9,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use rastty::Pipeline;
 use rastty::Shading;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, scene::Scene};
 
 /// The scenes, their shading, and whether they turn (models do; scene files
 /// stay as drawn).

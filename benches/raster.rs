@@ -5,7 +5,9 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rastty::Choice;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, Traversal};
+use rastty::{
+    GlyphMode, RenderOptions, Renderer, color::ColorDepth, raster::Traversal, scene::Scene,
+};
 
 fn scene(name: &str) -> Scene {
     let path = format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));

@@ -9,7 +9,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Scene, Threads};
+use rastty::{Frame, GlyphMode, RenderOptions, Renderer, Threads, color::ColorDepth, scene::Scene};
 
 /// Rounds of ten frames each way; the first two warm up.
 const ROUNDS: u32 = 22;
@@ -19,7 +19,7 @@ fn main() {
         env!("CARGO_MANIFEST_DIR"),
         "/../shared/models/linux-mascot-tux.obj"
     );
-    let mut scenes = vec![("torus", rastty::default_scene())];
+    let mut scenes = vec![("torus", rastty::scene::default_scene())];
     match Scene::of_model(Path::new(tux)) {
         Ok(s) => scenes.push(("tux", s)),
         Err(_) => eprintln!("skipping tux: {tux} not found"),

@@ -9,7 +9,10 @@
 use rastty::encode::{Rep, write_lines};
 use rastty::glam::{Mat4, Vec3};
 use rastty::scene::Shape;
-use rastty::{ColorDepth, Frame, GlyphMode, Light, RenderOptions, Renderer, Rgb, Scene};
+use rastty::{
+    Frame, GlyphMode, RenderOptions, Renderer, color::ColorDepth, color::Rgb, scene::Light,
+    scene::Scene,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = Scene::builder()

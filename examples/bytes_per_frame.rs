@@ -24,9 +24,10 @@ use std::io::{self, Write};
 use std::rc::Rc;
 
 use rastty::animate;
-use rastty::animate::{Axis, Spin};
+use rastty::animate::Spin;
 use rastty::encode::{Encoder, Rep};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::transform::Axis;
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, scene::Scene};
 use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Rect;
 use ratatui::style::Color;

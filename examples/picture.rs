@@ -10,7 +10,9 @@ use rastty::color::Palette;
 use rastty::glam::Vec3;
 use rastty::picture::{self, CellPx, Picture, Theme};
 use rastty::scene::Shape;
-use rastty::{ColorDepth, GlyphMode, Light, RenderOptions, Rgb, Scene, render};
+use rastty::{
+    GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render, scene::Light, scene::Scene,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()

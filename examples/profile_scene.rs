@@ -14,7 +14,7 @@ use std::path::Path;
 use glam::Vec3;
 use rastty::Pipeline;
 use rastty::Shading;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, scene::Scene};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

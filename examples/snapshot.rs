@@ -10,14 +10,17 @@
 //! ```ignore
 //! #[test]
 //! fn my_scene() {
-//!     let scene = rastty::Scene::load("scene.toml".as_ref()).unwrap();
-//!     let opts = rastty::RenderOptions { cols: 40, rows: 12, color: rastty::ColorDepth::None, ..Default::default() };
+//!     let scene = rastty::scene::Scene::load("scene.toml".as_ref()).unwrap();
+//!     let opts = rastty::RenderOptions { cols: 40, rows: 12, color: rastty::color::ColorDepth::None, ..Default::default() };
 //!     insta::assert_snapshot!(rastty::render(&scene, &opts).to_string());
 //! }
 //! ```
 
 use rastty::glam::Vec3;
-use rastty::{ColorDepth, GlyphMode, Projection, RenderOptions, Rgb, Scene, render};
+use rastty::{
+    GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render, scene::Projection,
+    scene::Scene,
+};
 
 fn main() {
     // A scene built in code rather than read from TOML: two triangles that

@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use rastty::glam::Vec3;
 use rastty::ratatui::{SceneState, SceneWidget};
 use rastty::scene::Shape;
-use rastty::{ColorDepth, GlyphMode, GlyphSupport, RenderOptions, Rgb, Scene};
+use rastty::{GlyphMode, GlyphSupport, RenderOptions, color::ColorDepth, color::Rgb, scene::Scene};
 use ratatui::crossterm::cursor::{MoveTo, position};
 use ratatui::crossterm::event::{
     self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, MouseButton,

@@ -14,7 +14,7 @@ mod euc_pipeline;
 
 use std::path::Path;
 
-use rastty::{Renderer, Scene};
+use rastty::{Renderer, scene::Scene};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

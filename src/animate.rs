@@ -23,7 +23,7 @@ use crate::render::Renderer;
 use crate::scene::{Camera, Scene};
 use crate::shade::Shading;
 
-pub use crate::transform::Axis;
+use crate::transform::Axis;
 
 /// A turn of `step` degrees per frame about `axis`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -546,7 +546,7 @@ mod tests {
 
     #[test]
     fn commands_cycle_settings_and_pause_stops_the_clock() {
-        let scene = crate::default_scene();
+        let scene = crate::scene::default_scene();
         let mut p = Player::new(
             scene,
             RenderOptions::default(),
@@ -582,7 +582,7 @@ mod tests {
     #[test]
     fn m_and_c_skip_what_the_terminal_cannot_show_and_say_what_they_chose() {
         let mut p = Player::new(
-            crate::default_scene(),
+            crate::scene::default_scene(),
             RenderOptions {
                 glyphs: GlyphMode::Sextant,
                 color: ColorDepth::Ansi16,

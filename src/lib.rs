@@ -5,7 +5,7 @@
 //!
 //! | stage | where | in → out |
 //! |---|---|---|
-//! | 1 | [`scene`] | TOML, a model file or [`Scene::builder`] → [`Scene`] (triangles, meshes, camera, lights) |
+//! | 1 | [`scene`] | TOML, a model file or [`Scene::builder`](scene::Scene::builder) → [`Scene`](scene::Scene) (triangles, meshes, camera, lights) |
 //! | 2 | [`transform`] | model, view, projection, viewport matrices |
 //! | 3 | [`clip`] | clip-space triangles → clipped convex polygons |
 //! | 4 | [`raster`] | screen triangles → covered samples, exactly |
@@ -24,7 +24,7 @@
 //! (`insta::assert_snapshot!(frame.to_string())`):
 //!
 //! ```
-//! use rastty::{render, RenderOptions, Scene, GlyphMode, ColorDepth};
+//! use rastty::{render, RenderOptions, scene::Scene, GlyphMode, color::ColorDepth};
 //!
 //! let scene = Scene::parse(r##"
 //!     [camera]
@@ -41,7 +41,7 @@
 //!
 //! Frame after frame, [`Renderer::render_into`] draws into the caller's
 //! [`Frame`] and allocates nothing once the sizes are stable; an
-//! [`Encoder`] sends each frame as the bytes that change the last one into
+//! [`Encoder`](encode::Encoder) sends each frame as the bytes that change the last one into
 //! it.
 //!
 //! # Cargo features
@@ -51,7 +51,7 @@
 //! | `share` | yes | `picture`: a frame as PNG or SVG; `cast`: frames as an asciicast v2 recording |
 //! | `gltf` | yes | `scene::gltf`: glTF 2.0 and GLB models, with their textures |
 //! | `ply` | yes | `scene::ply`: PLY models |
-//! | `textures` | yes | `scene::image`: PNG and JPEG images for OBJ `map_Kd` textures |
+//! | `textures` | yes | PNG and JPEG images for OBJ `map_Kd` textures |
 //! | `parallel` | yes | frames of 600×180 cells or more drawn in bands of rows on every core (rayon); the same frame, bit for bit ([`Threads`]) |
 //! | `ratatui` | no | `ratatui::SceneWidget`: a scene drawn into a ratatui buffer |
 //!
@@ -59,6 +59,18 @@
 //! the model loaders and the scene format). The `rastty` program (command
 //! line, terminal, live loop, bench) is another crate, `rastty-cli`, none of
 //! whose dependencies a library user gets.
+//!
+//! # Where things are
+//!
+//! Each public item has one path. The root holds the renderer and what
+//! sets it up ([`Renderer`], [`RenderOptions`] and its settings, [`Plan`],
+//! [`Frame`], [`GlyphMode`], [`Error`]); each public module is the one
+//! path to its own items: [`scene`] (scenes, meshes, cameras, loaders by
+//! format), [`color`] (colours, depths, palettes), [`encode`] (the
+//! encoder), [`texture`], [`transform`], and the low-level stages kept
+//! public for experiments and the accuracy bench ([`fixed`], [`clip`],
+//! [`raster`], [`accuracy`]). `tests/architecture.rs` checks that no item
+//! is reachable two ways.
 //!
 //! Conventions: y points up (sample row 0 is the bottom; terminal row `r`
 //! shows sample row `H − 1 − r`), sample `(x, y)` sits at `(x + 0.5, y + 0.5)`,
@@ -113,8 +125,6 @@ pub use glam;
 
 pub use blit::{GlyphFamily, GlyphMode, GlyphSupport, Split};
 pub use choice::Choice;
-pub use color::{ColorDepth, Rgb};
-pub use encode::Encoder;
 pub use error::{Error, Result};
 pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
@@ -123,9 +133,5 @@ pub use options::{
     RenderOptions, Threads,
 };
 pub use plan::{Bands, Decision, Plan};
-pub use raster::{Precision, Traversal};
 pub use render::{FrameStats, FrameTimes, Renderer, render};
-pub use scene::{
-    Camera, Cull, DEFAULT_SCENE, Light, Mesh, Projection, Scene, SceneBuilder, default_scene,
-};
 pub use shade::{Lights, Shading};

@@ -15,7 +15,7 @@
 //! as SGR 30–37 and 90–97, as rastty's encoder does); at 16 colours the
 //! named colours. Where rastty leaves the terminal's default (uncovered
 //! cells of a scene without a background, a blank's foreground, every
-//! colour at [`ColorDepth::None`](crate::ColorDepth::None)), the widget leaves the buffer's colour
+//! colour at [`ColorDepth::None`](crate::color::ColorDepth::None)), the widget leaves the buffer's colour
 //! as it was, so a `Block`'s background shows through.
 //!
 //! The stateless [`SceneWidget`] renders with a fresh renderer each time;
@@ -26,7 +26,7 @@
 //! ```
 //! use ratatui_core::{buffer::Buffer, layout::Rect, widgets::Widget};
 //! use rastty::ratatui::SceneWidget;
-//! use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, scene::Shape};
+//! use rastty::{color::ColorDepth, GlyphMode, RenderOptions, color::Rgb, scene::Scene, scene::Shape};
 //!
 //! let scene = Scene::of_mesh(Shape::Torus.mesh(Rgb::new(0xff, 0x90, 0x40)));
 //! let options = RenderOptions { glyphs: GlyphMode::Quadrant, color: ColorDepth::TrueColor, ..Default::default() };

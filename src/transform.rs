@@ -132,7 +132,7 @@ pub fn orthographic(fr: &Frustum) -> Mat4 {
 
 /// `M_persp→ortho`: squeezes the frustum into the box `[l,r]×[b,t]×[f,n]`,
 /// keeping the near plane and the far plane's z.
-pub fn persp_to_ortho(n: f32, f: f32) -> Mat4 {
+pub(crate) fn persp_to_ortho(n: f32, f: f32) -> Mat4 {
     rows([
         [n, 0.0, 0.0, 0.0],
         [0.0, n, 0.0, 0.0],
@@ -218,7 +218,7 @@ impl Viewport {
 
 /// The same view transform in f64: the eye may be 1e30 away, or 1e-30 from
 /// its target (f32 would overflow or underflow normalising the direction).
-pub fn view64(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
+pub(crate) fn view64(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
     let f = (target - eye).normalize();
     let s = f.cross(up).normalize();
     let u = s.cross(f);
@@ -233,7 +233,7 @@ pub fn view64(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
 
 /// The perspective projection of [`perspective`] and [`Frustum::from_fov`],
 /// in f64 (a near distance of 1e-38 neither underflows nor overflows).
-pub fn perspective64(fov_y_degrees: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+pub(crate) fn perspective64(fov_y_degrees: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
     let (n, f) = (-near, -far);
     let t = (fov_y_degrees.to_radians() / 2.0).tan() * near;
     let r = aspect * t;
@@ -249,7 +249,7 @@ pub fn perspective64(fov_y_degrees: f64, aspect: f64, near: f64, far: f64) -> DM
 
 /// The orthographic projection of [`orthographic`] and
 /// [`Frustum::orthographic_box`], in f64.
-pub fn orthographic64(height: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+pub(crate) fn orthographic64(height: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
     let (t, n, f) = (height / 2.0, -near, -far);
     let r = aspect * t;
     let m = [
@@ -285,7 +285,7 @@ pub fn rotation(degrees: Vec3) -> Mat4 {
 /// length) neither underflows for a scene 1e-30 across nor overflows for
 /// one 1e30 across, and comes out the same, bit for bit, at any
 /// power-of-two scale. Zero and non-finite vectors are returned as they are.
-pub fn pow2_unit(v: Vec3) -> Vec3 {
+pub(crate) fn pow2_unit(v: Vec3) -> Vec3 {
     match pow2_factors(v.abs().max_element()) {
         Some((a, b)) => v * a * b,
         None => v,
@@ -313,19 +313,14 @@ fn pow2(e: i32) -> f32 {
 
 /// The unit normal of triangle `a, b, c` (counter-clockwise seen from its
 /// front), or zero for a degenerate one; scale-free (see [`pow2_unit`]).
-pub fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Vec3 {
+pub(crate) fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Vec3 {
     let n = pow2_unit(b - a).cross(pow2_unit(c - a));
     pow2_unit(n).normalize_or_zero()
 }
 
 /// `v` in unit length, or zero; scale-free (see [`pow2_unit`]).
-pub fn direction(v: Vec3) -> Vec3 {
+pub(crate) fn direction(v: Vec3) -> Vec3 {
     pow2_unit(v).normalize_or_zero()
-}
-
-/// The homogeneous divide: clip space to the canonical cube.
-pub fn divide(clip: Vec4) -> Vec3 {
-    clip.truncate() / clip.w
 }
 
 /// Largest grid side, in samples (2^16).
@@ -475,6 +470,11 @@ impl Rect {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The homogeneous divide: clip space to the canonical cube.
+    fn divide(clip: Vec4) -> Vec3 {
+        clip.truncate() / clip.w
+    }
 
     fn close(a: f32, b: f32) -> bool {
         (a - b).abs() <= 1e-5 * (1.0 + a.abs().max(b.abs()))

@@ -267,3 +267,85 @@ fn no_module_above_the_plan_decides_a_path() {
         ["Traversal::Scan", "!= Traversal::"]
     );
 }
+
+/// The modules `lib.rs` declares public.
+fn public(lib: &str) -> Vec<String> {
+    lib.lines()
+        .filter_map(|l| l.trim().strip_prefix("pub mod ")?.strip_suffix(';'))
+        .map(String::from)
+        .collect()
+}
+
+/// The first segment of each `pub use` path in `code`.
+fn re_exported(code: &str) -> Vec<&str> {
+    code.match_indices("pub use ")
+        .map(|(i, _)| {
+            let path = &code[i + "pub use ".len()..];
+            let end = path.find([':', ';', ' ']).unwrap_or(path.len());
+            &path[..end]
+        })
+        .collect()
+}
+
+/// The items a user can name two ways: a root re-export from a public
+/// module (`rastty::Scene` and `rastty::scene::Scene`), or a public
+/// module re-exporting another module's items or its own public
+/// submodule's (`rastty::scene::Axis` beside `rastty::transform::Axis`).
+fn two_ways(lib: &str, sources: &BTreeMap<String, String>) -> Vec<String> {
+    let public = public(lib);
+    let mut out = Vec::new();
+    for first in re_exported(&code(lib)) {
+        if public.iter().any(|p| p == first) {
+            out.push(format!("the root re-exports from {first}, a public module"));
+        }
+    }
+    for module in &public {
+        let code = &sources[module];
+        let subs: Vec<&str> = code
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("pub mod ")?.strip_suffix(';'))
+            .collect();
+        for first in re_exported(code) {
+            if first == "crate" || first == "super" {
+                out.push(format!("{module} re-exports another module's item"));
+            } else if subs.contains(&first) {
+                out.push(format!(
+                    "{module} re-exports from {first}, its public submodule"
+                ));
+            }
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+#[test]
+fn each_public_item_is_reachable_one_way() {
+    let lib = lib();
+    let found = two_ways(&lib, &sources(&declared(&lib)));
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+#[test]
+fn an_item_reachable_two_ways_is_caught() {
+    let lib = "pub mod scene;\nmod render;\npub use render::Renderer;\npub use scene::Scene;\n";
+    let mut sources = BTreeMap::new();
+    sources.insert(
+        "scene".to_string(),
+        "pub mod obj;\npub use obj::load;\npub use crate::transform::Axis;\nuse crate::color::Rgb;\n"
+            .to_string(),
+    );
+    sources.insert(
+        "render".to_string(),
+        "pub use crate::plan::Plan;\n".to_string(),
+    );
+    assert_eq!(
+        two_ways(lib, &sources),
+        [
+            "scene re-exports another module's item",
+            "scene re-exports from obj, its public submodule",
+            "the root re-exports from scene, a public module",
+        ]
+    );
+}

@@ -11,7 +11,7 @@ use std::path::Path;
 use rastty::color::{Dither, Metric, Palette};
 use rastty::picture::{CellPx, Fidelity, Picture, Theme, fidelity};
 use rastty::scene::Scene;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, render};
+use rastty::{GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render};
 
 /// `scene` at 100×30 octant cells shown at `depth` with `dither`, against
 /// truecolor.

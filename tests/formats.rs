@@ -141,7 +141,7 @@ fn buffers_load_from_data_uris_and_files_beside_the_gltf() {
 
     // The .bin gone: one error naming the file.
     std::fs::remove_file(dir.join("tri.bin")).unwrap();
-    let err = rastty::Scene::of_model(&dir.join("tri.gltf"))
+    let err = rastty::scene::Scene::of_model(&dir.join("tri.gltf"))
         .unwrap_err()
         .to_string();
     assert!(

@@ -12,8 +12,8 @@ use rastty::raster::{RasterStats, Setup, rasterize};
 use rastty::scene::{Camera, Projection, Triangle, TriangleColor};
 use rastty::transform::Grid;
 use rastty::transform::Viewport;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
-use rastty::{Cull, Traversal};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, color::Rgb, scene::Scene};
+use rastty::{raster::Traversal, scene::Cull};
 
 type Tri = [[f32; 2]; 3];
 
@@ -1045,7 +1045,7 @@ fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     // Rendering the same frame twice, with a fresh renderer and a reused
     // one, is bit for bit the same. (The same with any thread count:
     // `tests/plan.rs`, `random_scenes_are_the_same_with_any_thread_count`.)
-    let scene = rastty::default_scene();
+    let scene = rastty::scene::default_scene();
     let opts = RenderOptions {
         cols: 50,
         rows: 16,
@@ -1064,7 +1064,7 @@ fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     assert_eq!(a, rastty::render(&scene, &opts));
     // A framing camera is placed once for an aspect and kept while neither
     // changes: orbited and zoomed, at the same aspect, it is placed anew.
-    let mut model = Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::Rgb::WHITE));
+    let mut model = Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::color::Rgb::WHITE));
     assert!(model.camera.fit.is_some());
     reused.render(&model, &opts);
     model.camera = model.camera.orbited(40.0, 20.0, 0.7);
@@ -1073,7 +1073,7 @@ fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     assert_ne!(
         b,
         rastty::render(
-            &Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::Rgb::WHITE)),
+            &Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::color::Rgb::WHITE)),
             &opts
         )
     );

@@ -10,8 +10,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use rastty::glam::Vec3;
 use rastty::scene::Shape;
 use rastty::{
-    Aa, ColorDepth, Encoder, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Shading,
-    Threads,
+    Aa, Frame, GlyphMode, RenderOptions, Renderer, Shading, Threads, color::ColorDepth, color::Rgb,
+    encode::Encoder, scene::Scene,
 };
 
 struct Counting;
@@ -109,7 +109,7 @@ fn scene() -> Scene {
                 Rgb::new(0, 0, 255),
             ],
         )
-        .light(rastty::Light::default())
+        .light(rastty::scene::Light::default())
         .build()
         .unwrap()
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 use glam::Vec3;
 use rastty::Shading;
 use rastty::color::Lin;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
+use rastty::{GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render, scene::Scene};
 
 fn model(name: &str) -> Scene {
     let path = format!("{}/tests/models/{name}", env!("CARGO_MANIFEST_DIR"));

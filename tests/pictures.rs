@@ -5,8 +5,9 @@
 use std::path::{Path, PathBuf};
 
 use rastty::color::Lin;
-use rastty::scene::{Axis, LoadOptions, Scene};
-use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Rgb, render};
+use rastty::scene::{LoadOptions, Scene};
+use rastty::transform::Axis;
+use rastty::{Frame, GlyphMode, RenderOptions, Renderer, color::ColorDepth, color::Rgb, render};
 
 /// A fresh directory for one test's files.
 fn scratch(name: &str) -> PathBuf {
@@ -354,7 +355,7 @@ fn an_open_mesh_shows_both_sides_and_a_closed_one_is_culled() {
     )
     .unwrap();
     let scene = Scene::of_model(&dir.join("tri.obj")).unwrap();
-    assert_eq!(scene.meshes[0].cull, rastty::Cull::None);
+    assert_eq!(scene.meshes[0].cull, rastty::scene::Cull::None);
     for yaw in [0.0, 180.0] {
         let opts = RenderOptions {
             turn: glam::Vec3::new(0.0, yaw, 0.0),
@@ -367,7 +368,7 @@ fn an_open_mesh_shows_both_sides_and_a_closed_one_is_culled() {
         );
     }
     let cube = Scene::of_model(Path::new("cube")).unwrap();
-    assert_eq!(cube.meshes[0].cull, rastty::Cull::Back);
+    assert_eq!(cube.meshes[0].cull, rastty::scene::Cull::Back);
 }
 
 #[test]

@@ -9,12 +9,15 @@ use std::path::Path;
 use glam::Vec3;
 use proptest::prelude::*;
 use rastty::Aa;
-use rastty::Cull;
 use rastty::Pipeline;
 use rastty::Shading;
-use rastty::Traversal;
+use rastty::raster::Traversal;
+use rastty::scene::Cull;
 use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
-use rastty::{ColorDepth, Encoder, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene, Threads};
+use rastty::{
+    Frame, GlyphMode, RenderOptions, Renderer, Threads, color::ColorDepth, color::Rgb,
+    encode::Encoder, scene::Scene,
+};
 
 /// Renders both ways; returns the planned renderer's statistics.
 fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameStats, String> {
@@ -423,7 +426,7 @@ fn every_example_scene_is_the_same_with_any_thread_count() {
 
 #[test]
 fn threads_are_planned_from_the_frame_and_the_options() {
-    let scene = rastty::default_scene();
+    let scene = rastty::scene::default_scene();
     let bands = |opts: RenderOptions| {
         let mut r = Renderer::new();
         r.render(&scene, &opts);
@@ -463,11 +466,11 @@ fn threads_are_planned_from_the_frame_and_the_options() {
             ..exactly(3)
         },
         RenderOptions {
-            precision: rastty::Precision::F32,
+            precision: rastty::raster::Precision::F32,
             ..exactly(3)
         },
         RenderOptions {
-            traversal: rastty::Traversal::Scan,
+            traversal: rastty::raster::Traversal::Scan,
             ..exactly(3)
         },
     ] {
@@ -631,13 +634,13 @@ fn skipped_stages_do_no_work() {
     assert!(s.lighting_evaluations > 0);
 
     // The torus is not convex: depth runs; smooth shading interpolates.
-    r.render(&rastty::default_scene(), &opts);
+    r.render(&rastty::scene::default_scene(), &opts);
     let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(p.depth.run && p.interpolation.run && p.perspective.run);
     assert!(s.depth_tests > 0 && s.perspective_samples > 0);
 
     // Orthographic: interpolation without 1/w.
-    let mut ortho = rastty::default_scene();
+    let mut ortho = rastty::scene::default_scene();
     ortho.camera.projection = Projection::Orthographic {
         height: 3.0,
         near: 0.1,

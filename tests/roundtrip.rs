@@ -12,7 +12,9 @@ use rastty::Choice;
 use rastty::color::{Ink, Quantizer};
 use rastty::encode::{Encoder, Rep, TermCell, write_lines};
 use rastty::scene::{Triangle, TriangleColor};
-use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Renderer, Rgb, Scene};
+use rastty::{
+    Frame, GlyphMode, RenderOptions, Renderer, color::ColorDepth, color::Rgb, scene::Scene,
+};
 
 fn vt_color(ink: Ink) -> vt100::Color {
     match ink {
@@ -262,7 +264,8 @@ proptest! {
 #[test]
 fn spinning_square_stays_within_budget_in_every_mode() {
     use rastty::animate;
-    use rastty::animate::{Axis, Spin};
+    use rastty::animate::Spin;
+    use rastty::transform::Axis;
     let scene = scene("square");
     let spin = Spin {
         axis: Axis::Z,

@@ -3,7 +3,7 @@
 //! one in sextants with its colours (`Frame::with_colors`).
 
 use rastty::Choice;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Scene, render};
+use rastty::{GlyphMode, RenderOptions, color::ColorDepth, render, scene::Scene};
 
 fn frame(scene: &str, cols: u16, rows: u16) -> String {
     frame_in(scene, cols, rows, GlyphMode::Ascii)
@@ -73,7 +73,7 @@ fn default_scene_in_block_mode() {
         color: ColorDepth::None,
         ..RenderOptions::default()
     };
-    insta::assert_snapshot!(render(&rastty::default_scene(), &opts).to_string());
+    insta::assert_snapshot!(render(&rastty::scene::default_scene(), &opts).to_string());
 }
 
 /// The reference triangle in every glyph mode, as `--color none` prints it.
@@ -91,7 +91,7 @@ fn every_glyph_mode() {
 /// runs of one foreground and background, `-` for the terminal's own.
 #[test]
 fn with_colors_writes_glyphs_then_runs_of_colour() {
-    use rastty::{Cell, Frame, Rgb};
+    use rastty::{Cell, Frame, color::Rgb};
     let mut f = Frame::new(3, 2);
     let orange = Some(Rgb::new(0xff, 0xa0, 0x40));
     let navy = Some(Rgb::new(0x10, 0x20, 0x30));
@@ -164,7 +164,7 @@ fn colours_are_in_the_snapshot() {
     let c = &mut darker.triangles[0].color;
     *c = match *c {
         rastty::scene::TriangleColor::Flat(rgb) => rastty::scene::TriangleColor::Flat(
-            rastty::Rgb::new(rgb.0[0] / 2, rgb.0[1] / 2, rgb.0[2] / 2),
+            rastty::color::Rgb::new(rgb.0[0] / 2, rgb.0[1] / 2, rgb.0[2] / 2),
         ),
         other => other,
     };

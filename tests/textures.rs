@@ -13,7 +13,7 @@ use rastty::color::Lin;
 use rastty::glam::{DVec3, DVec4, Vec3};
 use rastty::scene::{Camera, LoadOptions, Mesh, Projection, Scene, gltf, obj};
 use rastty::texture::FilterMode;
-use rastty::{GlyphMode, RenderOptions, Renderer, Rgb};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::Rgb};
 
 /// The floor: 4 wide (x from −2 to 2), 20 deep (z from 0 to −20), at
 /// y = 0; `u = x + 2`, `v = −z`, so that a 2×2 checkerboard texture,
@@ -575,7 +575,7 @@ fn the_example_crate_in_ascii_shows_its_planks_and_brace() {
         cols: 60,
         rows: 26,
         glyphs: GlyphMode::Ascii,
-        color: rastty::ColorDepth::None,
+        color: rastty::color::ColorDepth::None,
         ..RenderOptions::default()
     };
     insta::assert_snapshot!(rastty::render(&scene, &o).to_string());

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use rastty::Choice;
 use rastty::raster::{RasterStats, rasterize};
 use rastty::transform::Grid;
-use rastty::{Cull, Traversal};
+use rastty::{raster::Traversal, scene::Cull};
 
 const W: u32 = 24;
 const H: u32 = 16;

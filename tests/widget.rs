@@ -21,7 +21,10 @@ use rastty::encode::{Rep, write_lines};
 use rastty::glam::Vec3;
 use rastty::ratatui::{SceneState, SceneWidget};
 use rastty::scene::Shape;
-use rastty::{ColorDepth, Frame, GlyphMode, RenderOptions, Rgb, Scene, default_scene, render};
+use rastty::{
+    Frame, GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render, scene::Scene,
+    scene::default_scene,
+};
 
 /// The colour a vt100 screen shows for a ratatui colour: the named
 /// colours are palette entries 0–15, sent as SGR 30–37 and 90–97.
@@ -122,7 +125,7 @@ fn colourful() -> Scene {
                 Rgb::new(0, 0, 255),
             ],
         )
-        .light(rastty::Light::default())
+        .light(rastty::scene::Light::default())
         .build()
         .unwrap()
 }

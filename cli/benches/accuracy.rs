@@ -13,12 +13,12 @@ mod bench;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rastty::Choice;
-use rastty::Precision;
 use rastty::Split;
 use rastty::color::Metric;
 use rastty::encode::Encoder;
+use rastty::raster::Precision;
 use rastty::{Aa, Interpolation};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, scene::Scene};
 
 fn knobs(c: &mut Criterion) {
     let scene = Scene::of_model(Path::new(&format!(

@@ -13,13 +13,13 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use rastty::Shading;
 use rastty::Split;
-use rastty::animate::Axis;
 use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
 use rastty::picture::CellPx;
+use rastty::transform::Axis;
 use rastty::{Aa, Interpolation};
-use rastty::{ColorDepth, GlyphMode, Traversal};
-use rastty::{Cull, Precision};
+use rastty::{GlyphMode, color::ColorDepth, raster::Traversal};
+use rastty::{raster::Precision, scene::Cull};
 
 use rastty::MAX_CELLS;
 use rastty::texture::FilterMode;
@@ -236,7 +236,7 @@ pub struct ViewArgs {
     /// where its surface turns away from you: a dark model shows against a
     /// dark background [default: none]
     #[arg(long, value_name = "COLOR", value_parser = parse_rgb)]
-    pub rim: Option<rastty::Rgb>,
+    pub rim: Option<rastty::color::Rgb>,
     /// Colour depth; auto reads NO_COLOR, COLORTERM and TERM
     #[arg(long, value_enum, default_value_t = ColorArg::Auto)]
     pub color: ColorArg,
@@ -348,7 +348,7 @@ pub enum Background {
     /// The terminal's own background.
     Terminal,
     /// This colour.
-    Color(rastty::Rgb),
+    Color(rastty::color::Rgb),
 }
 
 fn parse_background(s: &str) -> Result<Background, String> {
@@ -360,7 +360,7 @@ fn parse_background(s: &str) -> Result<Background, String> {
         .map_err(|_| format!("{s:?} is not a colour: #rrggbb, or `terminal`"))
 }
 
-fn parse_rgb(s: &str) -> Result<rastty::Rgb, String> {
+fn parse_rgb(s: &str) -> Result<rastty::color::Rgb, String> {
     s.parse()
         .map_err(|_| format!("{s:?} is not a colour: #rrggbb"))
 }

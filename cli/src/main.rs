@@ -24,7 +24,7 @@ use rastty::animate::{Player, Spin};
 use rastty::cast::{self, Recorder};
 use rastty::encode::Encoder;
 use rastty::picture::{self, Format, Theme};
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Renderer, Scene, encode};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, encode, scene::Scene};
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -221,7 +221,7 @@ fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Result<Sc
     }
     let scene = match &input.scene {
         Some(p) => Scene::open_within(p, &options)?,
-        None => rastty::default_scene(),
+        None => rastty::scene::default_scene(),
     };
     for note in &scene.notes {
         say("note", note);

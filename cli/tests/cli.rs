@@ -218,16 +218,16 @@ fn settings_are_named_as_the_command_line_names_them() {
     for &shading in rastty::Shading::ALL {
         accepted("--shading", shading.name());
     }
-    for &t in rastty::Traversal::ALL {
+    for &t in rastty::raster::Traversal::ALL {
         accepted("--traversal", t.name());
     }
-    for &p in rastty::Precision::ALL {
+    for &p in rastty::raster::Precision::ALL {
         accepted("--precision", p.name());
     }
     for &aa in rastty::Aa::ALL {
         accepted("--aa", aa.name());
     }
-    for depth in rastty::ColorDepth::ALL {
+    for depth in rastty::color::ColorDepth::ALL {
         stdout(&[
             "render",
             "--color",

@@ -168,17 +168,17 @@ fn a_notice_in_the_status_line_is_drawn_escaped() {
     let opts = rastty::RenderOptions {
         cols: 60,
         rows: 4,
-        color: rastty::ColorDepth::TrueColor,
+        color: rastty::color::ColorDepth::TrueColor,
         ..Default::default()
     };
     let mut p = Player::new(
-        rastty::default_scene(),
+        rastty::scene::default_scene(),
         opts,
         Spin {
             axis: rastty::transform::Axis::Y,
             step: 3.0,
         },
-        rastty::Encoder::new(opts.color),
+        rastty::encode::Encoder::new(opts.color),
     );
     p.set_notice(PLANTED);
     let bytes = p.prepare(LiveStatus::default()).to_vec();

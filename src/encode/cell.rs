@@ -1,11 +1,13 @@
 //! Cells as the terminal holds them: a frame's cells quantised for the
-//! colour depth ([`TermCell`], [`Pen`]) and packed into integers for
+//! colour depth ([`TermCell`]) and packed into integers for
 //! comparing and choosing ([`Packed`]), and the glyphs with a complement
 //! (a cell may be sent the other way round when that is shorter).
 
 use super::*;
 
-/// The colours the terminal currently draws with.
+/// The colours the terminal currently draws with (the tests' form of
+/// [`Inks`]).
+#[cfg(test)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pen {
     /// The foreground.

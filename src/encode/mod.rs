@@ -65,9 +65,9 @@ use crate::frame::{Cell, Frame};
 use crate::transform::Rect;
 
 /// Synchronized output: begin and end.
-pub const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
+pub(crate) const SYNC_BEGIN: &[u8] = b"\x1b[?2026h";
 /// Synchronized output: end.
-pub const SYNC_END: &[u8] = b"\x1b[?2026l";
+pub(crate) const SYNC_END: &[u8] = b"\x1b[?2026l";
 
 mod cell;
 mod cursor;
@@ -81,14 +81,15 @@ use diff::*;
 use lines::*;
 use sgr::*;
 
-pub use cell::{Pen, TermCell, complement};
+pub use cell::{TermCell, complement};
 pub use lines::write_lines;
-pub use sgr::{Rep, push_char};
+pub use sgr::Rep;
+pub(crate) use sgr::push_char;
 
 /// Sends frames to a terminal, each as the difference from the last.
 ///
 /// ```
-/// use rastty::{ColorDepth, Encoder, Frame, RenderOptions, Renderer, Rgb, Scene};
+/// use rastty::{color::ColorDepth, encode::Encoder, Frame, RenderOptions, Renderer, color::Rgb, scene::Scene};
 /// use rastty::glam::Vec3;
 ///
 /// let scene = Scene::of_mesh(rastty::scene::Shape::Cube.mesh(Rgb::WHITE));

@@ -57,7 +57,7 @@
 //! no sample centre at all, which the vertices' centre keys (computed once
 //! per vertex) tell in a few comparisons, once the signed area (culling,
 //! zero area) is known. `SmallSetup`
-//! tests each sample of a box of at most [`SMALL_BOX`] once, at set-up,
+//! tests each sample of a box of at most `SMALL_BOX` (8) once, at set-up,
 //! and keeps only the vertices and a bit per covered sample: a triangle
 //! that covers nothing is known without a [`Setup`] built (a couple of
 //! hundred bytes) or walked, and the weights of the few it covers are
@@ -83,9 +83,9 @@ mod snapped;
 use edge::*;
 
 pub(crate) use edge::CentreKey;
-pub use float::{FloatSetup, Real};
+pub(crate) use float::FloatSetup;
 pub use setup::{Rejected, Setup};
-pub use small::SMALL_BOX;
+pub(crate) use small::SMALL_BOX;
 pub(crate) use small::SmallSetup;
 pub use snapped::SnappedTriangle;
 pub(crate) use snapped::signed_area2;
@@ -235,7 +235,7 @@ pub fn rasterize<F: FnMut(u32, u32, [i64; 3])>(
 
 impl RasterStats {
     /// Counts a rejected triangle under its reason.
-    pub fn count_rejected(&mut self, r: Rejected) {
+    pub(crate) fn count_rejected(&mut self, r: Rejected) {
         match r {
             Rejected::NonFinite => self.dropped_non_finite += 1,
             Rejected::OutOfRange => self.dropped_out_of_range += 1,

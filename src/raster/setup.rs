@@ -286,7 +286,7 @@ impl Coverage for Setup {
         box_rect(self.x0, self.x1, self.y0, self.y1)
     }
 
-    /// Each sample of a box of at most [`SMALL_BOX`] samples tested
+    /// Each sample of a box of at most `SMALL_BOX` (8) samples tested
     /// directly, stopping at the first inside.
     #[inline(always)]
     fn covers_any(&self) -> bool {

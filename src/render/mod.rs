@@ -149,7 +149,7 @@ impl Renderer {
     /// a block of 63 slots every 63 frames.)
     ///
     /// ```
-    /// use rastty::{Frame, RenderOptions, Renderer, Rgb, Scene};
+    /// use rastty::{Frame, RenderOptions, Renderer, color::Rgb, scene::Scene};
     ///
     /// let scene = Scene::of_mesh(rastty::scene::Shape::Cube.mesh(Rgb::WHITE));
     /// let opts = RenderOptions { cols: 40, rows: 12, ..Default::default() };

@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 /// ```
 /// use rastty::glam::{Mat4, Vec3};
 /// use rastty::scene::Shape;
-/// use rastty::{Light, Rgb, Scene};
+/// use rastty::{scene::Light, color::Rgb, scene::Scene};
 ///
 /// let scene = Scene::builder()
 ///     .look_at(Vec3::new(3.0, 2.0, 4.0), Vec3::ZERO)
@@ -75,7 +75,7 @@ impl SceneBuilder {
     }
 
     /// Adds a mesh (a built-in shape with [`super::Shape::mesh`], a model
-    /// file's with [`super::load_mesh`], or [`Mesh::new`] from positions
+    /// file's with [`super::load_geometry`] and [`Mesh::of`], or [`Mesh::new`] from positions
     /// and faces).
     pub fn mesh(mut self, mesh: Mesh) -> SceneBuilder {
         self.scene.meshes.push(mesh);

@@ -180,7 +180,7 @@ impl Camera {
     /// This camera for a view of `aspect` (width over height): where it
     /// frames a model ([`Camera::fit`]), the eye moved along `eye − target`
     /// to the distance at which the model's outline, turned any way about
-    /// the y axis (as `spin` and `--yaw` turn it), fills [`Fit::FILL`] of
+    /// the y axis (as `spin` and `--yaw` turn it), fills 90 % of
     /// the view's height or width, whichever limits, times the length of
     /// `eye − target` (the zoom); and moved up or down to centre it (not
     /// sideways, so that the turn's axis stays in the middle). Every frame

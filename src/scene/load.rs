@@ -283,18 +283,6 @@ pub(super) fn chunks(src: &str, size: usize) -> Vec<(usize, usize)> {
     out
 }
 
-/// The model files read, by extension (lower case).
-pub const MODEL_EXTENSIONS: &[&str] = &[
-    "obj",
-    "stl",
-    #[cfg(feature = "gltf")]
-    "gltf",
-    #[cfg(feature = "gltf")]
-    "glb",
-    #[cfg(feature = "ply")]
-    "ply",
-];
-
 /// The model formats read, in words.
 pub(super) const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) {
     ".obj with its .mtl, .stl, .gltf, .glb, .ply"
@@ -345,11 +333,4 @@ pub(super) fn load_as(
     };
     loaded.notes.splice(0..0, note);
     Ok((Arc::new(loaded.geometry), loaded.notes))
-}
-
-/// Loads a mesh file by its extension, or a built-in shape by its name, in
-/// `color` where the file gives none.
-pub fn load_mesh(path: &Path, color: Rgb) -> Result<Mesh> {
-    let (geometry, _) = load_geometry(path, &LoadOptions::default())?;
-    Ok(Mesh::of(geometry, color))
 }

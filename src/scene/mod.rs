@@ -58,7 +58,7 @@ mod normals;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 #[cfg(feature = "textures")]
-pub mod image;
+mod image;
 pub mod obj;
 #[cfg(feature = "ply")]
 pub mod ply;
@@ -77,13 +77,15 @@ use serde::Deserialize;
 use toml::Spanned;
 
 pub use builder::SceneBuilder;
-pub use camera::{Camera, Fit, Projection};
+pub(crate) use camera::Fit;
+pub use camera::{Camera, Projection};
 use def::*;
+pub use load::load_geometry;
 use load::*;
-pub use load::{Format, Kind, MODEL_EXTENSIONS, load_geometry, load_mesh};
-pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MAX_LIGHTS, MaterialRun, Mesh, Run};
+pub(crate) use load::{Format, Kind};
+pub use mesh::MAX_LIGHTS;
+pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MaterialRun, Mesh};
 pub use shapes::Shape;
-pub use transform::Axis;
 
 use crate::color::{ColorSpace, Rgb};
 use crate::error::{Error, Result};
@@ -184,21 +186,21 @@ impl Default for LoadOptions {
 
 /// The smallest orthographic height accepted: with the narrowest view
 /// (aspect 1/80,000), `2/width` still fits f32.
-pub const MIN_HEIGHT: f32 = 1e-30;
+pub(crate) const MIN_HEIGHT: f32 = 1e-30;
 
 /// Where a model shown alone is seen from: 30° to the right of its front
 /// and 20° above, a unit away (the camera's fit sets the distance).
-pub const THREE_QUARTER: Vec3 = Vec3::new(0.469_846_3, 0.342_020_1, 0.813_797_7);
+pub(crate) const THREE_QUARTER: Vec3 = Vec3::new(0.469_846_3, 0.342_020_1, 0.813_797_7);
 
 /// The vertical field of view a model shown alone is seen with, degrees.
-pub const MODEL_FOV: f32 = 30.0;
+pub(crate) const MODEL_FOV: f32 = 30.0;
 
 /// The colour of a mesh whose file gives none.
 pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);
 
 impl Scene {
     /// A scene of one model, as `rastty spin MODEL` shows it: centred,
-    /// its y axis up, seen from a three-quarter view ([`THREE_QUARTER`]:
+    /// its y axis up, seen from a three-quarter view (
     /// 30° to the right, 20° above) through a 30° lens, framed to fill 90 %
     /// of the view's limiting dimension however it turns about y
     /// ([`Camera::resolved`]), under [`Light::rig`].
@@ -281,20 +283,21 @@ impl Scene {
 
     /// What `path` names: a model, a scene, or (without an extension, when
     /// no such file exists) a built-in shape. See [`Format::of`].
-    pub fn kind(path: &Path) -> Result<Kind> {
+    pub(crate) fn kind(path: &Path) -> Result<Kind> {
         Ok(match Format::of(path)?.0 {
             Format::Toml => Kind::Scene,
             _ => Kind::Model,
         })
     }
 
-    /// Whether `path` names a model rather than a scene file (see
-    /// [`Scene::kind`]).
+    /// Whether `path` names a model rather than a scene file, by the
+    /// format its first bytes and its extension say (a TOML file is a
+    /// scene; a built-in shape's name is a model).
     pub fn is_model(path: &Path) -> bool {
         matches!(Scene::kind(path), Ok(Kind::Model))
     }
 
-    /// A scene file or a model, told apart by [`Scene::kind`].
+    /// A scene file or a model, told apart as [`Scene::is_model`] says.
     pub fn open(path: &Path) -> Result<Scene> {
         Scene::open_within(path, &LoadOptions::default())
     }

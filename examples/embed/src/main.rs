@@ -5,7 +5,7 @@
 
 use rastty::glam::Vec3;
 use rastty::scene::Shape;
-use rastty::{ColorDepth, GlyphMode, RenderOptions, Rgb, Scene, render};
+use rastty::{GlyphMode, RenderOptions, color::ColorDepth, color::Rgb, render, scene::Scene};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = Scene::builder()
