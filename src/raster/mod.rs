@@ -191,9 +191,14 @@ pub trait Coverage {
     fn bbox_samples(&self) -> u64;
     /// The clamped bounding box: every sample the walk hits lies in it.
     fn bounds(&self) -> Rect;
-    /// Whether any sample may be covered: `false` only when it is certain
-    /// that none is (cheap to tell for a small box; a large box says
-    /// `true`).
+    /// Whether any sample may be covered: the one test of "covers
+    /// nothing" the renderer acts on (the plan's lean path lights and
+    /// fills only triangles it passes). `false` exactly when the box holds
+    /// no sample centre or, for a box of at most `SMALL_BOX` samples, when
+    /// the walk would find none inside; a larger box says `true` and is
+    /// walked. (The vertex stage's `CentreKey` tells an empty box before
+    /// set-up; a property test holds it to the set-up's box.) The f32 and
+    /// f64 set-ups, which only the comparison modes use, always say `true`.
     fn covers_any(&self) -> bool {
         true
     }

@@ -305,7 +305,7 @@ impl Renderer {
         screen: impl Fn([Vec3; 3]) -> ScreenTriangle,
         texture: Option<(&Texture, Sampler)>,
     ) {
-        if let Some(s) = self.setup(setup, stage.exact) {
+        if let Some(s) = self.setup(setup) {
             if stage.plan.lean.run && !s.covers_any() {
                 self.stats.raster.samples_tested += s.bbox_samples();
                 return;
@@ -325,7 +325,7 @@ impl Renderer {
         stage: &Stage<'_>,
         texture: Option<(&Texture, Sampler)>,
     ) {
-        if let Some(s) = self.setup(setup, stage.exact) {
+        if let Some(s) = self.setup(setup) {
             self.fill(s, screen, stage, texture);
         }
     }
@@ -449,21 +449,17 @@ impl Renderer {
         }
     }
 
-    /// A set-up screen triangle, counted; `None` when it was rejected or
-    /// covers no sample.
+    /// A set-up screen triangle, counted; `None` when it was rejected.
     /// Borrowed, not moved: a set-up triangle is a few hundred bytes.
     #[inline(always)]
     pub(super) fn setup<'s, C: Coverage>(
         &mut self,
         setup: &'s Result<C, Rejected>,
-        exact: bool,
     ) -> Option<&'s C> {
         match setup {
             Ok(s) => {
                 self.stats.raster.triangles_drawn += 1;
-                // Exact coverage counts area, which a triangle between
-                // sample centres still has.
-                (s.bbox_samples() > 0 || exact).then_some(s)
+                Some(s)
             }
             Err(r) => {
                 self.stats.raster.count_rejected(*r);
