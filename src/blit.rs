@@ -54,7 +54,7 @@ pub use support::{GlyphFamily, GlyphSupport};
 
 use crate::color::{ColorDepth, Lin, Rgb};
 use crate::frame::{Cell, Frame, Known};
-use crate::framebuffer::Framebuffer;
+use crate::framebuffer::{Framebuffer, View};
 use crate::transform::{Grid, Rect};
 
 /// How samples become glyphs.
@@ -482,14 +482,14 @@ pub fn blit(
     let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
     // Every cell is written below.
     frame.resize(cols, rows);
-    let known = blit_band(fb, mode, depth, background, split, frame.cells_mut());
+    let known = blit_band(fb.view(), mode, depth, background, split, frame.cells_mut());
     frame.set_known(known);
 }
 
 /// The cells (columns, and rows from the top of the frame) that show a
-/// sample of `fb`'s [`Framebuffer::drawn`] rectangle in `mode`: every
+/// sample of `fb`'s drawn rectangle in `mode`: every
 /// other cell shows undrawn samples only.
-pub(crate) fn drawn_cells(fb: &Framebuffer, mode: GlyphMode) -> Rect {
+pub(crate) fn drawn_cells(fb: View<'_>, mode: GlyphMode) -> Rect {
     let d = fb.drawn();
     let grid = fb.grid();
     let d = d.intersect(Rect::all(grid.width, grid.height));
@@ -509,12 +509,12 @@ pub(crate) fn drawn_cells(fb: &Framebuffer, mode: GlyphMode) -> Rect {
 }
 
 /// [`blit`] of the cell rows whose samples `fb` holds (a band of whole
-/// cell rows: see [`Framebuffer::band`]) into `cells`, those rows' cells,
+/// cell rows) into `cells`, those rows' cells,
 /// top row first. Cells that show no drawn sample (outside
 /// [`drawn_cells`]) are all the same cell, written at once; returns what
 /// that says of the frame's cells.
 pub(crate) fn blit_band(
-    fb: &Framebuffer,
+    fb: View<'_>,
     mode: GlyphMode,
     depth: ColorDepth,
     background: Option<Rgb>,
@@ -573,14 +573,7 @@ fn rows_drawn(
     }
 }
 
-type BlitArgs<'a> = (
-    &'a Framebuffer,
-    GlyphMode,
-    ColorDepth,
-    Option<Lin>,
-    Split,
-    bool,
-);
+type BlitArgs<'a> = (View<'a>, GlyphMode, ColorDepth, Option<Lin>, Split, bool);
 
 /// [`blit_cells`] of half blocks in colour with the exhaustive split, the
 /// commonest cells written out: each cell reads its two samples from two
@@ -589,7 +582,7 @@ type BlitArgs<'a> = (
 /// The same cells (a test compares every case with the general path).
 /// Returns the cell of two undrawn samples, written outside `drawn`.
 fn blit_half(
-    fb: &Framebuffer,
+    fb: View<'_>,
     depth: ColorDepth,
     background: Option<Lin>,
     drawn: Rect,
@@ -737,8 +730,8 @@ mod tests {
             let rows = ((band.y1 - band.y0) / 2) as usize;
             let (mut fast, mut general) = (vec![Cell::BLANK; 4 * rows], vec![Cell::BLANK; 4 * rows]);
             for depth in [ColorDepth::TrueColor, ColorDepth::Ansi256] {
-                blit_band(&fb, GlyphMode::Half, depth, background, Split::Exhaustive, &mut fast);
-                let args = (&fb, GlyphMode::Half, depth, background.map(Lin::from_srgb), Split::Exhaustive, true);
+                blit_band(fb.view(), GlyphMode::Half, depth, background, Split::Exhaustive, &mut fast);
+                let args = (fb.view(), GlyphMode::Half, depth, background.map(Lin::from_srgb), Split::Exhaustive, true);
                 blit_cells::<1, 2>(args, Rect::all(4, 3), &mut general);
                 proptest::prop_assert_eq!(&fast, &general);
             }

@@ -1,7 +1,8 @@
 //! The fill stage: a set-up triangle's coverage in, samples out. What the
 //! rasterizer finds covered (a [`Coverage`]'s walk, sample by sample, with
 //! its edge weights) becomes a depth, a colour and a texel at each sample,
-//! tested and written into the [`Framebuffer`] through a [`Sink`], in the
+//! tested and written into the framebuffer (or one band of its rows)
+//! through a [`Sink`], in the
 //! spirit of tiny-skia's `Blitter` and euc's `test_fragment` /
 //! `emit_fragment`: the renderer decides, from the plan, which sink and
 //! which fill; the fill decides nothing and reports what it did
@@ -26,18 +27,18 @@
 use glam::{Vec2, Vec3, Vec3A};
 
 use crate::color::Lin;
-use crate::framebuffer::Framebuffer;
+use crate::framebuffer::Target;
 use crate::raster::{Coverage, Traversal};
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
 
 /// Where a triangle's samples go, and how they are tested: the
-/// framebuffer, whether samples are depth-tested (else written only where
+/// framebuffer's rows drawn into, whether samples are depth-tested (else written only where
 /// still empty: the first drawn stays) and how a set-up triangle is
 /// walked. Made by the renderer from the plan's answers.
 pub(crate) struct Sink<'a> {
     /// The samples written.
-    pub fb: &'a mut Framebuffer,
+    pub fb: Target<'a>,
     /// Depth-test each sample (the plan's depth decision).
     pub depth: bool,
     /// How coverage is walked.
@@ -92,7 +93,7 @@ impl Sink<'_> {
         (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
     ) -> Filled {
         let grid = self.fb.grid();
-        let fb = &mut *self.fb;
+        let fb = &mut self.fb;
         let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
@@ -134,7 +135,7 @@ impl Sink<'_> {
     #[inline(always)]
     pub(crate) fn colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool) -> Filled {
         let grid = self.fb.grid();
-        let fb = &mut *self.fb;
+        let fb = &mut self.fb;
         let (mut covered, mut written) = (0u64, 0u64);
         let one = Lin::from_lanes(a.color[0]);
         let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
@@ -464,6 +465,7 @@ fn perspective_weights(v: [f32; 3]) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::fixed::FixedPoint;
+    use crate::framebuffer::Framebuffer;
     use crate::raster::{Setup, SnappedTriangle, Traversal};
     use crate::scene::Cull;
     use glam::Vec3;
@@ -496,7 +498,7 @@ mod tests {
                     let a =
                         Attributes::new(s.order(), s.inv_area(), [z, inv_w], colors, perspective);
                     let mut sink = Sink {
-                        fb: &mut fb,
+                        fb: fb.target(),
                         depth,
                         traversal: Traversal::Spans,
                     };

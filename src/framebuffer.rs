@@ -10,12 +10,16 @@
 //! cleared to −∞. Rows are stored bottom to top (y up, as the notes have
 //! it); the blitters turn them over.
 //!
-//! A framebuffer may hold one [`Band`] of its grid's rows only: what one
-//! thread draws of a frame drawn in parallel. Its samples keep the grid's
-//! coordinates (an index subtracts the band's first row).
+//! The fill stage writes through a [`Target`]: the framebuffer's rows, or
+//! one [`Band`] of them split off for one thread of a frame drawn in
+//! parallel, so that bands draw into the one framebuffer rather than into
+//! copies of their own (tiny-skia's `SubPixmapMut`). The blitters read a
+//! [`View`]. Samples keep the grid's coordinates (an index subtracts the
+//! band's first row). A framebuffer may itself hold one band of its
+//! grid's rows only ([`Framebuffer::reset_band`]).
 //!
-//! It keeps the rectangle where anything was drawn since it was cleared
-//! ([`Framebuffer::drawn`]): every sample outside it is empty. A model
+//! It keeps the rectangle where anything was drawn since it was cleared:
+//! every sample outside it is empty. A model
 //! seen small covers a corner of a large frame, and then clearing the
 //! framebuffer, blitting it and encoding its cells touch only that
 //! rectangle's samples; the rest is known to be background. The fills
@@ -32,7 +36,8 @@ pub struct Framebuffer {
     band: Band,
     samples: Vec<Option<Lin>>,
     depth: Vec<f32>,
-    /// Every sample outside it is empty.
+    /// Where anything was drawn since the framebuffer was cleared: every
+    /// sample outside it is empty (it may hold empty samples too).
     drawn: Rect,
     /// Every depth outside it and `drawn` is −∞ (depths are written with
     /// samples, and a frame without a depth test does not clear them).
@@ -62,14 +67,7 @@ impl Framebuffer {
         }
     }
 
-    /// Where anything was drawn since the framebuffer was cleared: every
-    /// sample outside it is empty (it may hold empty samples too).
-    pub(crate) fn drawn(&self) -> Rect {
-        self.drawn
-    }
-
-    /// Widens [`Framebuffer::drawn`] by `r`: for a caller that writes the
-    /// samples of `r` by index ([`Framebuffer::write`]).
+    /// Widens the rectangle where anything was drawn by `r`.
     #[inline(always)]
     pub(crate) fn touch(&mut self, r: Rect) {
         self.drawn = self.drawn.union(r);
@@ -137,7 +135,7 @@ impl Framebuffer {
     }
 
     /// Checks, in debug builds, that every sample outside
-    /// [`Framebuffer::drawn`] is empty.
+    /// the drawn rectangle is empty.
     fn debug_assert_empty_outside_drawn(&self) {
         if cfg!(debug_assertions)
             && self.samples.len() == self.grid.width as usize * self.band.height() as usize
@@ -155,33 +153,33 @@ impl Framebuffer {
         }
     }
 
-    /// Copies the samples of [`Framebuffer::drawn`] into `samples` and,
-    /// where given, their depths into `depths` (each laid out as what is
-    /// held, and cleared outside that rectangle: a band's rows of a
-    /// framebuffer that was reset).
-    pub(crate) fn copy_drawn_into(&self, samples: &mut [Option<Lin>], depths: Option<&mut [f32]>) {
-        let w = self.grid.width as usize;
-        let r = self
-            .drawn
-            .intersect(Rect::all(self.grid.width, self.band.y1));
-        let rows = r.y0.max(self.band.y0)..r.y1;
-        let span = |y: u32| {
-            let start = (y - self.band.y0) as usize * w;
-            start + r.x0 as usize..start + r.x1 as usize
-        };
-        for y in rows.clone() {
-            samples[span(y)].copy_from_slice(&self.samples[span(y)]);
-        }
-        if let Some(d) = depths {
-            for y in rows {
-                d[span(y)].copy_from_slice(&self.depth[span(y)]);
-            }
+    /// The samples and depths held, to split into bands of rows
+    /// ([`Target::of_band`]).
+    pub(crate) fn parts_mut(&mut self) -> (&mut [Option<Lin>], &mut [f32]) {
+        (&mut self.samples, &mut self.depth)
+    }
+
+    /// The samples held, to draw into: every row held, widening the drawn
+    /// rectangle as they are written.
+    pub(crate) fn target(&mut self) -> Target<'_> {
+        Target {
+            grid: self.grid,
+            band: self.band,
+            samples: &mut self.samples,
+            depth: &mut self.depth,
+            drawn: &mut self.drawn,
         }
     }
 
-    /// The samples and depths held, to write a band of rows each.
-    pub(crate) fn parts_mut(&mut self) -> (&mut [Option<Lin>], &mut [f32]) {
-        (&mut self.samples, &mut self.depth)
+    /// What the blitters read: the samples held and where anything was
+    /// drawn.
+    pub(crate) fn view(&self) -> View<'_> {
+        View {
+            grid: self.grid,
+            band: self.band,
+            samples: &self.samples,
+            drawn: self.drawn,
+        }
     }
 
     #[inline(always)]
@@ -196,37 +194,6 @@ impl Framebuffer {
     pub fn set(&mut self, x: u32, y: u32, c: Lin) {
         let i = self.index(x, y);
         self.touch(Rect::at(x, y));
-        self.samples[i] = Some(c);
-    }
-
-    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
-    /// holds (strictly: of two equal depths the first drawn stays).
-    #[inline(always)]
-    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
-        let i = self.index(x, y);
-        (z > self.depth[i]).then_some(i)
-    }
-
-    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
-    #[inline(always)]
-    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
-        let i = self.index(x, y);
-        self.samples[i].is_none().then_some(i)
-    }
-
-    /// Writes colour `c` and depth `z` at index `i` (from
-    /// [`Framebuffer::nearer`]); the caller widens [`Framebuffer::drawn`]
-    /// to hold it ([`Framebuffer::touch`]).
-    #[inline(always)]
-    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
-        self.depth[i] = z;
-        self.samples[i] = Some(c);
-    }
-
-    /// Writes colour `c` at index `i` (from [`Framebuffer::empty`]); the
-    /// caller widens [`Framebuffer::drawn`] to hold it.
-    #[inline(always)]
-    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
         self.samples[i] = Some(c);
     }
 
@@ -252,6 +219,155 @@ impl Framebuffer {
     /// All samples held, row by row from the bottom.
     pub fn samples(&self) -> &[Option<Lin>] {
         &self.samples
+    }
+}
+
+/// Samples to draw into: a framebuffer's rows, or one band of them, with
+/// the rectangle that holds everything drawn. The fill stage writes
+/// through it; a frame drawn in bands gives each thread one band's target
+/// of the one framebuffer.
+#[derive(Debug)]
+pub(crate) struct Target<'a> {
+    grid: Grid,
+    band: Band,
+    samples: &'a mut [Option<Lin>],
+    depth: &'a mut [f32],
+    drawn: &'a mut Rect,
+}
+
+impl<'a> Target<'a> {
+    /// Band `band` of `grid`'s rows, split off a framebuffer's
+    /// [`Framebuffer::parts_mut`] (the samples and depths of those rows,
+    /// row by row from the bottom), widening `drawn` as it is written.
+    pub(crate) fn of_band(
+        grid: Grid,
+        band: Band,
+        samples: &'a mut [Option<Lin>],
+        depth: &'a mut [f32],
+        drawn: &'a mut Rect,
+    ) -> Target<'a> {
+        let len = grid.width as usize * band.height() as usize;
+        assert!(samples.len() == len && depth.len() == len);
+        Target {
+            grid,
+            band,
+            samples,
+            depth,
+            drawn,
+        }
+    }
+
+    /// The sample grid.
+    #[inline(always)]
+    pub(crate) fn grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// The rows held.
+    #[inline(always)]
+    pub(crate) fn band(&self) -> Band {
+        self.band
+    }
+
+    /// The same target, borrowed for a while.
+    #[inline(always)]
+    pub(crate) fn reborrow(&mut self) -> Target<'_> {
+        Target {
+            grid: self.grid,
+            band: self.band,
+            samples: self.samples,
+            depth: self.depth,
+            drawn: self.drawn,
+        }
+    }
+
+    /// What the blitters read of it.
+    pub(crate) fn view(&self) -> View<'_> {
+        View {
+            grid: self.grid,
+            band: self.band,
+            samples: self.samples,
+            drawn: *self.drawn,
+        }
+    }
+
+    /// Widens the drawn rectangle by `r`: for a caller that writes the
+    /// samples of `r` by index ([`Target::write`]).
+    #[inline(always)]
+    pub(crate) fn touch(&mut self, r: Rect) {
+        *self.drawn = self.drawn.union(r);
+    }
+
+    #[inline(always)]
+    fn index(&self, x: u32, y: u32) -> usize {
+        debug_assert!(x < self.grid.width && y >= self.band.y0 && y < self.band.y1);
+        (y - self.band.y0) as usize * self.grid.width as usize + x as usize
+    }
+
+    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
+    /// holds (strictly: of two equal depths the first drawn stays).
+    #[inline(always)]
+    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let i = self.index(x, y);
+        (z > self.depth[i]).then_some(i)
+    }
+
+    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
+    #[inline(always)]
+    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
+        let i = self.index(x, y);
+        self.samples[i].is_none().then_some(i)
+    }
+
+    /// Writes colour `c` and depth `z` at index `i` (from
+    /// [`Target::nearer`]); the caller widens the drawn rectangle to hold
+    /// it ([`Target::touch`]).
+    #[inline(always)]
+    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
+        self.depth[i] = z;
+        self.samples[i] = Some(c);
+    }
+
+    /// Writes colour `c` at index `i` (from [`Target::empty`]); the caller
+    /// widens the drawn rectangle to hold it.
+    #[inline(always)]
+    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
+        self.samples[i] = Some(c);
+    }
+}
+
+/// Samples as the blitters read them: a framebuffer's rows, or one band
+/// of them, and the rectangle outside which every sample is empty.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct View<'a> {
+    grid: Grid,
+    band: Band,
+    samples: &'a [Option<Lin>],
+    drawn: Rect,
+}
+
+impl<'a> View<'a> {
+    /// The sample grid.
+    pub(crate) fn grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// The rows held.
+    pub(crate) fn band(&self) -> Band {
+        self.band
+    }
+
+    /// Every sample outside it is empty.
+    pub(crate) fn drawn(&self) -> Rect {
+        self.drawn
+    }
+
+    /// Sample row `y` (y up), one of those held.
+    #[inline(always)]
+    pub(crate) fn row(&self, y: u32) -> &'a [Option<Lin>] {
+        let w = self.grid.width as usize;
+        let i = (y - self.band.y0) as usize * w;
+        &self.samples[i..i + w]
     }
 }
 

@@ -150,7 +150,7 @@ pub(super) struct Packed {
     pub(super) bg: u32,
 }
 
-/// A [`Pen`] as the encoder keeps it, each ink packed by [`pack_ink`].
+/// A pen (foreground and background) as the encoder keeps it, each ink packed by [`pack_ink`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct Inks {
     pub(super) fg: u32,

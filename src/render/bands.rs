@@ -3,16 +3,16 @@
 //! or more, with the `parallel` feature).
 //!
 //! The vertex stage runs once, on the calling thread; then each band
-//! clears its own framebuffer of its rows, draws every triangle with its
-//! box clamped to them, copies them into the renderer's framebuffer and
-//! blits them into its rows of the frame. A sample sees the same triangles
-//! in the same order as with one thread, and the fixed-point edge values
-//! are exact integers from any starting row, so the frame is the same bit
-//! for bit. The costs: each band sets up every triangle that reaches it (a
-//! triangle across two bands is set up, and may be lit, twice), the copy,
-//! and a second framebuffer's memory, which is why small frames stay on
-//! one thread ([`crate::PARALLEL_CELLS`]; what bands save is in
-//! docs/figures.md and docs/planner.md).
+//! draws every triangle with its box clamped to its rows, into its rows of
+//! the one framebuffer (a [`Target`] split off it: no copy, no second
+//! framebuffer), and blits them into its rows of the frame. A sample sees
+//! the same triangles in the same order as with one thread, and the
+//! fixed-point edge values are exact integers from any starting row, so
+//! the frame is the same bit for bit. The cost: each band sets up every
+//! triangle that reaches it (a triangle across two bands is set up, and
+//! may be lit, twice), which is why small frames stay on one thread
+//! ([`crate::PARALLEL_CELLS`]; what bands save is in docs/figures.md and
+//! docs/planner.md).
 
 use std::time::Duration;
 
@@ -20,23 +20,52 @@ use glam::Mat4;
 
 use super::stats::FrameStats;
 use super::triangle::Faces;
-use super::vertex::Transforms;
-use super::{Renderer, Stage};
+use super::vertex::{Transforms, Vert};
+use super::{Painter, Renderer, Stage};
 use crate::blit;
-use crate::color::Lin;
+use crate::clip::Polygon;
 use crate::frame::{Cell, Frame, Known};
+use crate::framebuffer::Target;
 use crate::options::RenderOptions;
 use crate::scene::Scene;
 use crate::transform::{Band, Rect};
 
+/// What one band's thread keeps from frame to frame: its counts, its
+/// scratch memory, and what it drew and blitted.
+#[derive(Debug)]
+pub(super) struct BandWork {
+    stats: FrameStats,
+    poly: Polygon,
+    /// The loose triangles' vertices, one triangle at a time.
+    verts: Vec<Vert>,
+    /// Unused: bands are not anti-aliased.
+    acc: Vec<[f32; 4]>,
+    /// Where the band drew this frame.
+    drawn: Rect,
+    /// What its blit knows of its cells.
+    known: Known,
+}
+
+impl Default for BandWork {
+    fn default() -> BandWork {
+        BandWork {
+            stats: FrameStats::default(),
+            poly: Polygon::default(),
+            verts: Vec::new(),
+            acc: Vec::new(),
+            drawn: Rect::EMPTY,
+            known: Known::default(),
+        }
+    }
+}
+
 impl Renderer {
     /// Draws the frame in bands of whole cell rows, each on a thread of its
     /// own (with the `parallel` feature): every vertex is transformed once,
-    /// here; then each band clears its rows, draws every triangle that
-    /// reaches them, copies them into this renderer's framebuffer and blits
-    /// them into their rows of `frame`. Band k holds cell rows
-    /// `[k·m, (k+1)·m)` from the bottom, `m` rows a band (the top band may
-    /// hold fewer).
+    /// here; then each band draws every triangle that reaches its rows
+    /// into its rows of the one framebuffer, and blits them into its rows
+    /// of `frame`. Band k holds cell rows `[k·m, (k+1)·m)` from the
+    /// bottom, `m` rows a band (the top band may hold fewer).
     pub(super) fn draw_bands(
         &mut self,
         scene: &Scene,
@@ -53,33 +82,46 @@ impl Renderer {
         let (cols, rows) = (grid.width / cell_w, grid.height / cell_h);
         let per = rows.div_ceil(p.bands.count as u32).max(1);
         let n = rows.div_ceil(per) as usize;
+        // Cleared where the last frame drew.
+        self.fb.reset(grid, depth);
         // The vertex stage, every mesh's vertices one after another.
         self.verts.clear();
         self.meshes.clear();
+        let mut painter = Painter {
+            fb: self.fb.target(),
+            stats: &mut self.stats,
+            poly: &mut self.poly,
+            verts: &mut self.verts,
+            acc: &mut self.acc,
+        };
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
-            let start = self.verts.len();
+            let start = painter.verts.len();
             let (positions, normals) = (&mesh.positions, &mesh.normals);
-            self.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
-            self.meshes.push((start..self.verts.len(), transforms));
+            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
+            self.meshes.push((start..painter.verts.len(), transforms));
         }
         self.times.vertices += lap();
         let mut bands = std::mem::take(&mut self.bands);
-        bands.resize_with(n, Renderer::new);
-        // Cleared where the last frame drew; each band copies in only
-        // where it drew.
-        self.fb.reset(grid, depth);
+        bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);
         let (verts, meshes) = (&self.verts, &self.meshes);
         let job = |k: usize,
-                   band: &mut Renderer,
-                   samples: &mut [Option<Lin>],
+                   band: &mut BandWork,
+                   samples: &mut [Option<crate::color::Lin>],
                    depths: &mut [f32],
                    cells: &mut [Cell]| {
             band.stats = FrameStats::default();
+            band.drawn = Rect::EMPTY;
             let y0 = k as u32 * per * cell_h;
             let y1 = (y0 + per * cell_h).min(grid.height);
-            band.fb.reset_band(grid, Band { y0, y1 }, depth);
+            let mut painter = Painter {
+                fb: Target::of_band(grid, Band { y0, y1 }, samples, depths, &mut band.drawn),
+                stats: &mut band.stats,
+                poly: &mut band.poly,
+                verts: &mut band.verts,
+                acc: &mut band.acc,
+            };
             for (i, mesh) in scene.meshes.iter().enumerate() {
                 let (range, transforms) = &meshes[i];
                 let faces = Faces {
@@ -87,12 +129,11 @@ impl Renderer {
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                band.faces(stage, &faces, &verts[range.clone()]);
+                painter.faces(stage, &faces, &verts[range.clone()]);
             }
-            band.loose(scene, opts, stage, vp, turn);
-            band.fb.copy_drawn_into(samples, depth.then_some(depths));
+            painter.loose(scene, opts, stage, vp, turn);
             band.known = blit::blit_band(
-                &band.fb,
+                painter.fb.view(),
                 opts.glyphs,
                 opts.color,
                 scene.background,
@@ -132,7 +173,7 @@ impl Renderer {
         );
         for (k, band) in bands.iter().enumerate() {
             self.stats.add_band(&band.stats, k == 0);
-            drawn = drawn.union(band.fb.drawn());
+            drawn = drawn.union(band.drawn);
             known.rect = known.rect.union(band.known.rect);
         }
         self.fb.touch(drawn);

@@ -35,8 +35,8 @@ use glam::{Mat4, Vec3};
 use crate::blit;
 use crate::clip::{Clipper, Polygon};
 use crate::color::Rgb;
-use crate::frame::{Frame, Known};
-use crate::framebuffer::Framebuffer;
+use crate::frame::Frame;
+use crate::framebuffer::{Framebuffer, Target};
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
 use crate::raster::{Precision, Traversal};
@@ -94,17 +94,26 @@ pub struct Renderer {
     acc: Vec<[f32; 4]>,
     /// The last frame's anti-aliasing.
     aa: Aa,
-    /// The bands of the last frame drawn in parallel, each a renderer of
-    /// its own with a framebuffer of its rows (empty until one is).
-    bands: Vec<Renderer>,
+    /// What each band of the last frame drawn in parallel kept (empty
+    /// until one is).
+    bands: Vec<bands::BandWork>,
     /// The last camera resolved, the aspect it was resolved for, and the
     /// result ([`Camera::resolved`]).
     camera: Option<(Camera, u32, Camera)>,
     /// Where each mesh's vertices are in `verts`, and its matrices, for a
     /// frame drawn in bands.
     meshes: Vec<(std::ops::Range<usize>, Transforms)>,
-    /// What a band's blit knows of its cells (a frame drawn in bands).
-    known: Known,
+}
+
+/// What the vertex, triangle and fill stages draw with: the samples drawn
+/// into (the framebuffer, or one band of its rows) and the counts and
+/// scratch memory of whoever draws (the renderer, or one band's thread).
+struct Painter<'a> {
+    fb: Target<'a>,
+    stats: &'a mut FrameStats,
+    poly: &'a mut Polygon,
+    verts: &'a mut Vec<Vert>,
+    acc: &'a mut Vec<[f32; 4]>,
 }
 
 impl Default for Renderer {
@@ -129,7 +138,6 @@ impl Renderer {
             bands: Vec::new(),
             camera: None,
             meshes: Vec::new(),
-            known: Known::default(),
         }
     }
 
@@ -273,29 +281,37 @@ impl Renderer {
         lap: &mut impl FnMut() -> Duration,
     ) {
         let p = stage.plan;
+        let times = &mut self.times;
+        let mut painter = Painter {
+            fb: self.fb.target(),
+            stats: &mut self.stats,
+            poly: &mut self.poly,
+            verts: &mut self.verts,
+            acc: &mut self.acc,
+        };
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
-            self.verts.clear();
-            self.vertex_stage(
+            painter.verts.clear();
+            painter.vertex_stage(
                 stage,
                 &transforms,
                 &mesh.positions,
                 &mesh.normals,
                 p.clip_tests(i),
             );
-            self.times.vertices += lap();
+            times.vertices += lap();
             let faces = Faces {
                 mesh,
                 transforms: &transforms,
                 cull: opts.cull.unwrap_or(mesh.cull),
             };
-            // Borrowed out of `self` for the loop, and put back.
-            let verts = std::mem::take(&mut self.verts);
-            self.faces(stage, &faces, &verts);
-            self.verts = verts;
-            self.times.triangles += lap();
+            // Borrowed out of the painter for the loop, and put back.
+            let verts = std::mem::take(painter.verts);
+            painter.faces(stage, &faces, &verts);
+            *painter.verts = verts;
+            times.triangles += lap();
         }
-        self.loose(scene, opts, stage, vp, turn);
+        painter.loose(scene, opts, stage, vp, turn);
     }
 
     /// The last frame [`Renderer::render`] drew (not one drawn with

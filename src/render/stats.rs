@@ -5,7 +5,6 @@
 
 use std::time::Duration;
 
-use super::Renderer;
 use crate::fill;
 use crate::raster::RasterStats;
 
@@ -90,7 +89,7 @@ pub struct FrameTimes {
     pub blit: Duration,
 }
 
-impl Renderer {
+impl FrameStats {
     /// Counts what one fill did, as the fill stage counted it: `covered`
     /// samples, `depth_tested` of them depth-tested, `written` of them
     /// written with an interpolated colour, `perspective` of those through
@@ -104,7 +103,7 @@ impl Renderer {
             perspective,
             tested,
         } = done;
-        let stats = &mut self.stats;
+        let stats = self;
         stats.depth_tests += depth_tested;
         stats.interpolated_samples += interpolated;
         stats.perspective_samples += perspective;

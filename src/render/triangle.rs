@@ -24,7 +24,7 @@
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
 use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
-use super::{Renderer, Stage};
+use super::{Painter, Stage};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
 use crate::fill::{self, Attributes, ScreenTriangle, UvPlanes};
@@ -63,7 +63,7 @@ pub(super) struct Faces<'a> {
     pub(super) cull: Cull,
 }
 
-impl Renderer {
+impl Painter<'_> {
     /// Draws one mesh's faces, whose vertices went through the vertex stage
     /// into `verts`.
     pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert]) {
@@ -145,7 +145,7 @@ impl Renderer {
             let normal = transform::face_normal(a, b, c);
             self.verts.clear();
             self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
-            let verts = std::mem::take(&mut self.verts);
+            let verts = std::mem::take(self.verts);
             self.triangle(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
@@ -165,14 +165,14 @@ impl Renderer {
                     uv: [Vec2::ZERO; 3],
                 }),
             );
-            self.verts = verts;
+            *self.verts = verts;
         }
     }
 
     /// Sets up, lights, clips if it must, and rasterizes one triangle;
     /// `model` is its vertices' model-space positions and the matrix taking
     /// them to clip space, for the clip path. The caller counts it in
-    /// [`FrameStats::triangles_in`].
+    /// [`super::FrameStats::triangles_in`].
     pub(super) fn triangle(
         &mut self,
         stage: &Stage<'_>,
@@ -253,7 +253,7 @@ impl Renderer {
                 inv_w: v[i].inv_w,
             }),
         });
-        let mut poly = self.poly;
+        let mut poly = *self.poly;
         match stage.clipper.clip(&verts, mvp, &stage.viewport, &mut poly) {
             Clipped::Rejected => self.stats.clip_rejected += 1,
             Clipped::Clipped | Clipped::Inside => {
@@ -286,7 +286,7 @@ impl Renderer {
                 }
             }
         }
-        self.poly = poly;
+        *self.poly = poly;
     }
 
     /// A triangle inside every clip plane, set up with the frame's
@@ -352,7 +352,7 @@ impl Renderer {
         }
     }
 
-    /// Lights and fills a set-up triangle of [`Renderer::inside_triangle`]
+    /// Lights and fills a set-up triangle of [`Painter::inside_triangle`]
     /// if it covers a sample; counts its box's samples as tested if not.
     #[inline(always)]
     pub(super) fn inside_fill<C: Coverage>(
@@ -397,7 +397,7 @@ impl Renderer {
         [round(c[0]), round(c[1]), round(c[2])]
     }
 
-    /// [`Renderer::shade`] before rounding, in SIMD lanes (the same
+    /// [`Painter::shade`] before rounding, in SIMD lanes (the same
     /// operations per channel as three f32s).
     #[inline(always)]
     pub(super) fn light(
@@ -480,7 +480,7 @@ impl Renderer {
         texture: Option<(&Texture, Sampler)>,
     ) {
         if stage.exact {
-            let done = fill::accumulate_exact(&mut self.acc, self.fb.grid(), t, texture);
+            let done = fill::accumulate_exact(self.acc, self.fb.grid(), t, texture);
             self.stats.textured_samples += done.written;
             self.stats.raster.samples_covered += done.covered;
             self.stats.raster.samples_tested += done.tested;
@@ -505,7 +505,7 @@ impl Renderer {
                     .textured(setup, &a, flat, (texture, sampler, &planes));
                 self.stats.textured_samples += done.written;
                 // Texture coordinates are interpolated, whatever the colour.
-                self.count_fill(done);
+                self.stats.count_fill(done);
             }
             None => self.fill_colour(setup, &a, flat, stage),
         }
@@ -515,13 +515,13 @@ impl Renderer {
     #[inline(always)]
     pub(super) fn sink(&mut self, stage: &Stage) -> fill::Sink<'_> {
         fill::Sink {
-            fb: &mut self.fb,
+            fb: self.fb.reborrow(),
             depth: stage.plan.depth.run,
             traversal: stage.traversal,
         }
     }
 
-    /// [`Renderer::fill`] of a triangle without a texture, counted.
+    /// [`Painter::fill`] of a triangle without a texture, counted.
     #[inline(always)]
     pub(super) fn fill_colour<C: Coverage>(
         &mut self,
@@ -531,7 +531,7 @@ impl Renderer {
         stage: &Stage,
     ) {
         let done = self.sink(stage).colour(setup, a, flat);
-        self.count_fill(done);
+        self.stats.count_fill(done);
     }
 }
 

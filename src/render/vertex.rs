@@ -9,7 +9,7 @@
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 
-use super::{Renderer, Stage, vertex_lanes};
+use super::{Painter, Stage, vertex_lanes};
 use crate::fixed::FixedPoint;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
@@ -77,7 +77,7 @@ pub(super) const PLANES: u16 = F64_PATH - 1;
 /// tells a triangle that takes the common path.
 pub(super) const BAD_NORMAL: u16 = 1 << 8;
 
-impl Renderer {
+impl Painter<'_> {
     /// Transforms `positions` (with `normals`), appending them to
     /// `self.verts`.
     pub(super) fn vertex_stage(
@@ -88,8 +88,7 @@ impl Renderer {
         normals: &[Vec3],
         clip_tests: bool,
     ) {
-        let done =
-            vertex_lanes::vertices(stage, t, positions, normals, clip_tests, &mut self.verts);
+        let done = vertex_lanes::vertices(stage, t, positions, normals, clip_tests, self.verts);
         self.stats.vertices += done.vertices;
         self.stats.lighting_evaluations += done.lit;
         self.stats.clip_tests += done.clip_tested;

@@ -1,6 +1,6 @@
 //! Opening model and scene files safely, and reading them line by line.
 //! Every file a model refers to (MTL libraries, textures, glTF buffers and
-//! images) is found by [`reference`] and opened here too, with the same
+//! images) is found by [`reference()`] and opened here too, with the same
 //! checks as the model.
 //!
 //! A path is checked before a byte is read: a directory, a FIFO (which would
