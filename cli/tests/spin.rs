@@ -607,8 +607,8 @@ fn a_terminal_that_draws_octants_gets_octants() {
 
 /// A terminal that answers nothing: the probe gives up (the first frame
 /// comes with no answer given) and does not ask again after each frame.
-/// How long the probe waits (its `DEADLINE`) is not measured here: a
-/// test of time belongs in a benchmark.
+/// How long the probe waits (its `DEADLINE`) is tested on a fake clock, by
+/// the probe's unit tests (`terminal::probe`).
 #[test]
 fn a_terminal_that_answers_nothing_gets_frames_and_is_not_asked_again() {
     let mut t = Fake::spawn(

@@ -15,7 +15,9 @@
 //! other answer is coming, so a terminal that ignores DECRQM costs no
 //! waiting. A terminal that answers nothing (a pipe, a multiplexer that
 //! swallows queries) costs the deadline, [`DEADLINE`], and nothing more:
-//! every family is then taken as usable, as without the probe.
+//! every family is then taken as usable, as without the probe. The
+//! waiting is [`listen`]'s, over an [`Answers`] that brings the clock
+//! with the bytes, so that tests run it on a fake clock.
 
 use std::io;
 use std::time::{Duration, Instant};
@@ -104,6 +106,38 @@ pub fn query() -> Vec<u8> {
     q
 }
 
+/// Where the probe's answers come from, and its clock: the terminal and
+/// the wall clock, or a test's script and a fake clock.
+pub trait Answers {
+    /// The time since the probe was sent.
+    fn elapsed(&self) -> Duration;
+    /// Waits at most `left` for input and reads what came into `buf`:
+    /// `Some(n)` bytes (0 when nothing came), `None` once the terminal is
+    /// gone.
+    fn read(&mut self, left: Duration, buf: &mut [u8]) -> io::Result<Option<usize>>;
+}
+
+/// The terminal's answers, timed by the wall clock from `start`.
+struct FromTty<'t> {
+    tty: &'t Tty,
+    start: Instant,
+}
+
+impl Answers for FromTty<'_> {
+    fn elapsed(&self) -> Duration {
+        self.start.elapsed()
+    }
+
+    fn read(&mut self, left: Duration, buf: &mut [u8]) -> io::Result<Option<usize>> {
+        super::wait_readable(self.tty.input_fd(), left)?;
+        Ok(match self.tty.read(buf) {
+            super::Read::Bytes(n) => Some(n),
+            super::Read::Nothing => Some(0),
+            super::Read::Gone => None,
+        })
+    }
+}
+
 /// Sends the probe and reads the answers until the status report comes
 /// back or `deadline` passes. Keys read meanwhile are appended to `keys`,
 /// for the caller to act on.
@@ -114,31 +148,38 @@ pub fn probe(
     deadline: Duration,
 ) -> io::Result<Capabilities> {
     let start = Instant::now();
-    let end = start + deadline;
     tty.write_all(&query(), deadline)?;
+    listen(&mut FromTty { tty, start }, parser, keys, deadline)
+}
+
+/// Reads answers from `from` until the status report comes (the last
+/// answer of any terminal that answers) or `deadline` passes on its clock,
+/// whichever is first; keys are appended to `keys`.
+pub fn listen(
+    from: &mut impl Answers,
+    parser: &mut Parser,
+    keys: &mut Vec<Input>,
+    deadline: Duration,
+) -> io::Result<Capabilities> {
     let mut answers = Vec::new();
     let mut inputs = Vec::new();
     let mut buf = [0u8; 256];
     let mut round_trip = None;
     'read: loop {
-        let left = end.saturating_duration_since(Instant::now());
+        let left = deadline.saturating_sub(from.elapsed());
         if left.is_zero() {
             break;
         }
-        super::wait_readable(tty.input_fd(), left)?;
-        loop {
-            match tty.read(&mut buf) {
-                super::Read::Bytes(n) => parser.feed(&buf[..n], &mut inputs),
-                super::Read::Nothing => break,
-                super::Read::Gone => break 'read,
-            }
+        match from.read(left, &mut buf)? {
+            Some(n) => parser.feed(&buf[..n], &mut inputs),
+            None => break,
         }
         for input in inputs.drain(..) {
             match input {
                 Input::Key(_) => keys.push(input),
                 Input::StatusOk => {
                     answers.push(input);
-                    round_trip = Some(start.elapsed());
+                    round_trip = Some(from.elapsed());
                     break 'read;
                 }
                 answer => answers.push(answer),
@@ -234,6 +275,86 @@ mod tests {
         assert_eq!(r(2), Some(true));
         assert_eq!(r(0), Some(false));
         assert_eq!(r(4), Some(false));
+    }
+
+    /// A terminal that sends `script`'s bytes, each at its time on a fake
+    /// clock, which moves only by the waits the probe makes.
+    struct Scripted {
+        now: Duration,
+        script: Vec<(Duration, &'static [u8])>,
+        /// How many times the probe waited.
+        waits: usize,
+    }
+
+    impl Answers for Scripted {
+        fn elapsed(&self) -> Duration {
+            self.now
+        }
+
+        fn read(&mut self, left: Duration, buf: &mut [u8]) -> io::Result<Option<usize>> {
+            self.waits += 1;
+            match self.script.first() {
+                Some(&(at, bytes)) if at <= self.now + left => {
+                    self.now = self.now.max(at);
+                    self.script.remove(0);
+                    buf[..bytes.len()].copy_from_slice(bytes);
+                    Ok(Some(bytes.len()))
+                }
+                _ => {
+                    self.now += left;
+                    Ok(Some(0))
+                }
+            }
+        }
+    }
+
+    fn listen_to(script: Vec<(Duration, &'static [u8])>) -> (Capabilities, Vec<Input>, Scripted) {
+        let mut from = Scripted {
+            now: Duration::ZERO,
+            script,
+            waits: 0,
+        };
+        let mut keys = Vec::new();
+        let caps = listen(&mut from, &mut Parser::default(), &mut keys, DEADLINE).unwrap();
+        (caps, keys, from)
+    }
+
+    const MS: Duration = Duration::from_millis(1);
+
+    #[test]
+    fn a_silent_terminal_costs_the_deadline_and_nothing_more() {
+        let (caps, keys, from) = listen_to(Vec::new());
+        // One wait, the whole deadline, then the probe gives up.
+        assert_eq!((from.now, from.waits), (DEADLINE, 1));
+        assert!(!caps.answers_status && caps.round_trip.is_none());
+        assert_eq!(caps.glyphs.families, [None; 4]);
+        assert!(keys.is_empty());
+    }
+
+    #[test]
+    fn the_status_report_ends_the_wait_and_keys_meanwhile_are_kept() {
+        let (caps, keys, from) = listen_to(vec![
+            (10 * MS, b"q"),
+            (25 * MS, b"\x1b[?2026;2$y"),
+            (40 * MS, b"\x1b[0n"),
+            (60 * MS, b"x"),
+        ]);
+        // Stopped at the report, 40 ms in: the key after it is not read.
+        assert_eq!(from.now, 40 * MS);
+        assert_eq!(from.script.len(), 1);
+        assert_eq!(caps.round_trip, Some(40 * MS));
+        assert!(caps.answers_status);
+        assert_eq!(caps.sync, Some(true));
+        assert_eq!(keys.len(), 1);
+    }
+
+    #[test]
+    fn an_answer_after_the_deadline_is_not_waited_for() {
+        let late = DEADLINE + MS;
+        let (caps, _, from) = listen_to(vec![(5 * MS, b"\x1b[1;2R"), (late, b"\x1b[0n")]);
+        assert_eq!(from.now, DEADLINE);
+        assert_eq!(from.script.len(), 1);
+        assert!(!caps.answers_status && caps.round_trip.is_none());
     }
 
     #[test]
