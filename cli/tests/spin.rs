@@ -396,8 +396,15 @@ impl Fake {
             }
             None => buf.len(),
         };
-        if budget == 0 || self.eof {
-            std::thread::sleep(Duration::from_millis(2));
+        if self.eof {
+            return false;
+        }
+        if budget == 0 {
+            // The slow link is slow in real time, as `spin` measures it:
+            // the time until the bucket holds a byte. (How the rate is
+            // measured is tested on a fake clock, in `live`.)
+            let r = self.rate.unwrap_or(f64::INFINITY);
+            std::thread::sleep(Duration::from_secs_f64((1.0 - self.tokens).max(0.0) / r));
             return false;
         }
         let n = match self.session.try_read(&mut buf[..budget]) {
@@ -413,13 +420,27 @@ impl Fake {
             }
         };
         if n == 0 {
-            std::thread::sleep(Duration::from_millis(2));
+            // Nothing yet: wait until the program writes (or 50 ms pass,
+            // for the caller to look at its own time limit).
+            self.wait_readable(Duration::from_millis(50));
             return false;
         }
         self.tokens -= n as f64;
         self.seen.extend_from_slice(&buf[..n]);
         self.answer_queries();
         true
+    }
+
+    /// Waits until the terminal has something to read, at most `timeout`.
+    fn wait_readable(&self, timeout: Duration) {
+        use std::os::fd::AsRawFd;
+        let mut fd = libc::pollfd {
+            fd: self.session.as_raw_fd(),
+            events: libc::POLLIN,
+            revents: 0,
+        };
+        // SAFETY: one valid pollfd, for the call's duration.
+        unsafe { libc::poll(&mut fd, 1, timeout.as_millis() as libc::c_int) };
     }
 
     fn answer_queries(&mut self) {
