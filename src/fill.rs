@@ -93,7 +93,7 @@ impl Sink<'_> {
         (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
     ) -> Filled {
         let grid = self.fb.grid();
-        let fb = &mut self.fb;
+        let (at, samples, depths) = self.fb.split_mut();
         let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
             let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
@@ -107,24 +107,27 @@ impl Sink<'_> {
             let tested = setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
                 let z = a.depth(C::f32(e));
-                if let Some(i) = fb.nearer(x, y, z) {
+                let i = at.of(x, y);
+                if nearer(z, depths[i]) {
                     written += 1;
-                    fb.write(i, z, shade(x, y, e));
+                    depths[i] = z;
+                    samples[i] = Some(shade(x, y, e));
                 }
             });
             (tested, true)
         } else {
             let tested = setup.walk_samples(grid, tr, |x, y, e| {
                 covered += 1;
-                if let Some(i) = fb.empty(x, y) {
+                let i = at.of(x, y);
+                if samples[i].is_none() {
                     written += 1;
-                    fb.write_color(i, shade(x, y, e));
+                    samples[i] = Some(shade(x, y, e));
                 }
             });
             (tested, false)
         };
         if written > 0 {
-            fb.touch(setup.bounds());
+            self.fb.touch(setup.bounds());
         }
         Filled::of(covered, depth, written, a, tested)
     }
@@ -135,7 +138,7 @@ impl Sink<'_> {
     #[inline(always)]
     pub(crate) fn colour<C: Coverage>(&mut self, setup: &C, a: &Attributes, flat: bool) -> Filled {
         let grid = self.fb.grid();
-        let fb = &mut self.fb;
+        let (at, samples, depths) = self.fb.split_mut();
         let (mut covered, mut written) = (0u64, 0u64);
         let one = Lin::from_lanes(a.color[0]);
         let interpolate = |e: C::Weights| Lin::from_lanes(a.lit(C::f32(e)));
@@ -147,8 +150,9 @@ impl Sink<'_> {
             (true, false) => {
                 let tested = setup.walk_samples(grid, tr, |x, y, _| {
                     covered += 1;
-                    if let Some(i) = fb.empty(x, y) {
-                        fb.write_color(i, one);
+                    let i = at.of(x, y);
+                    if samples[i].is_none() {
+                        samples[i] = Some(one);
                     }
                 });
                 (tested, false)
@@ -157,8 +161,10 @@ impl Sink<'_> {
                 let tested = setup.walk_samples(grid, tr, |x, y, e| {
                     covered += 1;
                     let z = depth(e);
-                    if let Some(i) = fb.nearer(x, y, z) {
-                        fb.write(i, z, one);
+                    let i = at.of(x, y);
+                    if nearer(z, depths[i]) {
+                        depths[i] = z;
+                        samples[i] = Some(one);
                     }
                 });
                 (tested, true)
@@ -166,9 +172,10 @@ impl Sink<'_> {
             (false, false) => {
                 let tested = setup.walk_samples(grid, tr, |x, y, e| {
                     covered += 1;
-                    if let Some(i) = fb.empty(x, y) {
+                    let i = at.of(x, y);
+                    if samples[i].is_none() {
                         written += 1;
-                        fb.write_color(i, interpolate(e));
+                        samples[i] = Some(interpolate(e));
                     }
                 });
                 (tested, false)
@@ -177,19 +184,29 @@ impl Sink<'_> {
                 let tested = setup.walk_samples(grid, tr, |x, y, e| {
                     covered += 1;
                     let z = depth(e);
-                    if let Some(i) = fb.nearer(x, y, z) {
+                    let i = at.of(x, y);
+                    if nearer(z, depths[i]) {
                         written += 1;
-                        fb.write(i, z, interpolate(e));
+                        depths[i] = z;
+                        samples[i] = Some(interpolate(e));
                     }
                 });
                 (tested, true)
             }
         };
         if covered > 0 {
-            fb.touch(setup.bounds());
+            self.fb.touch(setup.bounds());
         }
         Filled::of(covered, depth_tested, written, a, tested)
     }
+}
+
+/// The depth test: whether depth `z` is nearer than what a sample holds
+/// (strictly: of two equal depths the first drawn stays; larger is nearer,
+/// and an undrawn sample holds −∞).
+#[inline(always)]
+fn nearer(z: f32, held: f32) -> bool {
+    z > held
 }
 
 /// Adds the triangle's exact area in each sample's square, times its

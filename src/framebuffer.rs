@@ -291,48 +291,41 @@ impl<'a> Target<'a> {
         }
     }
 
-    /// Widens the drawn rectangle by `r`: for a caller that writes the
-    /// samples of `r` by index ([`Target::write`]).
+    /// Widens the drawn rectangle by `r`: for a caller that wrote the
+    /// samples of `r` by index ([`Target::split_mut`]).
     #[inline(always)]
     pub(crate) fn touch(&mut self, r: Rect) {
         *self.drawn = self.drawn.union(r);
     }
 
+    /// Where each sample is, and the samples and depths, for the fill
+    /// stage's loops to test and write directly (locals in a loop keep
+    /// their pointers in registers, where a struct's are loaded again for
+    /// every sample).
     #[inline(always)]
-    fn index(&self, x: u32, y: u32) -> usize {
-        debug_assert!(x < self.grid.width && y >= self.band.y0 && y < self.band.y1);
-        (y - self.band.y0) as usize * self.grid.width as usize + x as usize
+    pub(crate) fn split_mut(&mut self) -> (At, &mut [Option<Lin>], &mut [f32]) {
+        let at = At {
+            width: self.grid.width as usize,
+            y0: self.band.y0,
+        };
+        (at, self.samples, self.depth)
     }
+}
 
-    /// Where sample `(x, y)` is stored, if depth `z` is nearer than what it
-    /// holds (strictly: of two equal depths the first drawn stays).
-    #[inline(always)]
-    pub(crate) fn nearer(&self, x: u32, y: u32, z: f32) -> Option<usize> {
-        let i = self.index(x, y);
-        (z > self.depth[i]).then_some(i)
-    }
+/// Where sample `(x, y)` of a [`Target`] is stored: rows from the bottom,
+/// the first row held at index 0.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct At {
+    width: usize,
+    y0: u32,
+}
 
-    /// Where sample `(x, y)` is stored, if nothing is drawn on it yet.
+impl At {
+    /// The index of sample `(x, y)`, one of the rows held.
     #[inline(always)]
-    pub(crate) fn empty(&self, x: u32, y: u32) -> Option<usize> {
-        let i = self.index(x, y);
-        self.samples[i].is_none().then_some(i)
-    }
-
-    /// Writes colour `c` and depth `z` at index `i` (from
-    /// [`Target::nearer`]); the caller widens the drawn rectangle to hold
-    /// it ([`Target::touch`]).
-    #[inline(always)]
-    pub(crate) fn write(&mut self, i: usize, z: f32, c: Lin) {
-        self.depth[i] = z;
-        self.samples[i] = Some(c);
-    }
-
-    /// Writes colour `c` at index `i` (from [`Target::empty`]); the caller
-    /// widens the drawn rectangle to hold it.
-    #[inline(always)]
-    pub(crate) fn write_color(&mut self, i: usize, c: Lin) {
-        self.samples[i] = Some(c);
+    pub(crate) fn of(self, x: u32, y: u32) -> usize {
+        debug_assert!(y >= self.y0 && (x as usize) < self.width);
+        (y - self.y0) as usize * self.width + x as usize
     }
 }
 
