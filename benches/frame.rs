@@ -38,6 +38,7 @@ fn frames(c: &mut Criterion) {
         let spin = Spin {
             axis: Axis::Y,
             step: 3.0,
+            play: None,
         };
         let mut player = Player::new(scene, opts, spin, Encoder::new(ColorDepth::TrueColor));
         let mut sink = std::io::sink();

@@ -41,6 +41,7 @@ const FRAMES: u64 = 60;
 const SPIN: Spin = Spin {
     axis: Axis::Z,
     step: 6.0,
+    play: None,
 };
 
 fn main() {

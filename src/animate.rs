@@ -25,13 +25,35 @@ use crate::shade::Shading;
 
 use crate::transform::Axis;
 
-/// A turn of `step` degrees per frame about `axis`.
+/// A turn of `step` degrees per frame about `axis`, and a clip played
+/// meanwhile.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spin {
     /// The axis turned about.
     pub axis: Axis,
     /// Degrees per frame.
     pub step: f32,
+    /// The clip the scene's moving models play, if any.
+    pub play: Option<Playback>,
+}
+
+/// A clip played frame by frame: frame `k` shows the clip at
+/// `k / fps · speed` seconds (wrapped into the clip as it loops).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Playback {
+    /// The clip, an index into the moving models' clips.
+    pub clip: usize,
+    /// Seconds of the clip a second of frames shows (1: as recorded).
+    pub speed: f64,
+    /// Frames a second.
+    pub fps: f64,
+}
+
+impl Playback {
+    /// The clip's time at frame `k`.
+    pub fn time(&self, k: u64) -> f64 {
+        k as f64 / self.fps * self.speed
+    }
 }
 
 impl Spin {
@@ -49,8 +71,12 @@ impl Spin {
 pub enum Command {
     /// End the animation.
     Quit,
-    /// Stop turning, or go on.
+    /// Stop turning and playing, or go on.
     TogglePause,
+    /// Stop turning (the clip plays on), or turn again.
+    ToggleTurn,
+    /// Play the next clip (or the previous, with `-1`), from its start.
+    Clip(i8),
     /// Move the eye around the target: degrees of yaw and pitch.
     Orbit {
         /// Degrees about the up axis.
@@ -94,11 +120,16 @@ pub struct Player {
     base: Camera,
     opts: RenderOptions,
     spin: Spin,
-    /// Frames played while not paused: the angle's frame number.
+    /// Frames played while not paused.
     k: u64,
+    /// Frames turned: the angle's frame number.
+    turned: u64,
+    /// Frames of the clip played.
+    played: u64,
     paused: bool,
+    turning: bool,
     /// The status line's parts, highest priority first (reused buffers).
-    hud_parts: [String; 9],
+    hud_parts: [String; 10],
     orbit: (f32, f32),
     zoom: f32,
     hud: bool,
@@ -126,7 +157,10 @@ impl Player {
             opts,
             spin,
             k: 0,
+            turned: 0,
+            played: 0,
             paused: false,
+            turning: true,
             hud_parts: Default::default(),
             orbit: (0.0, 0.0),
             zoom: 1.0,
@@ -195,7 +229,14 @@ impl Player {
     /// when something else changes (a key, a resize, a notice ending), so
     /// a paused `spin` costs nothing.
     pub fn moves(&self) -> bool {
-        !self.paused && self.spin.step != 0.0
+        let turns = self.turning && self.spin.step != 0.0;
+        let plays = self.spin.play.is_some_and(|p| {
+            self.scene
+                .meshes
+                .iter()
+                .any(|m| m.rig.as_ref().is_some_and(|r| r.moves(p.clip)))
+        });
+        !self.paused && (turns || plays)
     }
 
     /// The notice shown over the last row, if any.
@@ -225,6 +266,26 @@ impl Player {
         match cmd {
             Command::Quit => return false,
             Command::TogglePause => self.paused = !self.paused,
+            Command::ToggleTurn => {
+                self.turning = !self.turning;
+                self.set_notice(if self.turning {
+                    "turning"
+                } else {
+                    "turn stopped"
+                });
+            }
+            Command::Clip(d) => {
+                let n = self.scene.clips().len();
+                if let Some(p) = &mut self.spin.play
+                    && n > 0
+                {
+                    p.clip = (p.clip as i64 + i64::from(d)).rem_euclid(n as i64) as usize;
+                    let clip = p.clip;
+                    self.played = 0;
+                    let name = crate::text::name(&self.scene.clips()[clip].name, 40);
+                    self.set_notice(format!("clip {clip} {name}"));
+                }
+            }
             Command::Orbit { yaw, pitch } => {
                 self.orbit.0 += yaw;
                 self.orbit.1 = (self.orbit.1 + pitch).clamp(-85.0, 85.0);
@@ -259,6 +320,10 @@ impl Player {
     pub fn advance(&mut self, frames: u64) {
         if !self.paused {
             self.k += frames;
+            if self.turning {
+                self.turned += frames;
+            }
+            self.played += frames;
         }
     }
 
@@ -271,7 +336,10 @@ impl Player {
     /// (empty when nothing changed).
     pub fn prepare(&mut self, live: LiveStatus) -> &[u8] {
         self.scene.camera = self.camera();
-        let turn = self.spin.turn(self.opts.turn, self.k);
+        let turn = self.spin.turn(self.opts.turn, self.turned);
+        if let Some(p) = self.spin.play {
+            self.scene.set_pose(p.clip, p.time(self.played));
+        }
         // The status line takes a row of its own: the model is drawn in
         // the rows above it, never under it.
         let hud_row = self.hud && self.opts.rows > 1;
@@ -318,15 +386,26 @@ impl Player {
                 opts.color.name(),
                 opts.shading.name()
             );
-            let _ = write!(p[4], "{:.1} fps", live.fps);
-            let _ = write!(p[5], "{drawn} triangles");
-            let _ = write!(p[6], "{} B/frame", self.last_bytes);
+            if let Some(play) = self.spin.play
+                && let Some(clip) = self.scene.clips().get(play.clip)
+            {
+                let _ = write!(
+                    p[4],
+                    "clip {} {:.2}/{:.2} s",
+                    crate::text::name(&clip.name, 24),
+                    clip.local(play.time(self.played)),
+                    clip.length
+                );
+            }
+            let _ = write!(p[5], "{:.1} fps", live.fps);
+            let _ = write!(p[6], "{drawn} triangles");
+            let _ = write!(p[7], "{} B/frame", self.last_bytes);
             let _ = match live.link {
-                Some(rate) => write!(p[7], "link {:.1} kB/s", rate / 1e3),
-                None => write!(p[7], "link ?"),
+                Some(rate) => write!(p[8], "link {:.1} kB/s", rate / 1e3),
+                None => write!(p[8], "link ?"),
             };
             let _ = write!(
-                p[8],
+                p[9],
                 "sync {}",
                 if self.encoder.sync() { "on" } else { "off" }
             );
@@ -436,6 +515,7 @@ mod tests {
         let spin = Spin {
             axis: Axis::Z,
             step: 6.0,
+            play: None,
         };
         assert_eq!(spin.turn(Vec3::ZERO, 0), Vec3::ZERO);
         assert_eq!(spin.turn(Vec3::ZERO, 10), Vec3::new(0.0, 0.0, 60.0));
@@ -446,6 +526,7 @@ mod tests {
         let y = Spin {
             axis: Axis::Y,
             step: -1.5,
+            play: None,
         };
         assert_eq!(y.turn(Vec3::ZERO, 2), Vec3::new(0.0, 357.0, 0.0));
     }
@@ -491,6 +572,7 @@ mod tests {
         let spin = Spin {
             axis: Axis::Y,
             step: 3.0,
+            play: None,
         };
         let screen = |opts: RenderOptions, hud: bool| {
             let mut p = Player::new(
@@ -528,6 +610,7 @@ mod tests {
         let spin = |step| Spin {
             axis: Axis::Y,
             step,
+            play: None,
         };
         let player = |step| {
             Player::new(
@@ -553,6 +636,7 @@ mod tests {
             Spin {
                 axis: Axis::Y,
                 step: 3.0,
+                play: None,
             },
             Encoder::new(ColorDepth::None),
         );
@@ -591,6 +675,7 @@ mod tests {
             Spin {
                 axis: Axis::Y,
                 step: 3.0,
+                play: None,
             },
             Encoder::new(ColorDepth::Ansi16),
         );

@@ -132,6 +132,12 @@ pub struct Plan {
     /// Per group (each mesh in order, then the loose triangles): whether
     /// its vertices are tested against the clip planes.
     clip_tests: Vec<bool>,
+    /// Whether any mesh is posed: its vertices skinned, morphed or carried
+    /// by their nodes to where its clip has them (see [`Plan::poses`] for
+    /// one mesh).
+    pub posing: Decision,
+    /// Per mesh: whether it is posed.
+    poses: Vec<bool>,
     /// How many bands of rows the frame is drawn in, one thread each.
     pub bands: Bands,
 }
@@ -229,6 +235,8 @@ impl Plan {
             full: true,
             lean: Decision::skip(FORCED),
             clip_tests: Vec::new(),
+            posing: Decision::run(FORCED),
+            poses: Vec::new(),
             bands: Bands {
                 count: 1,
                 why: "not planned yet",
@@ -307,11 +315,36 @@ impl Plan {
         } else {
             depth(scene, vp, turn)
         };
+        // A mesh is posed where its clip moves it; the full pipeline poses
+        // every mesh that has a pose, at rest or not (the rest pose is the
+        // same code's, so the frame is the same).
+        self.poses.clear();
+        self.poses.extend(scene.meshes.iter().map(|m| {
+            if full {
+                m.rig.is_some() && m.pose.is_some()
+            } else {
+                m.moves()
+            }
+        }));
+        let posed = self.poses.iter().filter(|&&p| p).count();
+        let posing = if posed == 0 {
+            Decision::skip(
+                "no mesh moves: without a clip, or one that moves none of its vertices, a model is drawn at rest",
+            )
+        } else if full {
+            Decision::run(FORCED)
+        } else {
+            Decision::run(
+                "a clip moves the mesh: its vertices are posed (morphed, skinned or carried by their nodes) before the vertex stage",
+            )
+        };
         self.clip_tests.clear();
+        // A posed mesh's vertices leave its rest bounds: tested.
         let groups = scene
             .meshes
             .iter()
-            .map(|m| (turn * m.model, m.bounds))
+            .zip(&self.poses)
+            .map(|(m, &posed)| (turn * m.model, if posed { None } else { m.bounds }))
             .chain((!scene.triangles.is_empty()).then(|| (turn, loose_bounds(scene))));
         self.clip_tests.extend(groups.map(|(model, bounds)| {
             // The matrix the vertex stage uses: composed in f64, rounded.
@@ -338,6 +371,8 @@ impl Plan {
             full,
             lean: lean(opts),
             clip_tests: std::mem::take(&mut self.clip_tests),
+            posing,
+            poses: std::mem::take(&mut self.poses),
             bands: bands(opts),
         };
     }
@@ -346,6 +381,11 @@ impl Plan {
     /// mesh) has its vertices tested against the clip planes.
     pub fn clip_tests(&self, group: usize) -> bool {
         self.clip_tests.get(group).copied().unwrap_or(true)
+    }
+
+    /// Whether mesh `i` is posed (see [`Plan::posing`]).
+    pub fn poses(&self, mesh: usize) -> bool {
+        self.poses.get(mesh).copied().unwrap_or(false)
     }
 
     /// The texture a run of faces reads, and how: its own (with `--filter`
@@ -436,6 +476,7 @@ fn loose_bounds(scene: &Scene) -> Option<[Vec3; 2]> {
 
 impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "pose           {}", self.posing)?;
         writeln!(f, "clip           {}", self.clip)?;
         writeln!(f, "lighting       {}", self.lighting)?;
         writeln!(f, "rim            {}", self.rim)?;

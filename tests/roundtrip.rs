@@ -270,6 +270,7 @@ fn spinning_square_stays_within_budget_in_every_mode() {
     let spin = Spin {
         axis: Axis::Z,
         step: 6.0,
+        play: None,
     };
     let budgets = [
         (GlyphMode::Ascii, 600.0),

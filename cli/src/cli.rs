@@ -90,6 +90,9 @@ pub struct RenderArgs {
     /// Also write the frame as a one-frame asciicast v2 recording
     #[arg(help_heading = "Output", long, value_name = "FILE.cast")]
     pub record: Option<PathBuf>,
+    /// Draw a model that moves at this many seconds into its clip
+    #[arg(help_heading = "Model", long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_seconds)]
+    pub time: f64,
     #[command(flatten)]
     pub knobs: KnobArgs,
     #[command(flatten)]
@@ -113,8 +116,12 @@ pub struct SpinArgs {
     /// are then written as one ANSI stream)
     #[arg(help_heading = "Spin", long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub frames: Option<u64>,
+    /// Seconds of a moving model's clip played a second (0 holds it at
+    /// its start)
+    #[arg(help_heading = "Spin", long, value_name = "X", default_value_t = 1.0, allow_negative_numbers = true, value_parser = parse_seconds)]
+    pub speed: f64,
     /// Show a status line: fps, link rate, triangles drawn, bytes per
-    /// frame, the settings and the angle
+    /// frame, the settings, the angle and the clip's time
     #[arg(help_heading = "Spin", long)]
     pub hud: bool,
     /// Do not ask the terminal which glyphs it draws (by default spin
@@ -154,6 +161,10 @@ pub struct InputArgs {
     /// exporters write them) or sRGB
     #[arg(long, value_parser = named::<ColorSpace>(), default_value = ColorSpace::Linear.name())]
     pub mtl_colors: ColorSpace,
+    /// The clip a model that moves plays, by name or number (from 0)
+    /// [default: its first]
+    #[arg(long, value_name = "NAME|N")]
+    pub clip: Option<String>,
 }
 
 /// The accuracy and speed knobs: each changes how a frame is computed, and
@@ -317,6 +328,16 @@ fn parse_angle(s: &str) -> Result<f32, String> {
         Ok(a)
     } else {
         Err(format!("{s} is not a finite angle"))
+    }
+}
+
+/// A finite number (of seconds, or a speed).
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    let t: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    if t.is_finite() {
+        Ok(t)
+    } else {
+        Err(format!("{s} is not a finite number"))
     }
 }
 

@@ -107,7 +107,9 @@ pub enum Action {
 pub const KEYS: &str = "\
 Keys:
   q, Esc, Ctrl-C   quit
-  space            pause
+  space            pause (the turn and the clip)
+  t                stop turning, or turn again (the clip plays on)
+  [ / ]            previous / next clip of a model that moves
   arrows           orbit the camera around its target
   + / -            zoom in / out
   m                next glyph mode (skipping those the terminal cannot draw)
@@ -123,6 +125,9 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Ctrl('z') => return Some(Action::Suspend),
         Key::Ctrl('l') => Command::Redraw,
         Key::Char(' ') => Command::TogglePause,
+        Key::Char('t') => Command::ToggleTurn,
+        Key::Char('[') => Command::Clip(-1),
+        Key::Char(']') => Command::Clip(1),
         Key::Left => Command::Orbit {
             yaw: -5.0,
             pitch: 0.0,

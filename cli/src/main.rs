@@ -229,6 +229,50 @@ fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Result<Sc
     Ok(scene)
 }
 
+/// The clip `--clip` names (a number from 0, or a name), the first by
+/// default; `None` when no model moves.
+fn clip(scene: &Scene, named: Option<&str>) -> rastty::Result<Option<usize>> {
+    let clips = scene.clips();
+    if clips.is_empty() {
+        return match named {
+            Some(_) => Err(rastty::Error::Invalid(
+                "--clip: no model of the scene has clips".into(),
+            )),
+            None => Ok(None),
+        };
+    }
+    let Some(named) = named else {
+        return Ok(Some(0));
+    };
+    if let Ok(n) = named.parse::<usize>() {
+        return if n < clips.len() {
+            Ok(Some(n))
+        } else {
+            Err(rastty::Error::Invalid(format!(
+                "--clip {n}: the model has {} clips, 0 to {}",
+                clips.len(),
+                clips.len() - 1
+            )))
+        };
+    }
+    clips
+        .iter()
+        .position(|c| c.name == named)
+        .map(Some)
+        .ok_or_else(|| {
+            let names: Vec<String> = clips
+                .iter()
+                .enumerate()
+                .map(|(i, c)| format!("{i} {}", rastty::text::name(&c.name, 40)))
+                .collect();
+            rastty::Error::Invalid(format!(
+                "--clip {}: no clip of that name; the clips are {}",
+                rastty::text::name(named, 40),
+                names.join(", ")
+            ))
+        })
+}
+
 fn render(args: &RenderArgs) -> rastty::Result<()> {
     let format = args.output.as_deref().map(Format::of).transpose()?;
     let mut opts = options(&args.view, &args.knobs, 1);
@@ -255,6 +299,12 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         .map(|p| Ok((create(p)?, p)))
         .transpose()?;
     let scene = scene(&args.input, &args.budgets)
+        .and_then(|mut s| {
+            if let Some(c) = clip(&s, args.input.clip.as_deref())? {
+                s.set_pose(c, args.time);
+            }
+            Ok(s)
+        })
         .map(|s| with_background(s, &args.view))
         .inspect_err(|_| {
             // No recording of a frame that was never drawn.
@@ -333,6 +383,11 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let spin = Spin {
         axis: args.axis,
         step: args.step,
+        play: clip(&scene, args.input.clip.as_deref())?.map(|clip| animate::Playback {
+            clip,
+            speed: args.speed,
+            fps: f64::from(args.fps),
+        }),
     };
     let dumb = is_dumb();
     let encoder = if dumb {

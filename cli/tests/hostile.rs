@@ -177,6 +177,7 @@ fn a_notice_in_the_status_line_is_drawn_escaped() {
         Spin {
             axis: rastty::transform::Axis::Y,
             step: 3.0,
+            play: None,
         },
         rastty::encode::Encoder::new(opts.color),
     );

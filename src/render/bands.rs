@@ -97,7 +97,7 @@ impl Renderer {
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             let start = painter.verts.len();
-            let (positions, normals) = (&mesh.positions, &mesh.normals);
+            let (positions, normals) = super::vertices_of(&self.posed, p, i, mesh);
             painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
             self.meshes.push((start..painter.verts.len(), transforms));
         }
@@ -105,7 +105,7 @@ impl Renderer {
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);
-        let (verts, meshes) = (&self.verts, &self.meshes);
+        let (verts, meshes, posed) = (&self.verts, &self.meshes, &self.posed);
         let job = |k: usize,
                    band: &mut BandWork,
                    samples: &mut [Option<crate::color::Lin>],
@@ -126,6 +126,7 @@ impl Renderer {
                 let (range, transforms) = &meshes[i];
                 let faces = Faces {
                     mesh,
+                    positions: super::vertices_of(posed, p, i, mesh).0,
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };

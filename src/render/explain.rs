@@ -48,6 +48,11 @@ impl Renderer {
         // phase the rest.
         let rows = [
             (
+                "pose",
+                plan.posing,
+                format!("{} vertices posed", s.posed_vertices),
+            ),
+            (
                 "clip",
                 plan.clip,
                 format!(

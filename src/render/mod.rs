@@ -28,6 +28,7 @@ mod vertex_lanes;
 
 pub use stats::{FrameStats, FrameTimes};
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
@@ -40,7 +41,8 @@ use crate::framebuffer::{Framebuffer, Target};
 use crate::options::{Aa, RenderOptions};
 use crate::plan::Plan;
 use crate::raster::{Precision, Traversal};
-use crate::scene::{Camera, Projection, Scene};
+use crate::scene::anim::{Pose, Posed};
+use crate::scene::{Camera, Geometry, Projection, Scene};
 use crate::shade::Lights;
 use crate::transform::{self, Grid};
 use triangle::Faces;
@@ -80,6 +82,20 @@ impl Eye {
     }
 }
 
+/// Mesh `i`'s model-space positions and normals for this frame: posed,
+/// where the plan poses it, else its own.
+fn vertices_of<'a>(
+    posed: &'a [PosedMesh],
+    plan: &Plan,
+    i: usize,
+    mesh: &'a crate::scene::Mesh,
+) -> (&'a [Vec3], &'a [Vec3]) {
+    match posed.get(i) {
+        Some(m) if plan.poses(i) => (&m.positions, &m.normals),
+        _ => (&mesh.positions, &mesh.normals),
+    }
+}
+
 /// A reusable renderer.
 #[derive(Debug)]
 pub struct Renderer {
@@ -103,6 +119,20 @@ pub struct Renderer {
     /// Where each mesh's vertices are in `verts`, and its matrices, for a
     /// frame drawn in bands.
     meshes: Vec<(std::ops::Range<usize>, Transforms)>,
+    /// Each mesh's vertices at its pose, where the plan poses it.
+    posed: Vec<PosedMesh>,
+}
+
+/// A mesh's positions and normals at a pose, kept from frame to frame: a
+/// clip paused at one time is posed once.
+#[derive(Debug, Default)]
+struct PosedMesh {
+    /// The geometry and pose they are of (the geometry held, so that its
+    /// address is not another's).
+    of: Option<(Arc<Geometry>, Pose)>,
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    work: Posed,
 }
 
 /// What the vertex, triangle and fill stages draw with: the samples drawn
@@ -138,6 +168,7 @@ impl Renderer {
             bands: Vec::new(),
             camera: None,
             meshes: Vec::new(),
+            posed: Vec::new(),
         }
     }
 
@@ -224,6 +255,7 @@ impl Renderer {
             eye,
         };
 
+        self.pose(scene, p);
         self.times.plan += lap();
         self.aa = opts.aa;
         let mut banded = false;
@@ -254,6 +286,43 @@ impl Renderer {
             self.times.blit += lap();
         }
         self.plan = plan;
+    }
+
+    /// Poses every mesh the plan poses, unless it is at the pose it was
+    /// posed at last frame (a paused clip costs nothing).
+    fn pose(&mut self, scene: &Scene, plan: &Plan) {
+        if self.posed.len() < scene.meshes.len() {
+            self.posed
+                .resize_with(scene.meshes.len(), PosedMesh::default);
+        }
+        for (i, mesh) in scene.meshes.iter().enumerate() {
+            let (Some(rig), Some(pose)) = (&mesh.rig, mesh.pose) else {
+                continue;
+            };
+            if !plan.poses(i) {
+                continue;
+            }
+            let slot = &mut self.posed[i];
+            let same = slot.of.as_ref().is_some_and(|(g, at)| {
+                Arc::ptr_eq(g, &mesh.geometry)
+                    && at.clip == pose.clip
+                    && at.time.to_bits() == pose.time.to_bits()
+            });
+            if same {
+                continue;
+            }
+            slot.positions.clear();
+            slot.positions.extend_from_slice(&mesh.positions);
+            slot.normals.clear();
+            slot.normals.extend_from_slice(&mesh.normals);
+            self.stats.posed_vertices += rig.pose_into(
+                Some(pose),
+                &mut slot.work,
+                &mut slot.positions,
+                &mut slot.normals,
+            );
+            slot.of = Some((mesh.geometry.clone(), pose));
+        }
     }
 
     /// `camera` resolved for `aspect`: the last frame's result when both are
@@ -292,16 +361,12 @@ impl Renderer {
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
-            painter.vertex_stage(
-                stage,
-                &transforms,
-                &mesh.positions,
-                &mesh.normals,
-                p.clip_tests(i),
-            );
+            let (positions, normals) = vertices_of(&self.posed, p, i, mesh);
+            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
             times.vertices += lap();
             let faces = Faces {
                 mesh,
+                positions,
                 transforms: &transforms,
                 cull: opts.cull.unwrap_or(mesh.cull),
             };

@@ -15,6 +15,9 @@ pub struct FrameStats {
     pub triangles_in: u64,
     /// Vertices transformed.
     pub vertices: u64,
+    /// Vertices posed by a clip (morphed, skinned or carried by a node)
+    /// before the vertex stage.
+    pub posed_vertices: u64,
     /// Triangles the clip stage cut.
     pub clipped: u64,
     /// Triangles the clip stage removed entirely (outside, or not finite).

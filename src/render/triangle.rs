@@ -59,6 +59,8 @@ pub(super) struct Tex<'a> {
 /// One mesh's faces as the triangle stage needs them.
 pub(super) struct Faces<'a> {
     pub(super) mesh: &'a Mesh,
+    /// Its model-space positions this frame (posed, or its own).
+    pub(super) positions: &'a [Vec3],
     pub(super) transforms: &'a Transforms,
     pub(super) cull: Cull,
 }
@@ -116,7 +118,7 @@ impl Painter<'_> {
                     },
                 });
                 let model = Model {
-                    positions: &mesh.positions,
+                    positions: f.positions,
                     face: *face,
                     mvp: &f.transforms.mvp64,
                     world: &f.transforms.model,

@@ -53,6 +53,7 @@ use std::sync::{Arc, OnceLock};
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use rustc_hash::FxHashMap;
 
+use super::anim::{Pose, Rig};
 use crate::color::{Lin, Rgb};
 use crate::texture::Texture;
 
@@ -118,6 +119,9 @@ pub struct Geometry {
     /// Closed, in one piece with a sphere's topology.
     sphere_like: bool,
     convex: OnceLock<bool>,
+    /// How its vertices move, for a model that animates (the positions and
+    /// normals above are its rest pose).
+    pub rig: Option<Arc<Rig>>,
 }
 
 impl Clone for Geometry {
@@ -135,6 +139,7 @@ impl Clone for Geometry {
             closed: self.closed,
             sphere_like: self.sphere_like,
             convex: self.convex.clone(),
+            rig: self.rig.clone(),
         }
     }
 }
@@ -148,6 +153,7 @@ impl PartialEq for Geometry {
             && self.textures == o.textures
             && self.faces == o.faces
             && self.materials == o.materials
+            && self.rig == o.rig
     }
 }
 
@@ -180,6 +186,7 @@ impl Geometry {
             closed: false,
             sphere_like: false,
             convex: OnceLock::new(),
+            rig: None,
         }
     }
 
@@ -330,6 +337,9 @@ impl Geometry {
         for p in &mut self.positions {
             *p = ((p.as_dvec3() - centre) * scale).as_vec3();
         }
+        if let Some(rig) = &mut self.rig {
+            Arc::make_mut(rig).fitted.push((centre, scale));
+        }
         // The same surface, moved and scaled: closedness stands; the bounds
         // and any convexity found are redone.
         self.bounds = bounds(&self.positions);
@@ -349,6 +359,9 @@ pub struct Mesh {
     pub model: Mat4,
     /// Which windings to discard.
     pub cull: Cull,
+    /// Where in which clip a moving model is drawn (`None`: at rest, as
+    /// is a model that does not move).
+    pub pose: Option<Pose>,
 }
 
 impl std::ops::Deref for Mesh {
@@ -383,6 +396,7 @@ impl Mesh {
             color,
             model: Mat4::IDENTITY,
             cull,
+            pose: None,
         }
     }
 
@@ -407,6 +421,24 @@ impl Mesh {
     #[must_use]
     pub fn with_cull(self, cull: Cull) -> Mesh {
         Mesh { cull, ..self }
+    }
+
+    /// This mesh drawn at `time` seconds into clip `clip` of its rig (no
+    /// change for a mesh that does not move).
+    #[must_use]
+    pub fn at(self, clip: usize, time: f64) -> Mesh {
+        let pose = self.rig.as_ref().map(|_| Pose { clip, time });
+        Mesh { pose, ..self }
+    }
+
+    /// Whether drawing this mesh at its pose moves any vertex from the rest
+    /// pose: it has a rig, a pose, and the pose's clip animates something
+    /// its vertices follow.
+    pub fn moves(&self) -> bool {
+        match (&self.rig, self.pose) {
+            (Some(rig), Some(pose)) => rig.moves(pose.clip),
+            _ => false,
+        }
     }
 }
 

@@ -49,6 +49,7 @@
 //! name the file, line and column. Mesh files' own errors name their file
 //! and line.
 
+pub mod anim;
 mod builder;
 mod camera;
 mod file;
@@ -195,6 +196,10 @@ pub(crate) const THREE_QUARTER: Vec3 = Vec3::new(0.469_846_3, 0.342_020_1, 0.813
 /// The vertical field of view a model shown alone is seen with, degrees.
 pub(crate) const MODEL_FOV: f32 = 30.0;
 
+/// How many poses of each clip a moving model is framed by: evenly
+/// spaced through the clip.
+const POSES_FRAMED: u32 = 32;
+
 /// The colour of a mesh whose file gives none.
 pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);
 
@@ -222,8 +227,32 @@ impl Scene {
             transform::Axis::Z => Mat4::from_cols(Vec4::X, -Vec4::Z, Vec4::Y, Vec4::W),
         };
         // The 13 axes are the same set after any turn of the up axis onto
-        // y: the outline can be found before the turn.
-        let fit = Fit::of(&mesh.positions).transformed(mesh.model);
+        // y: the outline can be found before the turn. A model that moves
+        // is framed by the union of its poses through every clip, so that
+        // the camera holds still as it moves.
+        let fit = Fit::of(&mesh.positions);
+        let fit = match &mesh.rig {
+            Some(rig) if !rig.clips.is_empty() => {
+                let mut points = fit.points.to_vec();
+                let mut posed = anim::Posed::default();
+                let (mut ps, mut ns) = (mesh.positions.clone(), mesh.normals.clone());
+                for (c, clip) in rig.clips.iter().enumerate() {
+                    for k in 0..POSES_FRAMED {
+                        let time = clip.length * k as f64 / POSES_FRAMED as f64;
+                        rig.pose_into(
+                            Some(anim::Pose { clip: c, time }),
+                            &mut posed,
+                            &mut ps,
+                            &mut ns,
+                        );
+                        points.extend_from_slice(&Fit::of(&ps).points);
+                    }
+                }
+                Fit::of(&points)
+            }
+            _ => fit,
+        }
+        .transformed(mesh.model);
         Scene {
             background: None,
             camera: Camera {
@@ -256,6 +285,28 @@ impl Scene {
             },
             triangles,
             ..Scene::default()
+        }
+    }
+
+    /// The clips of the scene's first model that has any (empty when no
+    /// model moves).
+    pub fn clips(&self) -> &[anim::Clip] {
+        self.meshes
+            .iter()
+            .filter_map(|m| m.rig.as_deref())
+            .find(|r| !r.clips.is_empty())
+            .map_or(&[], |r| &r.clips[..])
+    }
+
+    /// Draws every moving model at `time` seconds into its clip `clip`
+    /// (one without that clip at rest).
+    pub fn set_pose(&mut self, clip: usize, time: f64) {
+        for m in &mut self.meshes {
+            m.pose = m
+                .rig
+                .as_ref()
+                .filter(|r| clip < r.clips.len())
+                .map(|_| anim::Pose { clip, time });
         }
     }
 

@@ -118,3 +118,69 @@ pub(super) fn scheme(uri: &str) -> Option<&str> {
         && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
     (ok && scheme.len() > 1).then_some(scheme)
 }
+
+/// Checks that `acc` has a type the reader expects and that every byte
+/// it names lies inside its buffer view and buffer.
+pub(super) fn check(
+    acc: &Accessor,
+    buffers: &[Data],
+    types: &[DataType],
+    dims: &[Dimensions],
+    what: &str,
+) -> std::result::Result<(), String> {
+    let at = || format!("{what} (accessor {})", acc.index());
+    if !types.contains(&acc.data_type()) || !dims.contains(&acc.dimensions()) {
+        return Err(format!(
+            "{} is {:?} {:?}, not a type rastty reads there",
+            at(),
+            acc.data_type(),
+            acc.dimensions()
+        ));
+    }
+    if acc.sparse().is_some() {
+        return Err(format!("{} is sparse, which rastty does not read", at()));
+    }
+    let Some(view) = acc.view() else {
+        return Err(format!("{} has no buffer view", at()));
+    };
+    let buffer = buffers
+        .get(view.buffer().index())
+        .ok_or_else(|| format!("{}: its buffer is missing", at()))?;
+    let elem = acc.size();
+    if view.stride().is_some_and(|s| s < elem) {
+        return Err(format!(
+            "{}: buffer view {} has a byteStride of {}, less than its {elem}-byte elements",
+            at(),
+            view.index(),
+            view.stride().unwrap_or(0)
+        ));
+    }
+    let stride = view.stride().unwrap_or(elem);
+    let count = acc.count();
+    let need = match count {
+        // The spec's minimum; the gltf crate's iterators take count − 1.
+        0 => {
+            return Err(format!(
+                "{} has a count of 0 (glTF requires at least 1)",
+                at()
+            ));
+        }
+        n => (n - 1)
+            .checked_mul(stride)
+            .and_then(|b| b.checked_add(acc.offset()))
+            .and_then(|b| b.checked_add(elem))
+            .ok_or_else(|| format!("{} is too large", at()))?,
+    };
+    let view_end = view.offset().checked_add(view.length());
+    if need > view.length() || view_end.is_none_or(|end| end > buffer.len()) {
+        return Err(format!(
+            "{} is out of range: it needs {need} bytes of buffer view {} ({} bytes at offset {} of a {}-byte buffer)",
+            at(),
+            view.index(),
+            view.length(),
+            view.offset(),
+            buffer.len()
+        ));
+    }
+    Ok(())
+}

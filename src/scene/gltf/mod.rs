@@ -16,10 +16,14 @@
 //! PNG or JPEG, sRGB-encoded, decoded once each however many materials
 //! use them (see [`crate::texture`]).
 //!
+//! A model that moves (skins, morph targets or animations) keeps its node
+//! tree, skins, morph targets and clips in a [`crate::scene::anim::Rig`],
+//! each primitive as its node places it a part of it; its geometry holds
+//! the rest pose, written by the code that poses it (`rig.rs`).
+//!
 //! Not read, and said in one note: points and lines, textures read through
 //! a second texture coordinate set, the other material textures (normal,
-//! occlusion, emissive, metallic-roughness), skins, morph targets,
-//! animations, cameras, and extensions. An extension the file marks as
+//! occlusion, emissive, metallic-roughness), cameras, and extensions. An extension the file marks as
 //! required is an error, since the model cannot be drawn right without it.
 //!
 //! Trade-offs: the crate parses and validates the JSON and resolves
@@ -28,6 +32,7 @@
 //! refused with the accessor named, never read out of bounds.
 
 mod buffers;
+mod rig;
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -47,8 +52,10 @@ use super::mesh::{Geometry, MaterialRun};
 use super::obj::Loaded;
 use crate::color::Lin;
 use crate::error::{Error, Result};
+use crate::scene::anim::Posed;
 use crate::texture::{Filter, Mipmap, Sampler, Texture, Wrap};
-use buffers::{buffers, fetch};
+use buffers::{buffers, check, fetch};
+use rig::{Placement, RigParts};
 
 /// The deepest node hierarchy walked (the format has no cycles; a broken
 /// file might).
@@ -142,9 +149,18 @@ pub fn parse(
         },
         ..Parts::default()
     };
-    let mut stack: Vec<(::gltf::Node, Mat4, usize)> =
-        scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
-    while let Some((node, parent, depth)) = stack.pop() {
+    // A model that moves keeps its nodes, skins, morph targets and clips.
+    let animated = document.skins().len() > 0
+        || document.animations().len() > 0
+        || document
+            .meshes()
+            .any(|m| m.primitives().any(|p| p.morph_targets().len() > 0));
+    let mut rig = animated.then(|| RigParts::new(options.max_bytes));
+    let mut stack: Vec<(::gltf::Node, Mat4, usize, Option<u32>)> = scene
+        .nodes()
+        .map(|n| (n, Mat4::IDENTITY, 0, None))
+        .collect();
+    while let Some((node, parent, depth, rig_parent)) = stack.pop() {
         if depth > MAX_DEPTH {
             return Err(bad(format!(
                 "node {} is more than {MAX_DEPTH} levels deep",
@@ -152,15 +168,23 @@ pub fn parse(
             )));
         }
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-        if node.skin().is_some() {
-            *ignored.entry("skins").or_default() += 1;
-        }
+        let me = rig.as_mut().map(|r| r.node(&node, rig_parent));
         if node.camera().is_some() {
             *ignored.entry("cameras").or_default() += 1;
         }
         if let Some(mesh) = node.mesh() {
             for prim in mesh.primitives() {
-                out.primitive(&prim, world, &buffers, &mut ignored)
+                let placed = match (&mut rig, me) {
+                    (Some(r), Some(at)) => Some((
+                        r,
+                        Placement {
+                            node: at,
+                            skin: node.skin().map(|s| s.index()),
+                        },
+                    )),
+                    _ => None,
+                };
+                out.primitive(&prim, world, &buffers, &mut ignored, placed, &document)
                     .map_err(|e| {
                         bad(format!(
                             "mesh {} primitive {}: {e}",
@@ -170,12 +194,22 @@ pub fn parse(
                     })?;
             }
         }
-        stack.extend(node.children().map(|c| (c, world, depth + 1)));
+        stack.extend(node.children().map(|c| (c, world, depth + 1, me)));
     }
-    let animations = document.animations().count();
-    if animations > 0 {
-        ignored.insert("animations", animations);
-    }
+    let rig = match rig {
+        Some(r) => {
+            let rig = r.finish(&document, &buffers, &mut notes).map_err(bad)?;
+            // The rest pose, by the code that poses every frame.
+            rig.pose_into(
+                None,
+                &mut Posed::default(),
+                &mut out.positions,
+                &mut out.normals,
+            );
+            Some(rig)
+        }
+        None => None,
+    };
     notes.append(&mut out.images.notes);
     let mut what: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
     what.extend(
@@ -189,10 +223,9 @@ pub fn parse(
     if out.faces.is_empty() {
         return Err(bad("no triangles to draw".into()));
     }
-    Ok(Loaded {
-        geometry: out.geometry(name, options.crease),
-        notes,
-    })
+    let mut geometry = out.geometry(name, options.crease);
+    geometry.rig = rig.map(Arc::new);
+    Ok(Loaded { geometry, notes })
 }
 
 /// A count for a message: exact up to 2^64, a power of two beyond.
@@ -336,6 +369,8 @@ impl Parts<'_> {
         world: Mat4,
         buffers: &[Data],
         ignored: &mut BTreeMap<&'static str, usize>,
+        placed: Option<(&mut RigParts, Placement)>,
+        document: &::gltf::Document,
     ) -> std::result::Result<(), String> {
         let mode = prim.mode();
         if matches!(
@@ -345,7 +380,7 @@ impl Parts<'_> {
             *ignored.entry("point and line primitives").or_default() += 1;
             return Ok(());
         }
-        if prim.morph_targets().next().is_some() {
+        if prim.morph_targets().next().is_some() && placed.is_none() {
             *ignored.entry("morph targets").or_default() += 1;
         }
         let material = prim.material();
@@ -444,18 +479,37 @@ impl Parts<'_> {
         let first = self.positions.len() as u32;
         let n = positions.count();
         let start = self.positions.len();
-        self.positions.extend(
-            reader
-                .read_positions()
-                .into_iter()
-                .flatten()
-                .map(|p| world.transform_point3(Vec3::from(p))),
-        );
+        // A part of a model that moves keeps its own space's positions and
+        // normals; the geometry's are its rest pose, written once the rig
+        // is read.
+        let local: Option<(Vec<Vec3>, Option<Vec<Vec3>>)> = placed.as_ref().map(|_| {
+            (
+                reader
+                    .read_positions()
+                    .into_iter()
+                    .flatten()
+                    .map(Vec3::from)
+                    .collect(),
+                reader.read_normals().map(|ns| ns.map(Vec3::from).collect()),
+            )
+        });
+        match &local {
+            Some((ps, _)) => self.positions.extend_from_slice(ps),
+            None => self.positions.extend(
+                reader
+                    .read_positions()
+                    .into_iter()
+                    .flatten()
+                    .map(|p| world.transform_point3(Vec3::from(p))),
+            ),
+        }
         if self.positions.len() - start != n {
             return Err("POSITION could not be read".into());
         }
-        // Normals: kept while every primitive has them.
+        // Normals: kept while every primitive has them (a moving part's
+        // are computed where the file gives none).
         match reader.read_normals() {
+            _ if local.is_some() => self.normals.resize(start + n, Vec3::ZERO),
             Some(ns) if !self.normals_missing => {
                 let m = Mat3::from_mat4(world).inverse().transpose();
                 self.normals
@@ -530,6 +584,14 @@ impl Parts<'_> {
                     push(t[0], t[1], t[2]);
                 }
             }
+        }
+        if let (Some((rig, place)), Some((positions, normals))) = (placed, local) {
+            let faces: Vec<[u32; 3]> = self.faces[faces_before..]
+                .iter()
+                .map(|f| f.map(|i| i - first))
+                .collect();
+            let normals = normals.unwrap_or_else(|| rig::smooth_normals(&positions, &faces, flip));
+            rig.part(prim, place, buffers, (first, positions, normals), document)?;
         }
         if self.faces.len() > faces_before {
             let run = MaterialRun {
@@ -678,68 +740,3 @@ fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
     }
 }
 
-/// Checks that `acc` has a type the reader expects and that every byte
-/// it names lies inside its buffer view and buffer.
-fn check(
-    acc: &Accessor,
-    buffers: &[Data],
-    types: &[DataType],
-    dims: &[Dimensions],
-    what: &str,
-) -> std::result::Result<(), String> {
-    let at = || format!("{what} (accessor {})", acc.index());
-    if !types.contains(&acc.data_type()) || !dims.contains(&acc.dimensions()) {
-        return Err(format!(
-            "{} is {:?} {:?}, not a type rastty reads there",
-            at(),
-            acc.data_type(),
-            acc.dimensions()
-        ));
-    }
-    if acc.sparse().is_some() {
-        return Err(format!("{} is sparse, which rastty does not read", at()));
-    }
-    let Some(view) = acc.view() else {
-        return Err(format!("{} has no buffer view", at()));
-    };
-    let buffer = buffers
-        .get(view.buffer().index())
-        .ok_or_else(|| format!("{}: its buffer is missing", at()))?;
-    let elem = acc.size();
-    if view.stride().is_some_and(|s| s < elem) {
-        return Err(format!(
-            "{}: buffer view {} has a byteStride of {}, less than its {elem}-byte elements",
-            at(),
-            view.index(),
-            view.stride().unwrap_or(0)
-        ));
-    }
-    let stride = view.stride().unwrap_or(elem);
-    let count = acc.count();
-    let need = match count {
-        // The spec's minimum; the gltf crate's iterators take count − 1.
-        0 => {
-            return Err(format!(
-                "{} has a count of 0 (glTF requires at least 1)",
-                at()
-            ));
-        }
-        n => (n - 1)
-            .checked_mul(stride)
-            .and_then(|b| b.checked_add(acc.offset()))
-            .and_then(|b| b.checked_add(elem))
-            .ok_or_else(|| format!("{} is too large", at()))?,
-    };
-    let view_end = view.offset().checked_add(view.length());
-    if need > view.length() || view_end.is_none_or(|end| end > buffer.len()) {
-        return Err(format!(
-            "{} is out of range: it needs {need} bytes of buffer view {} ({} bytes at offset {} of a {}-byte buffer)",
-            at(),
-            view.index(),
-            view.length(),
-            view.offset(),
-            buffer.len()
-        ));
-    }
-    Ok(())
-}
