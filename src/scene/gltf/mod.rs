@@ -739,4 +739,3 @@ fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
         mipmap,
     }
 }
-

@@ -1,0 +1,501 @@
+//! Models that move, end to end: glTF files written here (skins, morph
+//! targets, node animations with every interpolation) loaded, posed and
+//! drawn, against the same shapes modelled in the pose, against values
+//! computed by hand, and the planned frame against the full pipeline's.
+
+mod common;
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use proptest::prelude::*;
+use rastty::scene::anim::Posed;
+use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf};
+use rastty::{Choice, Pipeline, RenderOptions, Renderer, Threads, color::Rgb};
+
+/// A glTF document's binary chunk and the JSON of its buffer views and
+/// accessors, built up one array at a time.
+#[derive(Default)]
+struct Doc {
+    bin: Vec<u8>,
+    views: Vec<String>,
+    accessors: Vec<String>,
+}
+
+impl Doc {
+    /// Appends `bytes` as a buffer view and an accessor of `count`
+    /// elements of `kind` (`"VEC3"`, …) and `component` (5126: f32, 5123:
+    /// u16); returns the accessor's index.
+    fn add(&mut self, bytes: Vec<u8>, count: usize, kind: &str, component: u32) -> usize {
+        self.add_bounded(bytes, count, kind, component, "")
+    }
+
+    /// [`Doc::add`] with `extra` JSON members (`,"min":…,"max":…`).
+    fn add_bounded(
+        &mut self,
+        bytes: Vec<u8>,
+        count: usize,
+        kind: &str,
+        component: u32,
+        extra: &str,
+    ) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        self.views.push(format!(
+            r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+            self.bin.len(),
+            bytes.len()
+        ));
+        self.bin.extend_from_slice(&bytes);
+        self.accessors.push(format!(
+            r#"{{"bufferView":{},"componentType":{component},"count":{count},"type":"{kind}"{extra}}}"#,
+            self.views.len() - 1
+        ));
+        self.accessors.len() - 1
+    }
+
+    fn vec3(&mut self, v: &[[f32; 3]]) -> usize {
+        self.floats(v.as_flattened(), "VEC3", 3)
+    }
+
+    /// Floats, `per` a element, with their bounds (which the format asks
+    /// of positions and key times).
+    fn floats(&mut self, v: &[f32], kind: &str, per: usize) -> usize {
+        let bound = |pick: fn(f32, f32) -> f32| {
+            (0..per)
+                .map(|k| {
+                    let b = v
+                        .iter()
+                        .skip(k)
+                        .step_by(per)
+                        .copied()
+                        .reduce(pick)
+                        .unwrap_or(0.0);
+                    if b.is_finite() {
+                        format!("{b:?}")
+                    } else {
+                        "0.0".into()
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        let extra = format!(
+            r#","min":[{}],"max":[{}]"#,
+            bound(f32::min),
+            bound(f32::max)
+        );
+        self.add_bounded(common::f32s(v), v.len() / per, kind, 5126, &extra)
+    }
+
+    fn indices(&mut self, faces: &[[u16; 3]]) -> usize {
+        let bytes = faces
+            .as_flattened()
+            .iter()
+            .flat_map(|i| i.to_le_bytes())
+            .collect();
+        self.add(bytes, faces.len() * 3, "SCALAR", 5123)
+    }
+
+    /// The GLB of `rest` (the JSON after `"asset"`, `"buffers"`,
+    /// `"bufferViews"` and `"accessors"`).
+    fn glb(&self, rest: &str) -> Vec<u8> {
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{}}}],"bufferViews":[{}],"accessors":[{}],{rest}}}"#,
+            self.bin.len().next_multiple_of(4),
+            self.views.join(","),
+            self.accessors.join(",")
+        );
+        common::glb(&json, &self.bin)
+    }
+}
+
+/// A box from `lo` to `hi`: 8 corners, 12 triangles wound outwards.
+fn cuboid(lo: [f32; 3], hi: [f32; 3], first: u16) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
+    let c = |i: u16| {
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
+    };
+    let quads = [
+        [0, 2, 3, 1], // z = lo
+        [4, 5, 7, 6], // z = hi
+        [0, 1, 5, 4], // y = lo
+        [2, 6, 7, 3], // y = hi
+        [0, 4, 6, 2], // x = lo
+        [1, 3, 7, 5], // x = hi
+    ];
+    let faces = quads
+        .iter()
+        .flat_map(|q: &[u16; 4]| {
+            [
+                [q[0] + first, q[1] + first, q[2] + first],
+                [q[0] + first, q[2] + first, q[3] + first],
+            ]
+        })
+        .collect();
+    ((0..8).map(c).collect(), faces)
+}
+
+fn load(glb: &[u8], name: &str) -> Geometry {
+    gltf::parse(glb, None, name, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+        .geometry
+}
+
+/// An arm along x: a forearm from 0 to 2, a hand from 2 to 4, each
+/// 0.5 thick; the hand bent `bent` (true: 90° up about z at x = 2) or
+/// straight.
+fn arm_boxes(bent: bool) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
+    let (mut p, mut f) = cuboid([0.0, -0.25, -0.25], [2.0, 0.25, 0.25], 0);
+    let (p2, f2) = if bent {
+        cuboid([1.75, 0.0, -0.25], [2.25, 2.0, 0.25], 8)
+    } else {
+        cuboid([2.0, -0.25, -0.25], [4.0, 0.25, 0.25], 8)
+    };
+    p.extend(p2);
+    f.extend(f2);
+    (p, f)
+}
+
+/// The straight arm skinned by two joints (the forearm's vertices wholly
+/// the first's, the hand's the second's, at x = 2), whose clip turns the
+/// second joint from straight at 0 s to 90° about z at 1 s, and holds it
+/// there to 2 s (the clip loops at its end: its last key is never shown).
+fn skinned_arm() -> Vec<u8> {
+    let mut d = Doc::default();
+    let (p, f) = arm_boxes(false);
+    let pos = d.vec3(&p);
+    let idx = d.indices(&f);
+    let joints: Vec<u8> = (0..16u16)
+        .flat_map(|v| [u16::from(v >= 8), 0, 0, 0])
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    let joints = d.add(joints, 16, "VEC4", 5123);
+    let weights = d.floats(&[1.0, 0.0, 0.0, 0.0].repeat(16), "VEC4", 4);
+    let mut ibm = glam::Mat4::IDENTITY.to_cols_array().to_vec();
+    ibm.extend(glam::Mat4::from_translation(Vec3::new(-2.0, 0.0, 0.0)).to_cols_array());
+    let ibm = d.floats(&ibm, "MAT4", 16);
+    let times = d.floats(&[0.0, 1.0, 2.0], "SCALAR", 1);
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let turns = d.floats(
+        &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s, 0.0, 0.0, s, s],
+        "VEC4",
+        4,
+    );
+    d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"JOINTS_0":{joints},"WEIGHTS_0":{weights}}},"indices":{idx}}}]}}],
+"skins":[{{"joints":[1,2],"inverseBindMatrices":{ibm}}}],
+"nodes":[{{"mesh":0,"skin":0}},{{"children":[2]}},{{"translation":[2,0,0]}}],
+"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[{{"name":"bend","channels":[{{"sampler":0,"target":{{"node":2,"path":"rotation"}}}}],"samplers":[{{"input":{times},"output":{turns}}}]}}]"#
+    ))
+}
+
+/// A model without a skin or a clip: `positions` and `faces` as given.
+fn still(positions: &[[f32; 3]], faces: &[[u16; 3]], normals: Option<&[[f32; 3]]>) -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(positions);
+    let idx = d.indices(faces);
+    let normal = normals.map_or(String::new(), |n| format!(r#","NORMAL":{}"#, d.vec3(n)));
+    d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}{normal}}},"indices":{idx}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+/// `geometry` seen from the front through a fixed camera (not framed, so
+/// that two shapes are seen alike), at time `time` of clip 0.
+fn scene_of(geometry: Geometry, time: f64) -> Scene {
+    let mesh = Mesh::of(Arc::new(geometry), Rgb::new(200, 120, 60)).at(0, time);
+    Scene::builder()
+        .camera(Camera {
+            projection: Projection::Perspective {
+                fov_y: 40.0,
+                near: 0.1,
+                far: 50.0,
+            },
+            eye: Vec3::new(1.5, 0.75, 9.0),
+            target: Vec3::new(1.5, 0.75, 0.0),
+            ..Camera::default()
+        })
+        .mesh(mesh)
+        .build()
+        .unwrap()
+}
+
+fn opts() -> RenderOptions {
+    RenderOptions {
+        cols: 80,
+        rows: 30,
+        ..RenderOptions::default()
+    }
+}
+
+/// Which samples are covered.
+fn coverage(scene: &Scene, opts: &RenderOptions) -> Vec<bool> {
+    let mut r = Renderer::new();
+    r.render(scene, opts);
+    r.framebuffer()
+        .samples()
+        .iter()
+        .map(Option::is_some)
+        .collect()
+}
+
+#[test]
+fn a_two_joint_arm_bent_90_degrees_covers_the_samples_of_the_arm_modelled_bent() {
+    let skinned = load(&skinned_arm(), "arm.glb");
+    let (p, f) = arm_boxes(true);
+    let modelled = load(&still(&p, &f, None), "bent.glb");
+    let bent = coverage(&scene_of(skinned.clone(), 1.0), &opts());
+    assert_eq!(bent, coverage(&scene_of(modelled, 0.0), &opts()));
+    assert!(bent.iter().filter(|&&c| c).count() > 100);
+    // At 0 s the clip holds the arm straight: the straight arm's samples.
+    let (p, f) = arm_boxes(false);
+    let straight = load(&still(&p, &f, None), "straight.glb");
+    assert_eq!(
+        coverage(&scene_of(skinned, 0.0), &opts()),
+        coverage(&scene_of(straight, 0.0), &opts())
+    );
+}
+
+/// A square of two triangles facing +z, with one morph target that lifts
+/// and tilts it; the weight steps from 0 to 1 at 1 s and holds to 2 s.
+fn morphing_square() -> (Vec<u8>, Vec<[f32; 3]>, Vec<[f32; 3]>) {
+    let base = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [0.0, 2.0, 0.0],
+    ];
+    let up = [[0.0, 0.0, 1.0]; 4];
+    let dp = [
+        [0.0, 0.5, 0.0],
+        [0.5, 0.0, 0.0],
+        [0.5, 1.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let dn = [[0.0, -0.5, 0.0]; 4];
+    let mut d = Doc::default();
+    let pos = d.vec3(&base);
+    let nrm = d.vec3(&up);
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let tp = d.vec3(&dp);
+    let tn = d.vec3(&dn);
+    let times = d.floats(&[0.0, 1.0, 2.0], "SCALAR", 1);
+    let weights = d.floats(&[0.0, 1.0, 1.0], "SCALAR", 1);
+    let glb = d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nrm}}},"indices":{idx},"targets":[{{"POSITION":{tp},"NORMAL":{tn}}}]}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,
+"animations":[{{"channels":[{{"sampler":0,"target":{{"node":0,"path":"weights"}}}}],"samplers":[{{"input":{times},"output":{weights},"interpolation":"STEP"}}]}}]"#
+    ));
+    let target: Vec<[f32; 3]> = (0..4)
+        .map(|i| std::array::from_fn(|k| base[i][k] + dp[i][k]))
+        .collect();
+    let normals: Vec<[f32; 3]> = (0..4)
+        .map(|i| std::array::from_fn(|k| up[i][k] + dn[i][k]))
+        .collect();
+    (glb, target, normals)
+}
+
+#[test]
+fn a_morph_at_weight_one_is_the_target_mesh_sample_for_sample() {
+    let (glb, target, normals) = morphing_square();
+    let morphing = load(&glb, "morph.glb");
+    let modelled = load(
+        &still(&target, &[[0, 1, 2], [0, 2, 3]], Some(&normals)),
+        "target.glb",
+    );
+    let draw = |scene: &Scene| {
+        let mut r = Renderer::new();
+        r.render(scene, &opts());
+        (r.framebuffer().samples().to_vec(), r.frame().clone())
+    };
+    let at_one = draw(&scene_of(morphing.clone(), 1.0));
+    assert_eq!(at_one, draw(&scene_of(modelled, 0.0)));
+    // Before the step, the base square.
+    let base = load(
+        &still(
+            &[
+                [0.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [2.0, 2.0, 0.0],
+                [0.0, 2.0, 0.0],
+            ],
+            &[[0, 1, 2], [0, 2, 3]],
+            Some(&[[0.0, 0.0, 1.0]; 4]),
+        ),
+        "base.glb",
+    );
+    assert_eq!(draw(&scene_of(morphing, 0.5)), draw(&scene_of(base, 0.0)));
+}
+
+/// One triangle carried by its node's translation, keyed at 0 s and 2 s
+/// with `interpolation`: x goes 1 → 3 (a cubic spline's out-tangent 4 and
+/// in-tangent −2 a second), y and z stay 0.
+fn translated(interpolation: &str) -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let idx = d.indices(&[[0, 1, 2]]);
+    let times = d.floats(&[0.0, 2.0], "SCALAR", 1);
+    let values: Vec<f32> = if interpolation == "CUBICSPLINE" {
+        // Key 0: in, value, out; key 1 likewise.
+        vec![
+            9.0, 9.0, 9.0, 1.0, 0.0, 0.0, 4.0, 0.0, 0.0, //
+            -2.0, 0.0, 0.0, 3.0, 0.0, 0.0, 9.0, 9.0, 9.0,
+        ]
+    } else {
+        vec![1.0, 0.0, 0.0, 3.0, 0.0, 0.0]
+    };
+    let out = d.floats(&values, "VEC3", 3);
+    d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}},"indices":{idx}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,
+"animations":[{{"name":"slide","channels":[{{"sampler":0,"target":{{"node":0,"path":"translation"}}}}],"samplers":[{{"input":{times},"output":{out},"interpolation":"{interpolation}"}}]}}]"#
+    ))
+}
+
+/// Vertex 0's x (it sits at the node's origin) at `time` into the clip.
+fn x_at(geometry: &Geometry, time: f64) -> f32 {
+    let rig = geometry.rig.as_ref().expect("a rig");
+    let (mut p, mut n) = (geometry.positions.clone(), geometry.normals.clone());
+    let pose = rastty::scene::anim::Pose { clip: 0, time };
+    rig.pose_into(Some(pose), &mut Posed::default(), &mut p, &mut n);
+    assert_eq!((p[0].y, p[0].z), (0.0, 0.0));
+    p[0].x
+}
+
+#[test]
+fn every_interpolation_gives_the_values_computed_by_hand_at_and_between_keys() {
+    let step = load(&translated("STEP"), "step.glb");
+    let linear = load(&translated("LINEAR"), "linear.glb");
+    let cubic = load(&translated("CUBICSPLINE"), "cubic.glb");
+    // The rest pose is the file's node transform: none.
+    assert_eq!(step.positions[0], Vec3::ZERO);
+    for (time, s, l, c) in [
+        (0.0, 1.0, 1.0, 1.0),
+        (0.5, 1.0, 1.5, 2.625),
+        (1.0, 1.0, 2.0, 3.5),
+        (1.5, 1.0, 2.5, 3.625),
+        // The clip is 2 s long: 2 s is its start again, and 1e6 s is 0 s
+        // into a loop (1e6 is even), exactly.
+        (2.0, 1.0, 1.0, 1.0),
+        (1e6 + 0.5, 1.0, 1.5, 2.625),
+    ] {
+        assert_eq!(x_at(&step, time), s, "STEP at {time}");
+        assert_eq!(x_at(&linear, time), l, "LINEAR at {time}");
+        assert_eq!(x_at(&cubic, time), c, "CUBICSPLINE at {time}");
+    }
+}
+
+#[test]
+fn a_malformed_sampler_is_an_error_naming_the_animation_and_sampler() {
+    let bad = |times: &[f32], values: &[f32]| {
+        let mut d = Doc::default();
+        let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        let t = d.floats(times, "SCALAR", 1);
+        let v = d.floats(values, "VEC3", 3);
+        let glb = d.glb(&format!(
+            r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,
+"animations":[{{"name":"walk","channels":[{{"sampler":0,"target":{{"node":0,"path":"translation"}}}}],"samplers":[{{"input":{t},"output":{v}}}]}}]"#
+        ));
+        match gltf::parse(&glb, None, "bad.glb", &LoadOptions::default()) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e.to_string(),
+        }
+    };
+    assert_eq!(
+        bad(&[0.0, 1.0, 1.0], &[0.0; 9]),
+        "bad.glb: animation 0 (\"walk\") sampler 0: key 2's time is not after key 1's"
+    );
+    assert_eq!(
+        bad(&[0.0, f32::NAN], &[0.0; 6]),
+        "bad.glb: animation 0 (\"walk\") sampler 0: a key time or value is not a finite number"
+    );
+    assert_eq!(
+        bad(&[0.0, 1.0], &[0.0; 9]),
+        "bad.glb: animation 0 (\"walk\") sampler 0: it has 9 output numbers where its keys call for 6"
+    );
+}
+
+/// The three moving models: skinned, morphed, carried by a node.
+fn movers() -> Vec<Geometry> {
+    vec![
+        load(&skinned_arm(), "arm.glb"),
+        load(&morphing_square().0, "morph.glb"),
+        load(&translated("CUBICSPLINE"), "cubic.glb"),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// The planned frame (which poses only a mesh its clip moves, and a
+    /// paused clip once) is the full pipeline's (which poses every
+    /// mesh), bit for bit, at any time; and one band draws what three do.
+    #[test]
+    fn posed_frames_are_the_same_planned_or_full_and_in_bands(
+        which in 0usize..3,
+        time in prop_oneof![-10.0f64..10.0, 0.0f64..1e7],
+        glyphs in proptest::sample::select(rastty::GlyphMode::ALL.to_vec()),
+    ) {
+        let scene = scene_of(movers().swap_remove(which), time);
+        let o = RenderOptions { glyphs, threads: Threads::Exactly(1), ..opts() };
+        let mut planned = Renderer::new();
+        planned.render(&scene, &o);
+        let mut full = Renderer::new();
+        full.render(&scene, &RenderOptions { pipeline: Pipeline::Full, ..o });
+        prop_assert_eq!(planned.framebuffer().samples(), full.framebuffer().samples());
+        prop_assert_eq!(planned.frame(), full.frame());
+        let mut bands = Renderer::new();
+        bands.render(&scene, &RenderOptions { threads: Threads::Exactly(3), ..o });
+        prop_assert_eq!(planned.frame(), bands.frame());
+        // The same renderer again at the same time: posed once, drawn the
+        // same.
+        let again = planned.render(&scene, &o).clone();
+        prop_assert_eq!(&again, full.frame());
+        prop_assert_eq!(planned.stats().posed_vertices, 0);
+    }
+}
+
+#[test]
+fn a_clip_that_moves_no_vertex_costs_nothing_and_is_drawn_at_rest() {
+    // The triangle's node is still; the clip moves an empty node beside it.
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let times = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let out = d.floats(&[0.0, 0.0, 0.0, 5.0, 0.0, 0.0], "VEC3", 3);
+    let glb = d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}},{{}}],"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[{{"channels":[{{"sampler":0,"target":{{"node":1,"path":"translation"}}}}],"samplers":[{{"input":{times},"output":{out}}}]}}]"#
+    ));
+    let geometry = load(&glb, "aside.glb");
+    assert!(!geometry.rig.as_ref().unwrap().moves(0));
+    let scene = scene_of(geometry, 0.5);
+    let mut planned = Renderer::new();
+    planned.render(&scene, &opts());
+    let plan = planned.plan().unwrap();
+    assert!(!plan.posing.run && !plan.poses(0));
+    assert_eq!(planned.stats().posed_vertices, 0);
+    // The full pipeline poses it anyway, to the same frame.
+    let mut full = Renderer::new();
+    full.render(
+        &scene,
+        &RenderOptions {
+            pipeline: Pipeline::Full,
+            ..opts()
+        },
+    );
+    assert_eq!(full.stats().posed_vertices, 3);
+    assert_eq!(planned.frame(), full.frame());
+    assert_eq!(
+        planned.framebuffer().samples(),
+        full.framebuffer().samples()
+    );
+}
