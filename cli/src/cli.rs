@@ -91,8 +91,9 @@ pub struct RenderArgs {
     #[arg(help_heading = "Output", long, value_name = "FILE.cast")]
     pub record: Option<PathBuf>,
     /// Draw a model that moves at this many seconds into its clip
-    #[arg(help_heading = "Model", long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_seconds)]
-    pub time: f64,
+    /// [default: 0, or a scene file's own]
+    #[arg(help_heading = "Model", long, value_name = "SECONDS", allow_negative_numbers = true, value_parser = parse_seconds)]
+    pub time: Option<f64>,
     #[command(flatten)]
     pub knobs: KnobArgs,
     #[command(flatten)]
@@ -162,7 +163,7 @@ pub struct InputArgs {
     #[arg(long, value_parser = named::<ColorSpace>(), default_value = ColorSpace::Linear.name())]
     pub mtl_colors: ColorSpace,
     /// The clip a model that moves plays, by name or number (from 0)
-    /// [default: its first]
+    /// [default: its first, or a scene file's own]
     #[arg(long, value_name = "NAME|N")]
     pub clip: Option<String>,
 }

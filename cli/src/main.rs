@@ -300,8 +300,11 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         .transpose()?;
     let scene = scene(&args.input, &args.budgets)
         .and_then(|mut s| {
-            if let Some(c) = clip(&s, args.input.clip.as_deref())? {
-                s.set_pose(c, args.time);
+            // A scene file's own poses stand unless a clip or time is asked.
+            if args.input.clip.is_some() || args.time.is_some() {
+                if let Some(c) = clip(&s, args.input.clip.as_deref())? {
+                    s.set_pose(c, args.time.unwrap_or(0.0));
+                }
             }
             Ok(s)
         })
@@ -383,7 +386,16 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let spin = Spin {
         axis: args.axis,
         step: args.step,
-        play: clip(&scene, args.input.clip.as_deref())?.map(|clip| animate::Playback {
+        play: match &args.input.clip {
+            Some(named) => clip(&scene, Some(named))?,
+            // The scene's own clip (a scene file's), else the first.
+            None => scene
+                .meshes
+                .iter()
+                .find_map(|m| m.pose.map(|p| p.clip))
+                .or(clip(&scene, None)?),
+        }
+        .map(|clip| animate::Playback {
             clip,
             speed: args.speed,
             fps: f64::from(args.fps),

@@ -43,6 +43,64 @@ impl Renderer {
             scene.triangle_count(),
             if plan.full { "full" } else { "planned" },
         );
+        // What moves: each moving model's clips, skins and morph targets,
+        // and the pose drawn.
+        for (i, m) in scene.meshes.iter().enumerate() {
+            let Some(rig) = &m.rig else { continue };
+            let targets = rig
+                .parts
+                .iter()
+                .filter_map(|p| {
+                    let m = p.morph.as_ref()?;
+                    Some(m.positions.len() / p.positions.len().max(1))
+                })
+                .max()
+                .unwrap_or(0);
+            let joints: usize = rig.skins.iter().map(|s| s.joints.len()).sum();
+            let _ = writeln!(
+                out,
+                "mesh {i} moves: {} nodes, {} skins ({joints} joints), {targets} morph targets; {}",
+                rig.nodes.len(),
+                rig.skins.len(),
+                match m.pose {
+                    Some(p) => match rig.clips.get(p.clip) {
+                        Some(c) => format!(
+                            "clip {} at {:.3} s ({:.3} s into it)",
+                            p.clip,
+                            p.time,
+                            c.local(p.time)
+                        ),
+                        None => format!("clip {} (none such): at rest", p.clip),
+                    },
+                    None => "at rest".into(),
+                }
+            );
+            for (k, c) in rig.clips.iter().enumerate() {
+                let _ = writeln!(
+                    out,
+                    "  clip {k} {}: {:.3} s, {} channels ({}){}",
+                    if c.name.is_empty() {
+                        "(unnamed)".to_string()
+                    } else {
+                        crate::text::name(&c.name, 40)
+                    },
+                    c.length,
+                    c.channels.len(),
+                    c.channels
+                        .iter()
+                        .map(|ch| format!(
+                            "node {} {} {} keys {}",
+                            ch.node,
+                            ch.property.name(),
+                            ch.sampler.keys(),
+                            ch.sampler.interpolation().name()
+                        ))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    if c.moves { "" } else { "; moves no vertex" }
+                );
+            }
+        }
         // Each stage runs inside a timed phase (the last line): the vertex
         // phase holds the clip tests and per-vertex lighting, the triangle
         // phase the rest.

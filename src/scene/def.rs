@@ -57,6 +57,18 @@ pub(super) struct MeshDef {
     #[serde(default)]
     pub(super) scale: ScaleDef,
     pub(super) cull: Option<CullDef>,
+    /// The clip a moving model plays: its number or its name.
+    pub(super) clip: Option<ClipDef>,
+    /// Seconds into the clip.
+    pub(super) time: Option<f64>,
+}
+
+/// `clip = 2` or `clip = "walk"`.
+#[derive(Deserialize, Clone)]
+#[serde(untagged)]
+pub(super) enum ClipDef {
+    Number(u32),
+    Name(String),
 }
 
 /// `scale = 2.0` or `scale = [1.0, 2.0, 1.0]`.

@@ -37,6 +37,8 @@
 //! rotate = [0.0, 30.0, 0.0]       # degrees about x, y, z
 //! scale = 1.0
 //! cull = "back"                   # "none" | "back" | "front"
+//! clip = "walk"                   # a glTF model that moves: its clip, by name or number (default 0)
+//! time = 1.5                      # seconds into the clip (default 0)
 //!
 //! [[light]]
 //! direction = [-1.0, -1.0, -1.0]  # the direction the light travels
@@ -196,6 +198,48 @@ pub(crate) const THREE_QUARTER: Vec3 = Vec3::new(0.469_846_3, 0.342_020_1, 0.813
 /// The vertical field of view a model shown alone is seen with, degrees.
 pub(crate) const MODEL_FOV: f32 = 30.0;
 
+/// The pose a scene file's `clip` and `time` give a mesh: the first clip
+/// at 0 s for a model that has clips and is given neither.
+fn pose_of(
+    mesh: &Mesh,
+    clip: Option<ClipDef>,
+    time: Option<f64>,
+) -> std::result::Result<Option<anim::Pose>, String> {
+    let clips = mesh.rig.as_ref().map_or(&[][..], |r| &r.clips[..]);
+    if clips.is_empty() {
+        return match (clip, time) {
+            (None, None) => Ok(None),
+            _ => Err(
+                "`clip` and `time` are for a model that moves, and this one has no clips".into(),
+            ),
+        };
+    }
+    let time = time.unwrap_or(0.0);
+    if !time.is_finite() {
+        return Err("a mesh's `time` must be a finite number of seconds".into());
+    }
+    let clip = match clip {
+        None => 0,
+        Some(ClipDef::Number(n)) if (n as usize) < clips.len() => n as usize,
+        Some(ClipDef::Number(n)) => {
+            return Err(format!(
+                "clip {n}: the model has {} clips, 0 to {}",
+                clips.len(),
+                clips.len() - 1
+            ));
+        }
+        Some(ClipDef::Name(name)) => {
+            clips.iter().position(|c| c.name == name).ok_or_else(|| {
+                format!(
+                    "no clip named {} in the model",
+                    crate::text::name(&name, 40)
+                )
+            })?
+        }
+    };
+    Ok(Some(anim::Pose { clip, time }))
+}
+
 /// How many poses of each clip a moving model is framed by: evenly
 /// spaced through the clip.
 const POSES_FRAMED: u32 = 32;
@@ -329,6 +373,10 @@ impl Scene {
         });
         let mut scene = Scene::of_mesh_up(Mesh::of(geometry, DEFAULT_MESH_COLOR), up);
         scene.notes = notes;
+        // A model that moves is drawn at the start of its first clip.
+        if !scene.clips().is_empty() {
+            scene.set_pose(0, 0.0);
+        }
         Ok(scene)
     }
 
@@ -570,6 +618,7 @@ impl Scene {
                 if let Some(cull) = m.cull {
                     mesh.cull = cull.into();
                 }
+                mesh.pose = pose_of(&mesh, m.clip, m.time).map_err(|e| at(span, e))?;
                 scene.meshes.push(mesh);
             }
             for l in def.light {

@@ -28,6 +28,17 @@ pub enum Interpolation {
     CubicSpline,
 }
 
+impl Interpolation {
+    /// The name glTF gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Interpolation::Step => "STEP",
+            Interpolation::Linear => "LINEAR",
+            Interpolation::CubicSpline => "CUBICSPLINE",
+        }
+    }
+}
+
 /// One channel's keyframes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sampler {
