@@ -54,7 +54,7 @@ impl RigParts {
         self.kept = self.kept.saturating_add(bytes);
         if self.kept > self.budget {
             return Err(format!(
-                "its animation data (vertices as placed, joints, morph targets, keyframes) needs more than the budget of {} bytes (--max-bytes raises it)",
+                "its animation data (vertices as placed, joints, morph targets, keyframes) needs more than the budget of {} bytes (--max-file-size raises it)",
                 self.budget
             ));
         }
