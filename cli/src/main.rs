@@ -301,10 +301,10 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     let scene = scene(&args.input, &args.budgets)
         .and_then(|mut s| {
             // A scene file's own poses stand unless a clip or time is asked.
-            if args.input.clip.is_some() || args.time.is_some() {
-                if let Some(c) = clip(&s, args.input.clip.as_deref())? {
-                    s.set_pose(c, args.time.unwrap_or(0.0));
-                }
+            if (args.input.clip.is_some() || args.time.is_some())
+                && let Some(c) = clip(&s, args.input.clip.as_deref())?
+            {
+                s.set_pose(c, args.time.unwrap_or(0.0));
             }
             Ok(s)
         })
