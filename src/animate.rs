@@ -282,8 +282,8 @@ impl Player {
                     p.clip = (p.clip as i64 + i64::from(d)).rem_euclid(n as i64) as usize;
                     let clip = p.clip;
                     self.played = 0;
-                    let name = crate::text::name(&self.scene.clips()[clip].name, 40);
-                    self.set_notice(format!("clip {clip} {name}"));
+                    let name = clip_name(&self.scene.clips()[clip].name);
+                    self.set_notice(format!("clip {clip}{name}"));
                 }
             }
             Command::Orbit { yaw, pitch } => {
@@ -391,8 +391,9 @@ impl Player {
             {
                 let _ = write!(
                     p[4],
-                    "clip {} {:.2}/{:.2} s",
-                    crate::text::name(&clip.name, 24),
+                    "clip {}{} {:.2}/{:.2} s",
+                    play.clip,
+                    clip_name(&clip.name),
                     clip.local(play.time(self.played)),
                     clip.length
                 );
@@ -430,6 +431,16 @@ impl Player {
         out.write_all(bytes)?;
         out.flush()?;
         Ok(bytes.len())
+    }
+}
+
+/// A clip's name for the status line, escaped, after a space (nothing for
+/// a clip without one).
+fn clip_name(name: &str) -> String {
+    if name.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", crate::text::name(name, 24))
     }
 }
 
