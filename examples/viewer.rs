@@ -68,6 +68,8 @@ struct App {
     zoom: f32,
     /// The model's own turn, in degrees, and whether it goes on turning.
     spin: f32,
+    /// Seconds played of a moving model's first clip.
+    clock: f64,
     paused: bool,
     /// Where a left-button drag was last seen.
     drag: Option<(u16, u16)>,
@@ -131,6 +133,7 @@ impl App {
             pitch: 0.0,
             zoom: 1.0,
             spin: 0.0,
+            clock: 0.0,
             paused: false,
             drag: None,
             list_area: Rect::default(),
@@ -243,6 +246,10 @@ impl App {
             Ok(scene) => {
                 let mut scene = scene.clone();
                 scene.camera = scene.camera.orbited(yaw, pitch, zoom);
+                // A model that moves plays its first clip.
+                if !scene.clips().is_empty() {
+                    scene.set_pose(0, self.clock);
+                }
                 let options = RenderOptions {
                     turn: Vec3::new(0.0, self.spin, 0.0),
                     ..self.options
@@ -299,6 +306,7 @@ fn run(terminal: &mut DefaultTerminal, mut app: App) -> io::Result<()> {
         app.fps = 0.9 * app.fps + 0.1 / dt.max(1e-3);
         if !app.paused {
             app.spin = (app.spin + 40.0 * dt) % 360.0;
+            app.clock += f64::from(dt);
         }
     }
 }

@@ -18,6 +18,11 @@
 //! colour at [`ColorDepth::None`](crate::color::ColorDepth::None)), the widget leaves the buffer's colour
 //! as it was, so a `Block`'s background shows through.
 //!
+//! A model that moves is drawn at its meshes' poses: call
+//! [`Scene::set_pose`] with the clip and the time before each draw to play
+//! it (the viewer example does); a [`SceneState`]'s renderer poses it only
+//! when the time changes.
+//!
 //! The stateless [`SceneWidget`] renders with a fresh renderer each time;
 //! [`SceneState`] keeps a renderer, a frame and a colour cache between
 //! frames (`render_stateful_widget`), so that a steady view allocates
