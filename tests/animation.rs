@@ -162,9 +162,9 @@ fn arm_boxes(bent: bool) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
 }
 
 /// The straight arm skinned by two joints (the forearm's vertices wholly
-/// the first's, the hand's the second's, at x = 2), whose clip turns the
-/// second joint from straight at 0 s to 90° about z at 1 s, and holds it
-/// there to 2 s (the clip loops at its end: its last key is never shown).
+/// the first's, the hand's the second's, at x = 2), whose clip "wave"
+/// turns the second joint from straight at 0 s to 90° about z at 1 s and
+/// back at 2 s (where the clip loops). `examples/models/arm.glb`.
 fn skinned_arm() -> Vec<u8> {
     let mut d = Doc::default();
     let (p, f) = arm_boxes(false);
@@ -191,7 +191,7 @@ fn skinned_arm() -> Vec<u8> {
 "skins":[{{"joints":[1,2],"inverseBindMatrices":{ibm}}}],
 "nodes":[{{"mesh":0,"skin":0}},{{"children":[2]}},{{"translation":[2,0,0]}}],
 "scenes":[{{"nodes":[0,1]}}],"scene":0,
-"animations":[{{"name":"bend","channels":[{{"sampler":0,"target":{{"node":2,"path":"rotation"}}}}],"samplers":[{{"input":{times},"output":{turns}}}]}}]"#
+"animations":[{{"name":"wave","channels":[{{"sampler":0,"target":{{"node":2,"path":"rotation"}}}}],"samplers":[{{"input":{times},"output":{turns}}}]}}]"#
     ))
 }
 
@@ -497,5 +497,24 @@ fn a_clip_that_moves_no_vertex_costs_nothing_and_is_drawn_at_rest() {
     assert_eq!(
         planned.framebuffer().samples(),
         full.framebuffer().samples()
+    );
+}
+
+#[test]
+fn the_example_arm_is_what_its_builder_makes() {
+    // `RASTTY_BLESS=1 cargo test --test animation` writes it again.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/arm.glb");
+    let made = skinned_arm();
+    if std::env::var_os("RASTTY_BLESS").is_some() {
+        std::fs::write(&path, &made).unwrap();
+    }
+    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let rig = loaded.geometry.rig.as_ref().unwrap();
+    assert_eq!((rig.clips.len(), rig.skins[0].joints.len()), (1, 2));
+    assert_eq!(
+        (rig.clips[0].name.as_str(), rig.clips[0].length),
+        ("wave", 2.0)
     );
 }

@@ -68,6 +68,46 @@ fn spin_frames_replayed_end_on_render_at_the_last_angle() {
     );
 }
 
+/// A model that moves: frame k of `spin` shows its clip at k / fps
+/// seconds, as `render --time` draws it.
+#[test]
+fn spin_frames_of_a_moving_model_end_on_render_at_their_time() {
+    let view = [
+        "--cols",
+        "40",
+        "--rows",
+        "12",
+        "--color",
+        "truecolor",
+        "--glyphs",
+        "half",
+    ];
+    let arm = "examples/models/arm.glb";
+    // Frame 45 at 30 frames a second is 1.5 s in; the turn held still.
+    let stream = run(&[&["spin", arm, "--frames", "46", "--step", "0"][..], &view].concat());
+    let mut spun = terminal(12, 40);
+    spun.process(&stream);
+    let at = |time: &str| {
+        let lines = run(&[&["render", arm, "--time", time][..], &view].concat());
+        let mut rendered = terminal(12, 40);
+        rendered.process(&as_displayed(&lines));
+        cells(rendered.screen())
+    };
+    assert_eq!(cells(spun.screen()), at("1.5"));
+    assert_ne!(at("1.5"), at("0"));
+    // Half speed: frame 45 is 0.75 s in.
+    let slow = run(&[
+        &[
+            "spin", arm, "--frames", "46", "--step", "0", "--speed", "0.5",
+        ][..],
+        &view,
+    ]
+    .concat());
+    let mut spun = terminal(12, 40);
+    spun.process(&slow);
+    assert_eq!(cells(spun.screen()), at("0.75"));
+}
+
 #[test]
 fn spin_without_a_terminal_needs_frames() {
     let out = Command::new(BIN).args(["spin"]).output().unwrap();

@@ -244,6 +244,10 @@ fn pose_of(
 /// spaced through the clip.
 const POSES_FRAMED: u32 = 32;
 
+/// The most vertices posed to frame a moving model, over all its clips
+/// (a few tenths of a second).
+const FRAMING_BUDGET: u64 = 1 << 22;
+
 /// The colour of a mesh whose file gives none.
 pub const DEFAULT_MESH_COLOR: Rgb = Rgb::new(0xcc, 0xcc, 0xcc);
 
@@ -280,9 +284,13 @@ impl Scene {
                 let mut points = fit.points.to_vec();
                 let mut posed = anim::Posed::default();
                 let (mut ps, mut ns) = (mesh.positions.clone(), mesh.normals.clone());
+                // Fewer poses a clip for a model of many clips and vertices:
+                // the framing's work stays within a budget.
+                let work = rig.clips.len() as u64 * mesh.positions.len().max(1) as u64;
+                let poses = (FRAMING_BUDGET / work).clamp(1, u64::from(POSES_FRAMED)) as u32;
                 for (c, clip) in rig.clips.iter().enumerate() {
-                    for k in 0..POSES_FRAMED {
-                        let time = clip.length * k as f64 / POSES_FRAMED as f64;
+                    for k in 0..poses {
+                        let time = clip.length * f64::from(k) / f64::from(poses);
                         rig.pose_into(
                             Some(anim::Pose { clip: c, time }),
                             &mut posed,
