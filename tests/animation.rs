@@ -518,3 +518,44 @@ fn the_example_arm_is_what_its_builder_makes() {
         ("wave", 2.0)
     );
 }
+
+/// Two triangles, each carried by its own node: the first's translation
+/// keyed over 1 s (x 0 → 1), the second's over 3 s (x 0 → 3), in one clip.
+#[test]
+fn a_shorter_channel_holds_its_last_value_until_the_clip_loops() {
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let short = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let long = d.floats(&[0.0, 3.0], "SCALAR", 1);
+    let to1 = d.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0], "VEC3", 3);
+    let to3 = d.floats(&[0.0, 0.0, 0.0, 3.0, 0.0, 0.0], "VEC3", 3);
+    let glb = d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}},{{"mesh":0}}],"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[{{"channels":[{{"sampler":0,"target":{{"node":0,"path":"translation"}}}},{{"sampler":1,"target":{{"node":1,"path":"translation"}}}}],
+"samplers":[{{"input":{short},"output":{to1}}},{{"input":{long},"output":{to3}}}]}}]"#
+    ));
+    let g = load(&glb, "two.glb");
+    let rig = g.rig.as_ref().unwrap();
+    assert_eq!(rig.clips[0].length, 3.0);
+    let xs = |time: f64| {
+        let (mut p, mut n) = (g.positions.clone(), g.normals.clone());
+        let pose = rastty::scene::anim::Pose { clip: 0, time };
+        rig.pose_into(Some(pose), &mut Posed::default(), &mut p, &mut n);
+        // Each triangle's first vertex sits at its node's origin; in
+        // order of x (the parts are in the order the tree is walked).
+        let mut firsts: Vec<f32> = rig
+            .parts
+            .iter()
+            .map(|part| p[part.first as usize].x)
+            .collect();
+        firsts.sort_by(f32::total_cmp);
+        firsts
+    };
+    assert_eq!(xs(0.5), [0.5, 0.5]);
+    // The short channel has ended; the clip has not.
+    assert_eq!(xs(2.0), [1.0, 2.0]);
+    assert_eq!(xs(2.5), [1.0, 2.5]);
+    // Both loop together at 3 s.
+    assert_eq!(xs(3.5), [0.5, 0.5]);
+}
