@@ -559,3 +559,47 @@ fn a_shorter_channel_holds_its_last_value_until_the_clip_loops() {
     // Both loop together at 3 s.
     assert_eq!(xs(3.5), [0.5, 0.5]);
 }
+
+#[test]
+fn a_scene_file_names_each_moving_mesh_clip_and_time() {
+    let dir = std::env::temp_dir().join(format!("rastty-anim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let arm = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/arm.glb");
+    let scene = |mesh: &str| {
+        let path = dir.join("s.toml");
+        std::fs::write(&path, format!("[[mesh]]\n{mesh}\n")).unwrap();
+        Scene::open(&path).map_err(|e| e.to_string().replace(&path.display().to_string(), "s.toml"))
+    };
+    let at = |mesh: &str| scene(mesh).map(|s| s.meshes[0].pose);
+    let path = format!("path = {:?}", arm.display().to_string());
+    let pose = |clip, time| Some(rastty::scene::anim::Pose { clip, time });
+    assert_eq!(at(&path), Ok(pose(0, 0.0)));
+    assert_eq!(
+        at(&format!("{path}\nclip = \"wave\"\ntime = 1.5")),
+        Ok(pose(0, 1.5))
+    );
+    assert_eq!(
+        at(&format!("{path}\nclip = 0\ntime = -2.0")),
+        Ok(pose(0, -2.0))
+    );
+    assert_eq!(
+        at(&format!("{path}\nclip = 3")),
+        Err("s.toml:1:1: clip 3: the model has 1 clips, 0 to 0".into())
+    );
+    assert_eq!(
+        at(&format!("{path}\nclip = \"walk\"")),
+        Err("s.toml:1:1: no clip named \"walk\" in the model".into())
+    );
+    assert_eq!(
+        at("shape = \"cube\"\ntime = 1.0"),
+        Err(
+            "s.toml:1:1: `clip` and `time` are for a model that moves, and this one has no clips"
+                .into()
+        )
+    );
+    // The pose drawn is the one named: the arm bent at 1 s.
+    let bent = scene(&format!("{path}\ntime = 1.0")).unwrap();
+    let straight = scene(&path).unwrap();
+    assert_ne!(coverage(&bent, &opts()), coverage(&straight, &opts()));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

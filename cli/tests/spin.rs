@@ -986,3 +986,56 @@ fn without_a_controlling_terminal_spin_says_so() {
     );
     assert!(!out.contains("\x1b[?1049h"));
 }
+
+/// A moving model in a terminal: the status line shows its clip and the
+/// clip's time; `t` stops the turn while the clip plays on; `]` goes to
+/// the next clip (the arm has one: itself, from its start).
+#[test]
+fn the_status_line_shows_the_clip_and_t_stops_the_turn_while_it_plays() {
+    let mut t = Fake::spawn(
+        &[
+            "examples/models/arm.glb",
+            "--cols",
+            "80",
+            "--rows",
+            "24",
+            "--hud",
+            "--no-probe",
+        ],
+        true,
+        &[],
+        None,
+    );
+    let long = Duration::from_secs(20);
+    let line_after = |t: &mut Fake, from: usize| {
+        let begin = t.wait_for(b"\x1b[?2026h", from, long).expect("a frame") - 8;
+        let end = t.wait_for(FRAME_END, begin, long).expect("its end");
+        (status_line(&t.seen[..end], 24, 80), end)
+    };
+    let (line, at) = line_after(&mut t, 0);
+    assert!(line.contains("clip 0 \"wave\""), "{line}");
+    assert!(number_after(&line, "\"wave\"").is_some(), "{line}");
+    t.send(b"t");
+    let at = t.wait_for(b"turn stopped", at, long).expect("the notice");
+    // Two frames drawn after it: the angle holds, the clip's time moves.
+    let (first, at) = line_after(&mut t, at);
+    let mut at = at;
+    let mut later = first.clone();
+    while number_after(&later, "\"wave\"") == number_after(&first, "\"wave\"") {
+        (later, at) = line_after(&mut t, at);
+    }
+    assert_eq!(
+        number_after(&first, "yaw"),
+        number_after(&later, "yaw"),
+        "{first} / {later}"
+    );
+    // The next clip is the first again, and says so ahead of the rest.
+    t.send(b"]");
+    let mut line = String::new();
+    while !line.trim_start().starts_with("clip 0 \"wave\" ·") {
+        (line, at) = line_after(&mut t, at);
+    }
+    t.send(b"q");
+    assert!(t.wait_exit(long));
+    assert_restored(&t.seen);
+}
