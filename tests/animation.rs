@@ -417,6 +417,31 @@ fn a_malformed_sampler_is_an_error_naming_the_animation_and_sampler() {
         bad(&[0.0, f32::NAN], &[0.0; 6]),
         "bad.glb: animation 0 (\"walk\") sampler 0: a key time or value is not a finite number"
     );
+    // A channel on a node that does not exist, or on a path that is none
+    // of the four (the crate unwraps both; found by fuzzing).
+    let bad_target = |target: &str| {
+        let mut d = Doc::default();
+        let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        let t = d.floats(&[0.0, 1.0], "SCALAR", 1);
+        let v = d.floats(&[0.0; 6], "VEC3", 3);
+        let glb = d.glb(&format!(
+            r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0,
+"animations":[{{"channels":[{{"sampler":0,"target":{target}}}],"samplers":[{{"input":{t},"output":{v}}}]}}]"#
+        ));
+        match gltf::parse(&glb, None, "bad.glb", &LoadOptions::default()) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e.to_string(),
+        }
+    };
+    assert_eq!(
+        bad_target(r#"{"node":9,"path":"translation"}"#),
+        "bad.glb: animation 0 channel 0 targets node 9, which does not exist"
+    );
+    assert_eq!(
+        bad_target(r#"{"node":0,"path":"pointer"}"#),
+        "bad.glb: animation 0 channel 0 animates a property rastty does not know (not translation, rotation, scale or weights)"
+    );
     assert_eq!(
         bad(&[0.0, 1.0], &[0.0; 9]),
         "bad.glb: animation 0 (\"walk\") sampler 0: it has 9 output numbers where its keys call for 6"

@@ -329,6 +329,22 @@ impl RigParts {
                     crate::text::name(name, 40)
                 )
             };
+            // The crate's validation checks neither a channel's node nor its
+            // path, and its accessors unwrap them: checked here.
+            let json = &document.as_json().animations[anim.index()];
+            for (c, ch) in json.channels.iter().enumerate() {
+                if ch.target.node.value() >= document.nodes().len() {
+                    return Err(format!(
+                        "{label} channel {c} targets node {}, which does not exist",
+                        ch.target.node.value()
+                    ));
+                }
+                if !matches!(ch.target.path, ::gltf::json::validation::Checked::Valid(_)) {
+                    return Err(format!(
+                        "{label} channel {c} animates a property rastty does not know (not translation, rotation, scale or weights)"
+                    ));
+                }
+            }
             let mut channels = Vec::new();
             for ch in anim.channels() {
                 let target = ch.target();
