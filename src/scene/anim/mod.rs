@@ -15,17 +15,18 @@
 //! normals) before either.
 //!
 //! Trade-offs. Posing is plain f32 arithmetic per vertex: a morph adds each
-//! target's weighted offset, a skin blends its joints' matrices by the
-//! weights and applies the blend, and a normal is transformed by the
+//! target's weighted offset, a skin blends its joints' affine matrices by
+//! the weights and applies the blend, and a normal is transformed by the
 //! blend's cofactor matrix (its inverse transpose times its determinant),
 //! which is right under any scale, uniform or not, without a division;
-//! then normalised. Node transforms are composed once a frame, in parents'
+//! then normalised. A vertex of one joint takes that joint's matrices,
+//! found once a frame, with no blend. Node transforms are composed once a frame, in parents'
 //! order. A clip's channels share one time; the clip loops when its
 //! longest channel ends, and the time is wrapped into it in f64.
 
 mod sampler;
 
-use glam::{DVec3, Mat3, Mat4, Quat, Vec3};
+use glam::{Affine3A, DVec3, Mat3A, Mat4, Quat, Vec3, Vec3A};
 
 pub use sampler::{Interpolation, Invalid, Sampler};
 
@@ -216,7 +217,7 @@ pub struct Posed {
     locals: Vec<Mat4>,
     worlds: Vec<Mat4>,
     weights: Vec<Vec<f32>>,
-    joints: Vec<Mat4>,
+    joints: Vec<(Affine3A, Mat3A)>,
 }
 
 impl Rig {
@@ -374,8 +375,7 @@ impl Rig {
             }
             match &part.binding {
                 Binding::Node(node) => {
-                    let m = posed.worlds[*node as usize];
-                    let cof = cofactor(m);
+                    let (m, cof) = affine(posed.worlds[*node as usize]);
                     for v in 0..n {
                         out_p[v] = m.transform_point3(out_p[v]);
                         out_n[v] = (cof * out_n[v]).normalize_or_zero();
@@ -388,27 +388,35 @@ impl Rig {
                     node,
                 } => {
                     let skin = &self.skins[*skin as usize];
+                    // Each joint's matrix and its normals' matrix, once.
                     posed.joints.clear();
                     posed.joints.extend(
                         skin.joints
                             .iter()
                             .zip(&skin.inverse_bind)
-                            .map(|(&j, ibm)| posed.worlds[j as usize] * *ibm),
+                            .map(|(&j, ibm)| affine(posed.worlds[j as usize] * *ibm)),
                     );
-                    let placed = posed.worlds[*node as usize];
+                    let placed = affine(posed.worlds[*node as usize]);
                     for v in 0..n {
                         let inf = &influences[starts[v] as usize..starts[v + 1] as usize];
-                        let m = if inf.is_empty() {
-                            placed
-                        } else {
-                            let mut m = Mat4::ZERO;
-                            for &(j, w) in inf {
-                                m += posed.joints[j as usize] * w;
+                        // One joint (a weight of exactly one): its own
+                        // matrices; several: the blend and its cofactor.
+                        let (m, cof) = match inf {
+                            [] => placed,
+                            [(j, _)] => posed.joints[*j as usize],
+                            _ => {
+                                let (mut m3, mut t) = (Mat3A::ZERO, Vec3A::ZERO);
+                                for &(j, w) in inf {
+                                    let a = posed.joints[j as usize].0;
+                                    m3 += a.matrix3 * w;
+                                    t += a.translation * w;
+                                }
+                                let m = Affine3A::from_mat3_translation(m3.into(), t.into());
+                                (m, cofactor(m))
                             }
-                            m
                         };
                         out_p[v] = m.transform_point3(out_p[v]);
-                        out_n[v] = (cofactor(m) * out_n[v]).normalize_or_zero();
+                        out_n[v] = (cof * out_n[v]).normalize_or_zero();
                     }
                 }
             }
@@ -423,14 +431,20 @@ impl Rig {
     }
 }
 
+/// An affine transform and the matrix its normals go through.
+fn affine(m: Mat4) -> (Affine3A, Mat3A) {
+    let a = Affine3A::from_mat4(m);
+    (a, cofactor(a))
+}
+
 /// The matrix that takes a normal through `m`'s linear part: its cofactor
 /// matrix (the inverse transpose times the determinant), its sign flipped
 /// where `m` mirrors, so that an outward normal stays outward.
-fn cofactor(m: Mat4) -> Mat3 {
-    let a = Mat3::from_mat4(m);
-    let (x, y, z) = (a.x_axis, a.y_axis, a.z_axis);
-    let c = Mat3::from_cols(y.cross(z), z.cross(x), x.cross(y));
-    if a.determinant() < 0.0 { -c } else { c }
+fn cofactor(m: Affine3A) -> Mat3A {
+    let (x, y, z) = (m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis);
+    let c = Mat3A::from_cols(y.cross(z), z.cross(x), x.cross(y));
+    // The determinant is x · (y × z).
+    if x.dot(c.x_axis) < 0.0 { -c } else { c }
 }
 
 #[cfg(test)]
@@ -454,12 +468,12 @@ mod tests {
         // A plane x = y, scaled 3× along x: its normal is no longer
         // (1, −1, 0) turned the same way but (1, −3, 0) normalised.
         let m = Mat4::from_scale(Vec3::new(3.0, 1.0, 1.0));
-        let n = (cofactor(m) * Vec3::new(1.0, -1.0, 0.0)).normalize();
+        let n = (affine(m).1 * Vec3::new(1.0, -1.0, 0.0)).normalize();
         let tangent = m.transform_vector3(Vec3::new(1.0, 1.0, 0.0));
         assert!(n.dot(tangent).abs() < 1e-6);
         // A mirror keeps an outward normal outward.
         let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-        assert_eq!(cofactor(mirror) * Vec3::X, -Vec3::X);
+        assert_eq!(affine(mirror).1 * Vec3::X, -Vec3::X);
     }
 
     #[test]
