@@ -87,21 +87,20 @@ impl Renderer {
         // The vertex stage, every mesh's vertices one after another.
         self.verts.clear();
         self.meshes.clear();
-        let mut painter = Painter {
-            fb: self.fb.target(),
-            stats: &mut self.stats,
-            poly: &mut self.poly,
-            verts: &mut self.verts,
-            acc: &mut self.acc,
-        };
+        let super::Drawing {
+            mut painter,
+            times,
+            posed,
+            meshes,
+        } = self.drawing();
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             let start = painter.verts.len();
-            let (positions, normals) = super::vertices_of(&self.posed, p, i, mesh);
+            let (positions, normals) = super::vertices_of(posed, p, i, mesh);
             painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
-            self.meshes.push((start..painter.verts.len(), transforms));
+            meshes.push((start..painter.verts.len(), transforms));
         }
-        self.times.vertices += lap();
+        times.vertices += lap();
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);

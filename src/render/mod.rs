@@ -123,6 +123,14 @@ pub struct Renderer {
     posed: Vec<PosedMesh>,
 }
 
+/// A renderer's parts while a frame is drawn ([`Renderer::drawing`]).
+struct Drawing<'a> {
+    painter: Painter<'a>,
+    times: &'a mut FrameTimes,
+    posed: &'a [PosedMesh],
+    meshes: &'a mut Vec<(std::ops::Range<usize>, Transforms)>,
+}
+
 /// A mesh's positions and normals at a pose, kept from frame to frame: a
 /// clip paused at one time is posed once.
 #[derive(Debug, Default)]
@@ -288,6 +296,23 @@ impl Renderer {
         self.plan = plan;
     }
 
+    /// The renderer taken apart for drawing a frame: a painter of its own
+    /// framebuffer, and what the loops around the painter need.
+    fn drawing(&mut self) -> Drawing<'_> {
+        Drawing {
+            painter: Painter {
+                fb: self.fb.target(),
+                stats: &mut self.stats,
+                poly: &mut self.poly,
+                verts: &mut self.verts,
+                acc: &mut self.acc,
+            },
+            times: &mut self.times,
+            posed: &self.posed,
+            meshes: &mut self.meshes,
+        }
+    }
+
     /// Poses every mesh the plan poses, unless it is at the pose it was
     /// posed at last frame (a paused clip costs nothing).
     fn pose(&mut self, scene: &Scene, plan: &Plan) {
@@ -350,18 +375,16 @@ impl Renderer {
         lap: &mut impl FnMut() -> Duration,
     ) {
         let p = stage.plan;
-        let times = &mut self.times;
-        let mut painter = Painter {
-            fb: self.fb.target(),
-            stats: &mut self.stats,
-            poly: &mut self.poly,
-            verts: &mut self.verts,
-            acc: &mut self.acc,
-        };
+        let Drawing {
+            mut painter,
+            times,
+            posed,
+            ..
+        } = self.drawing();
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
-            let (positions, normals) = vertices_of(&self.posed, p, i, mesh);
+            let (positions, normals) = vertices_of(posed, p, i, mesh);
             painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
             times.vertices += lap();
             let faces = Faces {
