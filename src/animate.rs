@@ -145,6 +145,9 @@ pub struct Player {
     /// every new one (so that a loop can time how long it has shown).
     notice: Option<String>,
     notice_serial: u64,
+    /// The clip the status line names, and how (escaped once, not each
+    /// frame).
+    clip_label: Option<(usize, String)>,
 }
 
 impl Player {
@@ -173,6 +176,7 @@ impl Player {
             max_depth: ColorDepth::TrueColor,
             notice: None,
             notice_serial: 0,
+            clip_label: None,
         }
     }
 
@@ -389,11 +393,18 @@ impl Player {
             if let Some(play) = self.spin.play
                 && let Some(clip) = self.scene.clips().get(play.clip)
             {
+                if self
+                    .clip_label
+                    .as_ref()
+                    .is_none_or(|(c, _)| *c != play.clip)
+                {
+                    self.clip_label = Some((play.clip, clip_name(&clip.name)));
+                }
+                let label = self.clip_label.as_ref().map_or("", |(_, l)| l);
                 let _ = write!(
                     p[4],
-                    "clip {}{} {:.2}/{:.2} s",
+                    "clip {}{label} {:.2}/{:.2} s",
                     play.clip,
-                    clip_name(&clip.name),
                     clip.local(play.time(self.played)),
                     clip.length
                 );
