@@ -324,21 +324,21 @@ impl ColorArg {
 }
 
 fn parse_angle(s: &str) -> Result<f32, String> {
-    let a: f32 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
-    if a.is_finite() {
-        Ok(a)
-    } else {
-        Err(format!("{s} is not a finite angle"))
-    }
+    parse_finite(s, "angle")
 }
 
 /// A finite number (of seconds, or a speed).
 fn parse_seconds(s: &str) -> Result<f64, String> {
-    let t: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
-    if t.is_finite() {
-        Ok(t)
+    parse_finite(s, "number")
+}
+
+/// A number that is finite; `what` names it in the message.
+fn parse_finite<T: std::str::FromStr + Into<f64> + Copy>(s: &str, what: &str) -> Result<T, String> {
+    let x: T = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    if x.into().is_finite() {
+        Ok(x)
     } else {
-        Err(format!("{s} is not a finite number"))
+        Err(format!("{s} is not a finite {what}"))
     }
 }
 

@@ -31,18 +31,21 @@ fn run(args: &[&str]) -> Vec<u8> {
     out.stdout
 }
 
+/// The view both `spin` and `render` draw in, to compare their frames.
+const VIEW: [&str; 8] = [
+    "--cols",
+    "40",
+    "--rows",
+    "12",
+    "--color",
+    "truecolor",
+    "--glyphs",
+    "half",
+];
+
 #[test]
 fn spin_frames_replayed_end_on_render_at_the_last_angle() {
-    let view = [
-        "--cols",
-        "40",
-        "--rows",
-        "12",
-        "--color",
-        "truecolor",
-        "--glyphs",
-        "half",
-    ];
+    let view = VIEW;
     let stream = run(&[
         &["spin", "--frames", "12", "--step", "7.5", "--axis", "y"][..],
         &view,
@@ -72,16 +75,7 @@ fn spin_frames_replayed_end_on_render_at_the_last_angle() {
 /// seconds, as `render --time` draws it.
 #[test]
 fn spin_frames_of_a_moving_model_end_on_render_at_their_time() {
-    let view = [
-        "--cols",
-        "40",
-        "--rows",
-        "12",
-        "--color",
-        "truecolor",
-        "--glyphs",
-        "half",
-    ];
+    let view = VIEW;
     let arm = "examples/models/arm.glb";
     // Frame 45 at 30 frames a second is 1.5 s in; the turn held still.
     let stream = run(&[&["spin", arm, "--frames", "46", "--step", "0"][..], &view].concat());
