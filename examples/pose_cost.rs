@@ -60,6 +60,7 @@ fn rig(positions: &[Vec3], normals: &[Vec3]) -> Rig {
                 scale: Vec3::ONE,
             }),
             weights: Vec::new(),
+            source: None,
         })
         .collect();
     let inverse_bind = (0..JOINTS)

@@ -31,7 +31,7 @@ of every knob is [its own page](bench.md) (\`cargo run --release -- bench
 HEAD
   section "Frame cost" "Instructions a frame, (40 frames − 10) / 30: Tux at 200×60 cells in half blocks, render alone and through \`spin\` (render, blit, encode), and the torus at 1000×300 cells on one thread and in bands." scripts/frame-cost.sh
   section "Bands" "Milliseconds a frame (wall clock, noisy: ±20 %, and the ratio as much from run to run), render only, half blocks, truecolor, one band against two drawn in turn ten frames each (docs/planner.md)." scripts/bands.sh
-  section "Posing" "Instructions a frame, (40 frames − 10) / 30, of a skinned tube of 12,800 vertices at 200×60 half blocks: without a rig, its clip held, its clip playing; and the posing's cost a vertex (docs/scenes.md)." scripts/pose-cost.sh
+  section "Posing" "Instructions a frame, (40 frames − 10) / 30, of a skinned tube of 12,800 vertices at 200×60 half blocks: without a rig, its clip held, its clip playing; the same for a skinned human figure of 54 joints through \`spin\` (scripts/humanoid.sh); and the posing's cost a vertex (docs/scenes.md)." scripts/pose-cost.sh
   section "What the planner saves" "Instructions a frame, planned and full pipeline, for the planner's four scenes (docs/planner.md)." scripts/plan-cost.sh
   section "Against euc" "Instructions a frame, rastty against the euc crate, the bunny at 200×120 samples (docs/accuracy.md)." scripts/vs-euc.sh
   section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." scripts/load-cost.sh

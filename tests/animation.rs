@@ -628,3 +628,53 @@ fn a_scene_file_names_each_moving_mesh_clip_and_time() {
     assert_ne!(coverage(&bent, &opts()), coverage(&straight, &opts()));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--explain`'s clip line: a clip of a few channels lists each; a
+/// skeleton's clip of many is summed up by path and interpolation, so a
+/// 50-joint figure's clip stays one line.
+#[test]
+fn explain_lists_a_few_channels_and_sums_up_many() {
+    let clip_line = |glb: &[u8]| {
+        let scene = scene_of(load(glb, "e.glb"), 0.5);
+        let mut r = Renderer::new();
+        r.render(&scene, &opts());
+        let report = r.explain(&scene, &opts(), std::time::Duration::ZERO, 0);
+        report
+            .lines()
+            .find(|l| l.starts_with("  clip 0 "))
+            .expect("a clip line")
+            .to_string()
+    };
+    assert_eq!(
+        clip_line(&skinned_arm()),
+        r#"  clip 0 "wave": 2.000 s, 1 channels (node 2 rotation 3 keys LINEAR)"#
+    );
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let two = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let three = d.floats(&[0.0, 1.0, 2.0], "SCALAR", 1);
+    let slide = d.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0], "VEC3", 3);
+    let turn = d.floats(&[0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.], "VEC4", 4);
+    // Seven channels on nodes 0 and 1: four slides (LINEAR), three turns (STEP).
+    let channels: Vec<String> = (0..7)
+        .map(|k| {
+            format!(
+                r#"{{"sampler":{},"target":{{"node":{},"path":"{}"}}}}"#,
+                k % 2,
+                k % 2,
+                ["translation", "rotation"][k % 2]
+            )
+        })
+        .collect();
+    let glb = d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}},{{"mesh":0}}],"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[{{"name":"many","channels":[{}],
+"samplers":[{{"input":{two},"output":{slide}}},{{"input":{three},"output":{turn},"interpolation":"STEP"}}]}}]"#,
+        channels.join(",")
+    ));
+    assert_eq!(
+        clip_line(&glb),
+        r#"  clip 0 "many": 2.000 s, 7 channels (on 2 nodes: 4 translation, 3 rotation; 2 to 3 keys; 4 LINEAR, 3 STEP)"#
+    );
+}

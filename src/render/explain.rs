@@ -86,17 +86,7 @@ impl Renderer {
                     },
                     c.length,
                     c.channels.len(),
-                    c.channels
-                        .iter()
-                        .map(|ch| format!(
-                            "node {} {} {} keys {}",
-                            ch.node,
-                            ch.property.name(),
-                            ch.sampler.keys(),
-                            ch.sampler.interpolation().name()
-                        ))
-                        .collect::<Vec<_>>()
-                        .join(", "),
+                    channels(rig, c),
                     if c.moves { "" } else { "; moves no vertex" }
                 );
             }
@@ -201,4 +191,69 @@ impl Renderer {
         );
         out
     }
+}
+
+/// A clip's channels for `--explain`: each one where there are a few, a
+/// summary (nodes, paths, keys, interpolations) where a skeleton has many,
+/// so that a 50-joint figure's clip stays one readable line.
+fn channels(rig: &crate::scene::anim::Rig, c: &crate::scene::anim::Clip) -> String {
+    const EACH: usize = 6;
+    if c.channels.len() <= EACH {
+        return c
+            .channels
+            .iter()
+            .map(|ch| {
+                format!(
+                    "node {} {} {} keys {}",
+                    file_node(rig, ch.node),
+                    ch.property.name(),
+                    ch.sampler.keys(),
+                    ch.sampler.interpolation().name()
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+    }
+    let mut nodes: Vec<u32> = c.channels.iter().map(|ch| ch.node).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    // Counted by name in first-seen order: a handful of paths and modes.
+    let mut paths: Vec<(&str, usize)> = Vec::new();
+    let mut modes: Vec<(&str, usize)> = Vec::new();
+    for ch in &c.channels {
+        for (list, name) in [
+            (&mut paths, ch.property.name()),
+            (&mut modes, ch.sampler.interpolation().name()),
+        ] {
+            match list.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, k)) => *k += 1,
+                None => list.push((name, 1)),
+            }
+        }
+    }
+    let join = |l: &[(&str, usize)]| {
+        l.iter()
+            .map(|(n, k)| format!("{k} {n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let keys = c.channels.iter().map(|ch| ch.sampler.keys());
+    format!(
+        "on {} node{}: {}; {} to {} keys; {}",
+        nodes.len(),
+        if nodes.len() == 1 { "" } else { "s" },
+        join(&paths),
+        keys.clone().min().unwrap_or(0),
+        keys.max().unwrap_or(0),
+        join(&modes)
+    )
+}
+
+/// A rig's node as the file numbers it (the rig's own index where it was
+/// built in code).
+fn file_node(rig: &crate::scene::anim::Rig, node: u32) -> u32 {
+    rig.nodes
+        .get(node as usize)
+        .and_then(|n| n.source)
+        .unwrap_or(node)
 }

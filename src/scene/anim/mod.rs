@@ -122,6 +122,9 @@ pub struct Node {
     pub rest: Result<Trs, Mat4>,
     /// The morph weights of its mesh at rest (empty without targets).
     pub weights: Vec<f32>,
+    /// Its index in the file it was read from, which `--explain` names;
+    /// `None` for a rig built in code.
+    pub source: Option<u32>,
 }
 
 /// A skin: the joints that move its vertices, and the matrices that take
@@ -460,6 +463,7 @@ mod tests {
                 scale: Vec3::ONE,
             }),
             weights: Vec::new(),
+            source: None,
         }
     }
 

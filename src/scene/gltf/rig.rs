@@ -94,6 +94,7 @@ impl RigParts {
             parent,
             rest,
             weights,
+            source: u32::try_from(node.index()).ok(),
         });
         self.index.insert(node.index(), i);
         i
