@@ -104,7 +104,7 @@ fn rig(positions: &[Vec3], normals: &[Vec3]) -> Rig {
             name: "bend".into(),
             channels,
             length: 2.0,
-            moves: false,
+            moves: Vec::new(),
         }],
         parts: vec![Part {
             first: 0,

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Frames of every shared model, glyph mode and colour depth (and a few
-# frames of `spin`) from one `rastty` binary, written to a directory, so
+# frames of `spin`, and the moving models at three times) from one `rastty`
+# binary, written to a directory, so
 # that two binaries' frames can be compared byte for byte:
 #
 #   scripts/same-frames.sh OLD-BINARY /tmp/before
@@ -22,3 +23,11 @@ for m in "${models[@]}"; do
   "$bin" spin "$m" --cols 80 --rows 24 --frames 5 --color 256 > "$out/$name.spin" 2>&1 || true
 done
 "$bin" spin --cols 120 --rows 40 --frames 5 --threads 2 > "$out/default.spin" 2>&1 || true
+for m in examples/models/arm.glb ../shared/models/animated/*.gltf; do
+  [ -f "$m" ] || continue
+  name=$(basename "$m")
+  for t in 0 0.7 1.9; do
+    "$bin" render "$m" --cols 100 --rows 30 --glyphs sextant --time "$t" > "$out/$name.$t" 2>&1 || true
+  done
+  "$bin" spin "$m" --cols 80 --rows 24 --frames 20 --color 256 > "$out/$name.spin" 2>&1 || true
+done

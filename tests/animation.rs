@@ -448,12 +448,28 @@ fn a_malformed_sampler_is_an_error_naming_the_animation_and_sampler() {
     );
 }
 
-/// The three moving models: skinned, morphed, carried by a node.
+/// Two triangles, each carried by its own node; the clip slides the first
+/// (x 0 → 2 over 1 s) and leaves the second still.
+fn one_of_two_moving() -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let times = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let out = d.floats(&[0.0, 0.0, 0.0, 2.0, 0.0, 0.0], "VEC3", 3);
+    d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}}}}]}}],
+"nodes":[{{"mesh":0}},{{"mesh":0,"translation":[1,1,0]}}],"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[{{"channels":[{{"sampler":0,"target":{{"node":0,"path":"translation"}}}}],"samplers":[{{"input":{times},"output":{out}}}]}}]"#
+    ))
+}
+
+/// The four moving models: skinned, morphed, carried by a node, and one
+/// part of two carried.
 fn movers() -> Vec<Geometry> {
     vec![
         load(&skinned_arm(), "arm.glb"),
         load(&morphing_square().0, "morph.glb"),
         load(&translated("CUBICSPLINE"), "cubic.glb"),
+        load(&one_of_two_moving(), "two.glb"),
     ]
 }
 
@@ -465,7 +481,7 @@ proptest! {
     /// mesh), bit for bit, at any time; and one band draws what three do.
     #[test]
     fn posed_frames_are_the_same_planned_or_full_and_in_bands(
-        which in 0usize..3,
+        which in 0usize..4,
         time in prop_oneof![-10.0f64..10.0, 0.0f64..1e7],
         glyphs in proptest::sample::select(rastty::GlyphMode::ALL.to_vec()),
     ) {
@@ -676,5 +692,34 @@ fn explain_lists_a_few_channels_and_sums_up_many() {
     assert_eq!(
         clip_line(&glb),
         r#"  clip 0 "many": 2.000 s, 7 channels (on 2 nodes: 4 translation, 3 rotation; 2 to 3 keys; 4 LINEAR, 3 STEP)"#
+    );
+}
+
+/// A planned frame poses only the part its clip moves; the full pipeline
+/// poses both; the frames are the same.
+#[test]
+fn a_planned_frame_poses_only_the_parts_its_clip_moves() {
+    let geometry = load(&one_of_two_moving(), "two.glb");
+    // One part moves, one stands (in the order the tree is walked).
+    let mut moves = geometry.rig.as_ref().unwrap().clips[0].moves.clone();
+    moves.sort_unstable();
+    assert_eq!(moves, [false, true]);
+    let scene = scene_of(geometry, 0.25);
+    let mut planned = Renderer::new();
+    planned.render(&scene, &opts());
+    assert_eq!(planned.stats().posed_vertices, 3);
+    let mut full = Renderer::new();
+    full.render(
+        &scene,
+        &RenderOptions {
+            pipeline: Pipeline::Full,
+            ..opts()
+        },
+    );
+    assert_eq!(full.stats().posed_vertices, 6);
+    assert_eq!(planned.frame(), full.frame());
+    assert_eq!(
+        planned.framebuffer().samples(),
+        full.framebuffer().samples()
     );
 }

@@ -87,7 +87,11 @@ impl Renderer {
                     c.length,
                     c.channels.len(),
                     channels(rig, c),
-                    if c.moves { "" } else { "; moves no vertex" }
+                    if c.moves.contains(&true) {
+                        ""
+                    } else {
+                        "; moves no vertex"
+                    }
                 );
             }
         }

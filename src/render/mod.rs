@@ -340,12 +340,14 @@ impl Renderer {
             slot.positions.extend_from_slice(&mesh.positions);
             slot.normals.clear();
             slot.normals.extend_from_slice(&mesh.normals);
-            self.stats.posed_vertices += rig.pose_into(
-                Some(pose),
-                &mut slot.work,
-                &mut slot.positions,
-                &mut slot.normals,
-            );
+            // The full pipeline poses every part; a planned frame only
+            // those the clip moves (the rest stand at rest in the copy).
+            let (p, n, work) = (&mut slot.positions, &mut slot.normals, &mut slot.work);
+            self.stats.posed_vertices += if plan.full {
+                rig.pose_into(Some(pose), work, p, n)
+            } else {
+                rig.pose_moving_into(pose, work, p, n)
+            };
             slot.of = Some((mesh.geometry.clone(), pose));
         }
     }

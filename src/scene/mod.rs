@@ -291,8 +291,8 @@ impl Scene {
                 for (c, clip) in rig.clips.iter().enumerate() {
                     for k in 0..poses {
                         let time = clip.length * f64::from(k) / f64::from(poses);
-                        rig.pose_into(
-                            Some(anim::Pose { clip: c, time }),
+                        rig.pose_moving_into(
+                            anim::Pose { clip: c, time },
                             &mut posed,
                             &mut ps,
                             &mut ns,

@@ -78,8 +78,9 @@ pub struct Clip {
     pub channels: Vec<Channel>,
     /// How long it runs: its longest channel's last key.
     pub length: f64,
-    /// Whether it moves any vertex of its rig ([`Rig::settle`]).
-    pub moves: bool,
+    /// For each of its rig's parts, whether it moves a vertex of it
+    /// ([`Rig::settle`] finds it; empty before, which poses every part).
+    pub moves: Vec<bool>,
 }
 
 impl Clip {
@@ -226,21 +227,23 @@ pub struct Posed {
 impl Rig {
     /// Whether clip `clip` moves any vertex (as [`Rig::settle`] found).
     pub fn moves(&self, clip: usize) -> bool {
-        self.clips.get(clip).is_some_and(|c| c.moves)
+        self.clips
+            .get(clip)
+            .is_some_and(|c| c.moves.iter().any(|&m| m))
     }
 
-    /// Finds, for each clip, whether it moves any vertex: whether it
-    /// animates a node that places a rigid part or an ancestor of one, a
-    /// skin's joint or an ancestor of one, or the weights of a part's
-    /// morph targets. Call it once the rig is built.
+    /// Finds, for each clip, which parts it moves: those whose placing
+    /// node, skin's joint (or an ancestor of either) or morph weights it
+    /// animates. Posing leaves the others as they stand, which is at rest.
+    /// Call it once the rig is built.
     pub fn settle(&mut self) {
-        let moves: Vec<bool> = self.clips.iter().map(|c| self.clip_moves(c)).collect();
+        let moves: Vec<Vec<bool>> = self.clips.iter().map(|c| self.clip_moves(c)).collect();
         for (c, m) in self.clips.iter_mut().zip(moves) {
             c.moves = m;
         }
     }
 
-    fn clip_moves(&self, c: &Clip) -> bool {
+    fn clip_moves(&self, c: &Clip) -> Vec<bool> {
         let mut animated = vec![false; self.nodes.len()];
         for ch in &c.channels {
             if let Some(a) = animated.get_mut(ch.node as usize) {
@@ -252,24 +255,27 @@ impl Rig {
         for (i, n) in self.nodes.iter().enumerate() {
             moved[i] = animated[i] || n.parent.is_some_and(|p| moved[p as usize]);
         }
-        self.parts.iter().any(|p| {
-            let by_weights = p.morph.as_ref().is_some_and(|m| {
-                c.channels
-                    .iter()
-                    .any(|ch| ch.node == m.node && ch.property == Property::Weights)
-            });
-            by_weights
-                || match &p.binding {
-                    Binding::Node(n) => moved[*n as usize],
-                    Binding::Skin { skin, node, .. } => {
-                        moved[*node as usize]
-                            || self.skins[*skin as usize]
-                                .joints
-                                .iter()
-                                .any(|&j| moved[j as usize])
+        self.parts
+            .iter()
+            .map(|p| {
+                let by_weights = p.morph.as_ref().is_some_and(|m| {
+                    c.channels
+                        .iter()
+                        .any(|ch| ch.node == m.node && ch.property == Property::Weights)
+                });
+                by_weights
+                    || match &p.binding {
+                        Binding::Node(n) => moved[*n as usize],
+                        Binding::Skin { skin, node, .. } => {
+                            moved[*node as usize]
+                                || self.skins[*skin as usize]
+                                    .joints
+                                    .iter()
+                                    .any(|&j| moved[j as usize])
+                        }
                     }
-                }
-        })
+            })
+            .collect()
     }
 
     /// The node transforms and weights of `pose` (`None`: at rest) into
@@ -345,9 +351,41 @@ impl Rig {
         positions: &mut [Vec3],
         normals: &mut [Vec3],
     ) -> u64 {
+        self.pose_parts(pose, false, posed, positions, normals)
+    }
+
+    /// As [`Rig::pose_into`], but only the parts the pose's clip moves
+    /// ([`Rig::settle`]): the others are left as `positions` and `normals`
+    /// hold them, which for copies of the geometry's own arrays is at rest,
+    /// where the clip leaves them, bit for bit. What a planned frame does.
+    pub fn pose_moving_into(
+        &self,
+        pose: Pose,
+        posed: &mut Posed,
+        positions: &mut [Vec3],
+        normals: &mut [Vec3],
+    ) -> u64 {
+        self.pose_parts(Some(pose), true, posed, positions, normals)
+    }
+
+    fn pose_parts(
+        &self,
+        pose: Option<Pose>,
+        only_moving: bool,
+        posed: &mut Posed,
+        positions: &mut [Vec3],
+        normals: &mut [Vec3],
+    ) -> u64 {
         self.evaluate(pose, posed);
+        let moves = pose
+            .and_then(|p| self.clips.get(p.clip))
+            .filter(|_| only_moving)
+            .map_or(&[][..], |c| &c.moves[..]);
         let mut count = 0;
-        for part in &self.parts {
+        for (k, part) in self.parts.iter().enumerate() {
+            if moves.get(k) == Some(&false) {
+                continue;
+            }
             let n = part.positions.len();
             let first = part.first as usize;
             let (out_p, out_n) = (
@@ -498,7 +536,7 @@ mod tests {
                 },
             ],
             length: 3.5,
-            moves: false,
+            moves: Vec::new(),
         };
         assert_eq!(clip.local(1.0), 1.0);
         assert_eq!(clip.local(3.5), 0.0);

@@ -442,7 +442,7 @@ impl RigParts {
                 name: name.to_string(),
                 channels,
                 length,
-                moves: false,
+                moves: Vec::new(),
             });
         }
         if left_out > 0 {
