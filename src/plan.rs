@@ -12,6 +12,7 @@
 //! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
 //! | rim light | a rim was asked for (`RenderOptions::rim`) and the scene is lit | no rim, or nothing lit |
 //! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
+//! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -118,6 +119,9 @@ pub struct Plan {
     /// Whether any triangle reads a texture (see [`Plan::texture`] for
     /// one run of faces).
     pub texturing: Decision,
+    /// Whether materials' emitted light is added (see
+    /// [`crate::scene::Finish::emissive`]).
+    pub glow: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
@@ -230,6 +234,7 @@ impl Plan {
             lighting: Decision::run(FORCED),
             rim: Decision::run(FORCED),
             texturing: Decision::run(FORCED),
+            glow: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
             full: true,
@@ -286,6 +291,13 @@ impl Plan {
             Decision::run("a material has a texture: its triangles read it")
         } else {
             Decision::skip("no triangle has a texture")
+        };
+        let glow = if full {
+            Decision::run(FORCED)
+        } else if scene.meshes.iter().any(|m| m.glows()) {
+            Decision::run("a material gives off light: added to its faces after lighting")
+        } else {
+            Decision::skip("no material gives off light")
         };
         let interpolation = if full {
             Decision::run(FORCED)
@@ -366,6 +378,7 @@ impl Plan {
             lighting,
             rim,
             texturing,
+            glow,
             filter: opts.filter,
             shading,
             full,
@@ -481,6 +494,7 @@ impl fmt::Display for Plan {
         writeln!(f, "lighting       {}", self.lighting)?;
         writeln!(f, "rim            {}", self.rim)?;
         writeln!(f, "texturing      {}", self.texturing)?;
+        writeln!(f, "glow           {}", self.glow)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         writeln!(f, "perspective    {}", self.perspective)?;

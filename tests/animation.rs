@@ -7,109 +7,12 @@ mod common;
 
 use std::sync::Arc;
 
+use common::Doc;
 use glam::Vec3;
 use proptest::prelude::*;
 use rastty::scene::anim::Posed;
 use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf};
 use rastty::{Choice, Pipeline, RenderOptions, Renderer, Threads, color::Rgb};
-
-/// A glTF document's binary chunk and the JSON of its buffer views and
-/// accessors, built up one array at a time.
-#[derive(Default)]
-struct Doc {
-    bin: Vec<u8>,
-    views: Vec<String>,
-    accessors: Vec<String>,
-}
-
-impl Doc {
-    /// Appends `bytes` as a buffer view and an accessor of `count`
-    /// elements of `kind` (`"VEC3"`, …) and `component` (5126: f32, 5123:
-    /// u16); returns the accessor's index.
-    fn add(&mut self, bytes: Vec<u8>, count: usize, kind: &str, component: u32) -> usize {
-        self.add_bounded(bytes, count, kind, component, "")
-    }
-
-    /// [`Doc::add`] with `extra` JSON members (`,"min":…,"max":…`).
-    fn add_bounded(
-        &mut self,
-        bytes: Vec<u8>,
-        count: usize,
-        kind: &str,
-        component: u32,
-        extra: &str,
-    ) -> usize {
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
-        }
-        self.views.push(format!(
-            r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-            self.bin.len(),
-            bytes.len()
-        ));
-        self.bin.extend_from_slice(&bytes);
-        self.accessors.push(format!(
-            r#"{{"bufferView":{},"componentType":{component},"count":{count},"type":"{kind}"{extra}}}"#,
-            self.views.len() - 1
-        ));
-        self.accessors.len() - 1
-    }
-
-    fn vec3(&mut self, v: &[[f32; 3]]) -> usize {
-        self.floats(v.as_flattened(), "VEC3", 3)
-    }
-
-    /// Floats, `per` a element, with their bounds (which the format asks
-    /// of positions and key times).
-    fn floats(&mut self, v: &[f32], kind: &str, per: usize) -> usize {
-        let bound = |pick: fn(f32, f32) -> f32| {
-            (0..per)
-                .map(|k| {
-                    let b = v
-                        .iter()
-                        .skip(k)
-                        .step_by(per)
-                        .copied()
-                        .reduce(pick)
-                        .unwrap_or(0.0);
-                    if b.is_finite() {
-                        format!("{b:?}")
-                    } else {
-                        "0.0".into()
-                    }
-                })
-                .collect::<Vec<_>>()
-                .join(",")
-        };
-        let extra = format!(
-            r#","min":[{}],"max":[{}]"#,
-            bound(f32::min),
-            bound(f32::max)
-        );
-        self.add_bounded(common::f32s(v), v.len() / per, kind, 5126, &extra)
-    }
-
-    fn indices(&mut self, faces: &[[u16; 3]]) -> usize {
-        let bytes = faces
-            .as_flattened()
-            .iter()
-            .flat_map(|i| i.to_le_bytes())
-            .collect();
-        self.add(bytes, faces.len() * 3, "SCALAR", 5123)
-    }
-
-    /// The GLB of `rest` (the JSON after `"asset"`, `"buffers"`,
-    /// `"bufferViews"` and `"accessors"`).
-    fn glb(&self, rest: &str) -> Vec<u8> {
-        let json = format!(
-            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{}}}],"bufferViews":[{}],"accessors":[{}],{rest}}}"#,
-            self.bin.len().next_multiple_of(4),
-            self.views.join(","),
-            self.accessors.join(",")
-        );
-        common::glb(&json, &self.bin)
-    }
-}
 
 /// A box from `lo` to `hi`: 8 corners, 12 triangles wound outwards.
 fn cuboid(lo: [f32; 3], hi: [f32; 3], first: u16) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {

@@ -82,6 +82,7 @@ fn textured_cube() -> rastty::scene::Mesh {
         first: 0,
         color: None,
         texture: Some(0),
+        finish: Default::default(),
     }];
     rastty::scene::Mesh::of(std::sync::Arc::new(g), Rgb::new(0x40, 0x90, 0xff))
 }

@@ -116,6 +116,7 @@ impl Renderer {
             let y1 = (y0 + per * cell_h).min(grid.height);
             let mut painter = Painter {
                 fb: Target::of_band(grid, Band { y0, y1 }, samples, depths, &mut band.drawn),
+                surface: Default::default(),
                 stats: &mut band.stats,
                 poly: &mut band.poly,
                 verts: &mut band.verts,

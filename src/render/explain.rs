@@ -149,6 +149,11 @@ impl Renderer {
                 ),
             ),
             (
+                "glow",
+                plan.glow,
+                format!("{} triangles given emitted light", s.glowing_triangles),
+            ),
+            (
                 "lean path",
                 plan.lean,
                 format!(

@@ -143,11 +143,32 @@ struct PosedMesh {
     work: Posed,
 }
 
+/// What a run's material adds to its lit colour, in the renderer's linear
+/// units (0–65535 a channel): set once a run.
+#[derive(Clone, Copy, Debug, Default)]
+struct Surface {
+    /// The light it gives off (zero: none).
+    emissive: glam::Vec3A,
+    /// Drawn in its colour, whatever the lights.
+    unlit: bool,
+}
+
+impl Surface {
+    fn of(finish: &crate::scene::Finish) -> Surface {
+        Surface {
+            emissive: finish.emissive.to_lanes(),
+            unlit: finish.unlit,
+        }
+    }
+}
+
 /// What the vertex, triangle and fill stages draw with: the samples drawn
 /// into (the framebuffer, or one band of its rows) and the counts and
 /// scratch memory of whoever draws (the renderer, or one band's thread).
 struct Painter<'a> {
     fb: Target<'a>,
+    /// The finish of the run of faces being drawn.
+    surface: Surface,
     stats: &'a mut FrameStats,
     poly: &'a mut Polygon,
     verts: &'a mut Vec<Vert>,
@@ -302,6 +323,7 @@ impl Renderer {
         Drawing {
             painter: Painter {
                 fb: self.fb.target(),
+                surface: Surface::default(),
                 stats: &mut self.stats,
                 poly: &mut self.poly,
                 verts: &mut self.verts,

@@ -24,6 +24,9 @@ pub struct FrameStats {
     pub clip_rejected: u64,
     /// Lambert evaluations (per vertex or per face).
     pub lighting_evaluations: u64,
+    /// Triangles whose colours had their material's emitted light added
+    /// (after lighting; every triangle shaded where the plan adds glow).
+    pub glowing_triangles: u64,
     /// Per-sample depth comparisons.
     pub depth_tests: u64,
     /// Samples written with an interpolated colour (not a flat write): a
@@ -45,8 +48,8 @@ impl FrameStats {
     /// Adds one band's counts (see [`crate::Plan::bands`]) to a frame
     /// drawn in bands. Every band sees every triangle, so the triangle
     /// counts are the first band's; samples belong to one band each, so
-    /// their counts are the sums, and equal one thread's. Lighting per face
-    /// is each band's own work, summed: a triangle may be lit by two bands,
+    /// their counts are the sums, and equal one thread's. Lighting (and
+    /// glow) per face is each band's own work, summed: a triangle may be lit by two bands,
     /// or by none where each band's part of its box is small enough to be
     /// found empty before lighting (one thread tests only small boxes).
     pub(super) fn add_band(&mut self, band: &FrameStats, first: bool) {
@@ -66,6 +69,7 @@ impl FrameStats {
             self.raster.culled += r.culled;
         }
         self.lighting_evaluations += band.lighting_evaluations;
+        self.glowing_triangles += band.glowing_triangles;
         self.depth_tests += band.depth_tests;
         self.interpolated_samples += band.interpolated_samples;
         self.textured_samples += band.textured_samples;

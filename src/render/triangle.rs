@@ -24,7 +24,7 @@
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
 use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
-use super::{Painter, Stage};
+use super::{Painter, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
 use crate::fill::{self, Attributes, ScreenTriangle, UvPlanes};
@@ -79,6 +79,7 @@ impl Painter<'_> {
             let lean = p.lean.run && texture.is_none();
             // Converted to lanes once a run, not once a face.
             let run_color = run.color.to_lanes();
+            self.surface = Surface::of(&run.finish);
             // Every face is handed to the pipeline: counted once a run.
             self.stats.triangles_in += run.faces.len() as u64;
             for face in &mesh.faces[run.faces] {
@@ -141,6 +142,8 @@ impl Painter<'_> {
         let cull = opts.cull.unwrap_or(Cull::None);
         let loose = Transforms::new(vp, turn);
         let loose_tests = p.clip_tests(scene.meshes.len());
+        // Loose triangles have no material: the plain finish.
+        self.surface = Surface::default();
         self.stats.triangles_in += scene.triangles.len() as u64;
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
@@ -395,7 +398,19 @@ impl Painter<'_> {
         back: bool,
     ) -> [Vec3; 3] {
         let round = |c: Vec3A| Vec3::from(Lin::round_lanes(c));
-        let c = self.light(stage, v, base, back);
+        let c = if self.surface.unlit {
+            base
+        } else {
+            self.light(stage, v, base, back)
+        };
+        if stage.plan.glow.run {
+            // Emitted light is added after lighting (zero for a run that
+            // gives off none, which changes nothing: colours are not
+            // negative).
+            self.stats.glowing_triangles += 1;
+            let e = self.surface.emissive;
+            return [round(c[0] + e), round(c[1] + e), round(c[2] + e)];
+        }
         [round(c[0]), round(c[1]), round(c[2])]
     }
 

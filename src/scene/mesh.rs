@@ -54,6 +54,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rustc_hash::FxHashMap;
 
 use super::anim::{Pose, Rig};
+use super::finish::Finish;
 use crate::color::{Lin, Rgb};
 use crate::texture::Texture;
 
@@ -64,7 +65,7 @@ use super::normals::*;
 pub const DEFAULT_CREASE: f32 = 60.0;
 
 /// Faces of one material, from `first` to the next run's first.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialRun {
     /// The first face of the run.
     pub first: u32,
@@ -74,6 +75,8 @@ pub struct MaterialRun {
     /// The material's texture, an index into [`Geometry::textures`], which
     /// multiplies the colour (the faces' vertices then have UVs).
     pub texture: Option<u32>,
+    /// What its surface does with light beyond its colour.
+    pub finish: Finish,
 }
 
 /// One run of faces as the renderer draws it: the faces, their colour and
@@ -86,6 +89,8 @@ pub struct Run<'a> {
     pub color: Lin,
     /// Their texture, if the material has one.
     pub texture: Option<&'a Texture>,
+    /// Their material's finish (plain for faces without a material).
+    pub finish: Finish,
 }
 
 /// A mesh's shape, in model coordinates: what is shared between meshes.
@@ -219,6 +224,7 @@ impl Geometry {
             faces: 0..first,
             color,
             texture: None,
+            finish: Finish::default(),
         });
         head.into_iter()
             .chain(self.materials.iter().enumerate().map(move |(k, r)| {
@@ -231,6 +237,7 @@ impl Geometry {
                     faces: (r.first as usize).min(end)..end,
                     color: r.color.unwrap_or(color),
                     texture: self.texture(r.texture),
+                    finish: r.finish,
                 }
             }))
     }
@@ -239,6 +246,13 @@ impl Geometry {
     fn texture(&self, index: Option<u32>) -> Option<&Texture> {
         self.uvs.as_ref()?;
         self.textures.get(index? as usize).map(|t| &**t)
+    }
+
+    /// Whether any face's material gives off light.
+    pub fn glows(&self) -> bool {
+        self.materials
+            .iter()
+            .any(|r| r.finish.emissive != Lin::BLACK)
     }
 
     /// Whether any face is drawn with a texture.

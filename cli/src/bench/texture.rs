@@ -138,6 +138,7 @@ pub fn textured_floor() -> Scene {
         first: 0,
         color: None,
         texture: Some(0),
+        finish: Default::default(),
     }];
     Scene {
         camera: Camera {

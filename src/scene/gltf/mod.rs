@@ -215,6 +215,7 @@ pub fn parse(
     what.extend(
         document
             .extensions_used()
+            .filter(|e| !DRAWN_EXTENSIONS.contains(e))
             .map(|e| format!("extension {}", crate::text::name(e, 80))),
     );
     if !what.is_empty() {
@@ -384,6 +385,7 @@ impl Parts<'_> {
             *ignored.entry("morph targets").or_default() += 1;
         }
         let material = prim.material();
+        let finish = finish(&material);
         let others = [
             material.normal_texture().is_some(),
             material.occlusion_texture().is_some(),
@@ -598,12 +600,11 @@ impl Parts<'_> {
                 first: faces_before as u32,
                 color: own.then_some(base),
                 texture,
+                finish,
             };
-            if self
-                .materials
-                .last()
-                .is_none_or(|m| (m.color, m.texture) != (run.color, run.texture))
-            {
+            if self.materials.last().is_none_or(|m| {
+                (m.color, m.texture, m.finish) != (run.color, run.texture, run.finish)
+            }) {
                 self.materials.push(run);
             }
         }
@@ -737,5 +738,28 @@ fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
         },
         min,
         mipmap,
+    }
+}
+
+/// The extensions rastty draws (others are noted as not drawn).
+const DRAWN_EXTENSIONS: &[&str] = &["KHR_materials_unlit", "KHR_materials_emissive_strength"];
+
+/// A material's finish: its metallic-roughness factors where they are not
+/// both glTF's defaults (1 and 1, a rough metal, drawn matte: see
+/// [`crate::scene::Finish`]) or a metallic-roughness texture is given, its
+/// emissive factor times `KHR_materials_emissive_strength`, and
+/// `KHR_materials_unlit`. Factors are linear, as glTF's colours are.
+fn finish(material: &gltf::Material<'_>) -> crate::scene::Finish {
+    let pbr = material.pbr_metallic_roughness();
+    let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
+    let said = (metallic, roughness) != (1.0, 1.0) || pbr.metallic_roughness_texture().is_some();
+    let strength = material.emissive_strength().unwrap_or(1.0);
+    let e = material.emissive_factor().map(|c| c * strength);
+    crate::scene::Finish {
+        specular: said
+            .then(|| crate::scene::Specular::metallic_roughness(metallic, roughness))
+            .flatten(),
+        emissive: Lin::from_unit(e),
+        unlit: material.unlit(),
     }
 }

@@ -296,6 +296,7 @@ impl Reader<'_> {
             b"l" | b"p" => self.lines_and_points += 1,
             b"usemtl" => {
                 let material = self.library.get(c.rest()).cloned().unwrap_or_default();
+                let finish = material.finish();
                 let texture = match material.map {
                     Some(map) => self.texture(map)?,
                     None => None,
@@ -305,6 +306,7 @@ impl Reader<'_> {
                     first: self.triangles.len() as u32,
                     color: material.color,
                     texture,
+                    finish,
                 };
                 match self.materials.last_mut() {
                     Some(last) if last.first == run.first => *last = run,

@@ -1,7 +1,9 @@
 //! An OBJ file's material library (`mtllib`): each material's diffuse
-//! colour (`Kd`, in the colour space the options say) and texture
-//! (`map_Kd`, with its options), read under the same checks as the model;
-//! what it does not draw is noted, not silently lost.
+//! colour (`Kd`, in the colour space the options say), texture (`map_Kd`,
+//! with its options) and finish (`Ks` and `Ns`: a highlight; `Ke`: a glow;
+//! see [`crate::scene::Finish`]), read under the same checks as the model;
+//! what it does not draw (transparency, the other maps) is noted, not
+//! silently lost.
 
 use super::*;
 
@@ -12,6 +14,31 @@ pub(super) struct Material {
     pub(super) color: Option<Lin>,
     /// Its `map_Kd`.
     pub(super) map: Option<Map>,
+    /// Its `Ks`.
+    pub(super) ks: Option<Lin>,
+    /// Its `Ns`.
+    pub(super) ns: Option<f32>,
+    /// Its `Ke` (black without one).
+    pub(super) emissive: Lin,
+    /// Its `illum` is 0 or 1: no highlight.
+    pub(super) dull: bool,
+}
+
+impl Material {
+    /// Its finish: a highlight from `Ks` and `Ns` (`Ns` 0 without one:
+    /// the broadest) unless `illum` is 0 or 1, a glow from `Ke`.
+    pub(super) fn finish(&self) -> crate::scene::Finish {
+        crate::scene::Finish {
+            specular: self.ks.filter(|_| !self.dull).and_then(|ks| {
+                crate::scene::Specular::phong(
+                    glam::Vec3::from(ks.to_f32()) / 65535.0,
+                    self.ns.unwrap_or(0.0),
+                )
+            }),
+            emissive: self.emissive,
+            unlit: false,
+        }
+    }
 }
 
 /// A `map_Kd`: the image, and where the MTL file names it.
@@ -45,6 +72,7 @@ pub(super) fn mtl(
     let mut out = FxHashMap::default();
     let mut notes = Vec::new();
     let mut current: Option<Vec<u8>> = None;
+    let mut unread: Vec<&'static str> = Vec::new();
     let mut lines = Lines::new(file);
     loop {
         let (n, line) = match lines.next_line() {
@@ -109,7 +137,8 @@ pub(super) fn mtl(
                 };
                 out.entry(m.clone()).or_default().map = Some(map);
             }
-            Some((b"Kd", kcol)) => {
+            Some((key @ (b"Kd" | b"Ks" | b"Ke"), kcol)) => {
+                let key = std::str::from_utf8(key).unwrap_or("K");
                 let mut v = [0.0f32; 3];
                 let mut k = 0;
                 while let Some(x) = c.number() {
@@ -120,7 +149,7 @@ pub(super) fn mtl(
                             line,
                             n,
                             col,
-                            format!("`Kd`: {:?} is not a colour component", lossy(w)),
+                            format!("`{key}`: {:?} is not a colour component", lossy(w)),
                         ));
                     };
                     v[k] = x;
@@ -133,16 +162,86 @@ pub(super) fn mtl(
                         line,
                         n,
                         kcol,
-                        format!("`Kd` needs 3 numbers, found {k}"),
+                        format!("`{key}` needs 3 numbers, found {k}"),
                     ));
                 }
                 let Some(m) = &current else {
-                    return Err(at_byte(line, n, kcol, "`Kd` before any `newmtl`".into()));
+                    return Err(at_byte(
+                        line,
+                        n,
+                        kcol,
+                        format!("`{key}` before any `newmtl`"),
+                    ));
                 };
-                out.entry(m.clone()).or_default().color = Some(options.mtl_colors.decode(v));
+                let color = options.mtl_colors.decode(v);
+                let material = out.entry(m.clone()).or_default();
+                match key {
+                    "Kd" => material.color = Some(color),
+                    "Ks" => material.ks = Some(color),
+                    _ => material.emissive = color,
+                }
+            }
+            Some((b"Ns", kcol)) => {
+                let Some(Ok(x)) = c.number().filter(|x| x.is_ok_and(f32::is_finite)) else {
+                    let (w, col) = c_word_at(line, 1);
+                    return Err(at_byte(
+                        line,
+                        n,
+                        if w.is_empty() { kcol } else { col },
+                        format!("`Ns`: {:?} is not an exponent", lossy(w)),
+                    ));
+                };
+                let Some(m) = &current else {
+                    return Err(at_byte(line, n, kcol, "`Ns` before any `newmtl`".into()));
+                };
+                out.entry(m.clone()).or_default().ns = Some(x);
+            }
+            Some((key @ (b"d" | b"Tr" | b"illum"), _)) => {
+                // Read for what they say: an opaque `d 1` or `Tr 0` draws as
+                // it is; anything else is transparency, not drawn (noted).
+                let x = c.number().and_then(Result::ok).unwrap_or(f32::NAN);
+                let opaque = match key {
+                    b"d" => x == 1.0,
+                    b"Tr" => x == 0.0,
+                    _ => {
+                        // `illum` 0 and 1: no highlight, whatever `Ks` says.
+                        if let (Some(m), true) = (&current, x == 0.0 || x == 1.0) {
+                            out.entry(m.clone()).or_default().dull = true;
+                        }
+                        true
+                    }
+                };
+                let key = if key == b"d" { "d" } else { "Tr" };
+                if !opaque && !unread.contains(&key) {
+                    unread.push(key);
+                }
+            }
+            Some((key, _)) => {
+                if let Some(&known) = NOT_DRAWN.iter().find(|k| k.as_bytes() == key)
+                    && !unread.contains(&known)
+                {
+                    unread.push(known);
+                }
             }
             _ => {}
         }
     }
+    if !unread.is_empty() {
+        notes.push(format!(
+            "{}: not drawn: {}",
+            crate::text::escape(&name),
+            unread
+                .iter()
+                .map(|k| format!("`{k}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     Ok((out, notes))
 }
+
+/// The statements of a material that rastty reads and does not draw
+/// (yet): the maps other than `map_Kd`.
+const NOT_DRAWN: &[&str] = &[
+    "map_Ks", "map_Ns", "map_d", "map_Ke", "map_Bump", "map_bump", "bump", "norm", "disp", "refl",
+];

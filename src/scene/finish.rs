@@ -1,0 +1,114 @@
+//! A material's finish: what its surface does with light beyond its colour
+//! (a specular highlight, from glTF's metallic-roughness or OBJ's `Ks` and
+//! `Ns`), the light it gives off itself (emissive), and whether lights
+//! reach it at all (unlit).
+//!
+//! Trade-offs. A finish is a few numbers a run of faces, not a texture:
+//! the maps (metallic-roughness, emissive, occlusion, normal) are for
+//! later work and are noted where a file has them. A file that says
+//! nothing of its finish is drawn matte, as before: glTF's defaults
+//! (metallic 1, roughness 1) describe a rough metal, which without light
+//! from its surroundings (no image-based lighting here) is nearly black,
+//! so only factors a file writes make a surface specular. OBJ's Phong
+//! exponent `Ns` becomes a roughness by the usual match of the Phong and
+//! GGX lobes (α = √(2 / (Ns + 2)), roughness = √α), its `Ks` the colour of
+//! the reflection at normal incidence.
+
+use glam::Vec3;
+
+use crate::color::Lin;
+
+/// A specular surface: the glTF core model's metallic-roughness (a GGX
+/// microfacet lobe with Smith's height-correlated visibility and Schlick's
+/// Fresnel), evaluated per sample by [`crate::shade`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Specular {
+    /// Reflectance at normal incidence of the non-metal part, linear, each
+    /// channel in [0, 1]: 0.04 for glTF's dielectrics, `Ks` for OBJ.
+    pub reflectance: Vec3,
+    /// How much of the surface is metal, in [0, 1]: a metal has no diffuse
+    /// colour and reflects in its base colour.
+    pub metallic: f32,
+    /// Perceptual roughness in [0, 1] (α = roughness²), at least
+    /// [`Specular::MIN_ROUGHNESS`]: a perfect mirror lit by a point has a
+    /// highlight of no size.
+    pub roughness: f32,
+}
+
+impl Specular {
+    /// The smoothest surface drawn: a highlight of a directional light on
+    /// a mirror smoother than this is smaller than any sample.
+    pub const MIN_ROUGHNESS: f32 = 0.045;
+
+    /// glTF's metallic-roughness, each factor clamped into [0, 1] (and the
+    /// roughness to at least [`Specular::MIN_ROUGHNESS`]); `None` where a
+    /// factor is not a number.
+    pub fn metallic_roughness(metallic: f32, roughness: f32) -> Option<Specular> {
+        (metallic.is_finite() && roughness.is_finite()).then(|| Specular {
+            reflectance: Vec3::splat(0.04),
+            metallic: metallic.clamp(0.0, 1.0),
+            roughness: roughness.clamp(Self::MIN_ROUGHNESS, 1.0),
+        })
+    }
+
+    /// OBJ's Phong terms: `Ks` (linear, clamped into [0, 1]) and the
+    /// exponent `Ns` (at least 0); `None` where `Ks` is black (no
+    /// highlight) or a number is not finite.
+    pub fn phong(ks: Vec3, ns: f32) -> Option<Specular> {
+        if !ks.is_finite() || !ns.is_finite() || ks.max_element() <= 0.0 {
+            return None;
+        }
+        let alpha = (2.0 / (ns.max(0.0) + 2.0)).sqrt();
+        Some(Specular {
+            reflectance: ks.clamp(Vec3::ZERO, Vec3::ONE),
+            metallic: 0.0,
+            roughness: alpha.sqrt().clamp(Self::MIN_ROUGHNESS, 1.0),
+        })
+    }
+}
+
+/// A material's finish; the default is matte, lit, and dark of itself:
+/// the surface drawn as it always was.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Finish {
+    /// Its specular highlight, if any.
+    pub specular: Option<Specular>,
+    /// The light it gives off, added after lighting (black: none).
+    pub emissive: Lin,
+    /// Drawn in its colour whatever the lights (glTF's
+    /// `KHR_materials_unlit`).
+    pub unlit: bool,
+}
+
+impl Finish {
+    /// Whether it is the default finish, which adds nothing to a frame.
+    pub fn is_plain(&self) -> bool {
+        *self == Finish::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn phong_exponents_become_the_matching_roughness() {
+        // Ns = 0: α = 1, the roughest; Ns = 98: α = √(2/100).
+        let s = Specular::phong(Vec3::splat(0.5), 0.0).unwrap();
+        assert_eq!(s.roughness, 1.0);
+        let s = Specular::phong(Vec3::ONE, 98.0).unwrap();
+        assert_eq!(s.roughness, (0.02f32).sqrt().sqrt());
+        // A huge exponent is a mirror, held at the smoothest drawn.
+        let s = Specular::phong(Vec3::ONE, 1e12).unwrap();
+        assert_eq!(s.roughness, Specular::MIN_ROUGHNESS);
+        assert_eq!(Specular::phong(Vec3::ZERO, 10.0), None);
+        assert_eq!(Specular::phong(Vec3::ONE, f32::NAN), None);
+    }
+
+    #[test]
+    fn metallic_roughness_factors_are_clamped() {
+        let s = Specular::metallic_roughness(2.0, -1.0).unwrap();
+        assert_eq!((s.metallic, s.roughness), (1.0, Specular::MIN_ROUGHNESS));
+        assert_eq!(Specular::metallic_roughness(f32::NAN, 0.5), None);
+    }
+}

@@ -1,0 +1,232 @@
+//! Materials as the file says, end to end: glTF and OBJ finishes read,
+//! and drawn through the pipeline users run, against colours computed by
+//! hand; the planned frame against the full pipeline's.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::Doc;
+use glam::Vec3;
+use rastty::color::{Lin, Rgb};
+use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf, obj};
+use rastty::{Choice, Pipeline, RenderOptions, Renderer, Threads};
+
+/// A square of side 2 about the origin in the plane z = 0, facing +z,
+/// with the glTF `material` (JSON) and normals.
+fn square(material: &str) -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&[
+        [-1.0, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+    ]);
+    let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    d.glb(&format!(
+        r#""extensionsUsed":["KHR_materials_unlit","KHR_materials_emissive_strength"],
+"materials":[{material}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx},"material":0}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+fn load(glb: &[u8]) -> Geometry {
+    let loaded = gltf::parse(glb, None, "square.glb", &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    loaded.geometry
+}
+
+/// `geometry` seen face on, filling the middle of the frame, under
+/// `lights` (direction, colour, ambient).
+fn scene(geometry: Geometry, lights: &[(Vec3, Rgb, f32)]) -> Scene {
+    let mut b = Scene::builder()
+        .camera(Camera {
+            projection: Projection::Perspective {
+                fov_y: 60.0,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        })
+        .mesh(Mesh::of(Arc::new(geometry), Rgb::new(255, 255, 255)));
+    for &(direction, color, ambient) in lights {
+        b = b.light(rastty::scene::Light {
+            direction,
+            color,
+            ambient,
+        });
+    }
+    b.build().unwrap()
+}
+
+fn opts() -> RenderOptions {
+    RenderOptions {
+        cols: 40,
+        rows: 20,
+        ..RenderOptions::default()
+    }
+}
+
+/// The colours of the covered samples, each once, in order.
+fn colours(scene: &Scene) -> Vec<Lin> {
+    let mut r = Renderer::new();
+    r.render(scene, &opts());
+    let mut c: Vec<Lin> = r
+        .framebuffer()
+        .samples()
+        .iter()
+        .flatten()
+        .copied()
+        .collect();
+    assert!(!c.is_empty(), "the square covers samples");
+    c.sort_by_key(|l| l.0);
+    c.dedup();
+    c
+}
+
+const WHITE_FROM_FRONT: (Vec3, Rgb, f32) =
+    (Vec3::new(0.0, 0.0, -1.0), Rgb::new(255, 255, 255), 0.0);
+const DIM_FROM_SIDE: (Vec3, Rgb, f32) = (Vec3::new(1.0, 0.0, -1.0), Rgb::new(90, 40, 200), 0.1);
+
+#[test]
+fn an_unlit_material_is_its_colour_whatever_the_lights() {
+    let unlit = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,0.125,1]},"extensions":{"KHR_materials_unlit":{}}}"#;
+    let base = Lin::from_unit([0.5, 0.25, 0.125]);
+    for lights in [
+        &[WHITE_FROM_FRONT][..],
+        &[DIM_FROM_SIDE],
+        &[WHITE_FROM_FRONT, DIM_FROM_SIDE],
+    ] {
+        assert_eq!(colours(&scene(load(&square(unlit)), lights)), [base]);
+    }
+    // The same material lit is not its colour: the test can fail.
+    let lit = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,0.125,1]}}"#;
+    assert_ne!(
+        colours(&scene(load(&square(lit)), &[DIM_FROM_SIDE])),
+        [base]
+    );
+}
+
+#[test]
+fn emitted_light_is_added_after_lighting() {
+    // Black lit by anything is black: what is left is the glow.
+    let black =
+        r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1]},"emissiveFactor":[0.2,0.4,0.6]}"#;
+    let glow = Lin::from_unit([0.2, 0.4, 0.6]);
+    assert_eq!(
+        colours(&scene(load(&square(black)), &[DIM_FROM_SIDE])),
+        [glow]
+    );
+    // KHR_materials_emissive_strength scales it (linear light is held
+    // to the full intensity of a primary: 0.6 × 2 is 1).
+    let strong = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1]},"emissiveFactor":[0.2,0.4,0.6],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2}}}"#;
+    assert_eq!(
+        colours(&scene(load(&square(strong)), &[DIM_FROM_SIDE])),
+        [Lin::from_unit([0.4, 0.8, 1.0])]
+    );
+    // Grey lit head-on by white without ambient is its own colour; the
+    // glow adds to it, channel by channel.
+    let grey = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.25,0.25,0.25,1]},"emissiveFactor":[0.5,0,0]}"#;
+    let lit = Lin::from_unit([0.25, 0.25, 0.25]).0.map(u32::from);
+    let add = Lin::from_unit([0.5, 0.0, 0.0]).0.map(u32::from);
+    let sum = Lin([0, 1, 2].map(|i| (lit[i] + add[i]) as u16));
+    assert_eq!(
+        colours(&scene(load(&square(grey)), &[WHITE_FROM_FRONT])),
+        [sum]
+    );
+}
+
+#[test]
+fn a_glowing_frame_is_the_same_planned_or_full_and_in_bands() {
+    let grey = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.25,0.5,0.25,1]},"emissiveFactor":[0.1,0,0.3]}"#;
+    let s = scene(load(&square(grey)), &[DIM_FROM_SIDE, WHITE_FROM_FRONT]);
+    for &glyphs in rastty::GlyphMode::ALL {
+        let o = RenderOptions {
+            glyphs,
+            threads: Threads::Exactly(1),
+            ..opts()
+        };
+        let mut planned = Renderer::new();
+        planned.render(&s, &o);
+        assert!(planned.plan().unwrap().glow.run);
+        let mut full = Renderer::new();
+        full.render(
+            &s,
+            &RenderOptions {
+                pipeline: Pipeline::Full,
+                ..o
+            },
+        );
+        assert_eq!(
+            planned.framebuffer().samples(),
+            full.framebuffer().samples()
+        );
+        let mut bands = Renderer::new();
+        bands.render(
+            &s,
+            &RenderOptions {
+                threads: Threads::Exactly(3),
+                ..o
+            },
+        );
+        assert_eq!(planned.frame(), bands.frame());
+    }
+    // A scene that glows nowhere skips the stage.
+    let plain = scene(load(&square("{}")), &[WHITE_FROM_FRONT]);
+    let mut r = Renderer::new();
+    r.render(&plain, &opts());
+    assert!(!r.plan().unwrap().glow.run);
+    assert_eq!(r.stats().glowing_triangles, 0);
+}
+
+/// An OBJ square with the material library `mtl`.
+fn obj_square(mtl: &str) -> obj::Loaded {
+    let dir = std::env::temp_dir().join(format!("rastty-mtl-{}-{}", std::process::id(), mtl.len()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+    let src = "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl m\nf 1 2 3 4\n";
+    obj::parse(src.as_bytes(), "square.obj", &dir).unwrap()
+}
+
+#[test]
+fn an_obj_material_glows_with_ke_and_shines_with_ks_unless_illum_says_not() {
+    let loaded =
+        obj_square("newmtl m\nKd 0 0 0\nKe 0.2 0.4 0.6\nKs 0.5 0.5 0.5\nNs 98\nillum 2\nd 1\n");
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let finish = loaded.geometry.materials[0].finish;
+    let s = finish.specular.expect("a highlight");
+    // Ks is a colour like Kd: 16-bit linear light, as a fraction.
+    let half = Vec3::from(Lin::from_unit([0.5; 3]).to_f32()) / 65535.0;
+    assert_eq!((s.reflectance, s.metallic), (half, 0.0));
+    assert_eq!(s.roughness, (0.02f32).sqrt().sqrt());
+    assert_eq!(
+        colours(&scene(loaded.geometry, &[DIM_FROM_SIDE])),
+        [Lin::from_unit([0.2, 0.4, 0.6])]
+    );
+    // illum 1: no highlight; d below 1: transparency, noted as not drawn.
+    let loaded = obj_square("newmtl m\nKs 1 1 1\nillum 1\nd 0.5\n");
+    assert_eq!(loaded.geometry.materials[0].finish.specular, None);
+    let dir = std::env::temp_dir().display().to_string();
+    let notes: Vec<String> = loaded
+        .notes
+        .iter()
+        .map(|n| n.replace(&dir, "TMP"))
+        .collect();
+    assert_eq!(notes.len(), 1);
+    assert!(notes[0].ends_with("/m.mtl: not drawn: `d`"), "{notes:?}");
+}
+
+#[test]
+fn a_bad_ns_is_an_error_at_its_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("rastty-mtl-ns-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("m.mtl"), "newmtl m\nNs shiny\n").unwrap();
+    let src = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+    let e = obj::parse(src, "t.obj", &dir).unwrap_err().to_string();
+    let e = e.replace(&dir.display().to_string(), "DIR");
+    assert_eq!(e, "DIR/m.mtl:2:4: `Ns`: \"shiny\" is not an exponent");
+}
