@@ -76,6 +76,11 @@ pub struct ClipVertex {
     pub color: Vec3,
     /// Texture coordinates (zero when untextured).
     pub uv: Vec2,
+    /// Its weights in the triangle it belongs to (a corner's are one 1 and
+    /// two 0s), carried to each cut so that attributes the clipper does
+    /// not carry (the normal and position per-sample shading reads) can be
+    /// found for the pieces.
+    pub weights: Vec3,
     /// Where the vertex stage put it, when it is inside every clip plane:
     /// kept as it is, so that neighbours that were not clipped meet it.
     pub snapped: Option<Snapped>,
@@ -109,6 +114,8 @@ pub struct ScreenVertex {
     pub color: Vec3,
     /// Its texture coordinates.
     pub uv: Vec2,
+    /// Its weights in the triangle that was clipped.
+    pub weights: Vec3,
 }
 
 /// The outcome of clipping one triangle.
@@ -168,6 +175,7 @@ struct V {
     pos: [f64; 4],
     color: Vec3,
     uv: Vec2,
+    weights: Vec3,
     snapped: Option<Snapped>,
 }
 
@@ -338,6 +346,7 @@ impl Clipper {
                 pos: v.pos.to_array(),
                 color: v.color,
                 uv: v.uv,
+                weights: v.weights,
                 snapped: v.snapped,
             };
         }
@@ -371,6 +380,7 @@ impl Clipper {
                     inv_w: s.inv_w,
                     color: v.color,
                     uv: v.uv,
+                    weights: v.weights,
                 },
                 None => {
                     // Clip space, at the point's own homogeneous scale.
@@ -392,6 +402,7 @@ impl Clipper {
                         inv_w: (v.pos[3] / c[3]) as f32,
                         color: v.color,
                         uv: v.uv,
+                        weights: v.weights,
                     }
                 }
             };
@@ -469,6 +480,7 @@ fn cross(plane: &[f64; 4], a: &V, b: &V) -> V {
         pos,
         color: a.color + (b.color - a.color) * t,
         uv: a.uv + (b.uv - a.uv) * t,
+        weights: a.weights + (b.weights - a.weights) * t,
         snapped: None,
     }
 }
@@ -510,6 +522,7 @@ mod tests {
             pos: DVec4::new(x, y, z, w),
             color: Vec3::ZERO,
             uv: Vec2::ZERO,
+            weights: Vec3::ZERO,
             snapped: None,
         }
     }

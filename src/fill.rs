@@ -21,14 +21,19 @@
 //! exact`) is not a walk: [`accumulate_exact`] adds each sample square's
 //! covered area, with the triangle's mean colour, to an accumulator.
 //!
-//! The effects of later work (specular, alpha, normal maps) plug in here:
-//! a new per-sample term is a new fill, chosen by the plan.
+//! A per-sample term is a fill of its own, chosen by the plan: the
+//! specular fill ([`Sink::shiny`]) interpolates a shining triangle's
+//! normal and position with the same weights as its colour and adds the
+//! highlight found there ([`Shine`]); a matte run sent through it (the full
+//! pipeline sends every run) adds nothing, so it writes what the other
+//! fills write, to the bit. Alpha and normal maps are to plug in likewise.
 
 use glam::{Vec2, Vec3, Vec3A};
 
 use crate::color::Lin;
 use crate::framebuffer::Target;
 use crate::raster::{Coverage, Traversal};
+use crate::shade::Lights;
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
 
@@ -132,6 +137,65 @@ impl Sink<'_> {
         Filled::of(covered, depth, written, a, tested)
     }
 
+    /// Fills a set-up triangle whose material shines: the lit colour (one,
+    /// or interpolated), times the texel where it has a texture, plus the
+    /// specular light found at each sample it is written to from the
+    /// interpolated normal and position (each counted as written and
+    /// interpolated). A matte run (the full pipeline's) adds nothing, so
+    /// its samples are the other fills' to the bit.
+    pub(crate) fn shiny<C: Coverage>(
+        &mut self,
+        setup: &C,
+        a: &Attributes,
+        flat: bool,
+        texture: Option<(&Texture, Sampler, &UvPlanes)>,
+        shine: &Shine<'_>,
+    ) -> Filled {
+        let grid = self.fb.grid();
+        let (at, samples, depths) = self.fb.split_mut();
+        let (mut covered, mut written) = (0u64, 0u64);
+        let shade = move |x: u32, y: u32, e: C::Weights| {
+            let e = C::f32(e);
+            let mut lit = if flat { a.color[0] } else { a.lit(e) };
+            if let Some((texture, sampler, planes)) = texture {
+                let (uv, dx, dy) = planes.at(x, y);
+                lit *= Vec3A::from(texture.sample(&sampler, uv, dx, dy));
+            }
+            if shine.f0.is_some() {
+                lit += shine.at(a.shares(e));
+            }
+            Lin::from_lanes(lit)
+        };
+        let tr = self.traversal;
+        let (tested, depth) = if self.depth {
+            let tested = setup.walk_samples(grid, tr, |x, y, e| {
+                covered += 1;
+                let z = a.depth(C::f32(e));
+                let i = at.of(x, y);
+                if nearer(z, depths[i]) {
+                    written += 1;
+                    depths[i] = z;
+                    samples[i] = Some(shade(x, y, e));
+                }
+            });
+            (tested, true)
+        } else {
+            let tested = setup.walk_samples(grid, tr, |x, y, e| {
+                covered += 1;
+                let i = at.of(x, y);
+                if samples[i].is_none() {
+                    written += 1;
+                    samples[i] = Some(shade(x, y, e));
+                }
+            });
+            (tested, false)
+        };
+        if covered > 0 {
+            self.fb.touch(setup.bounds());
+        }
+        Filled::of(covered, depth, written, a, tested)
+    }
+
     /// Fills a set-up triangle without a texture: one colour (`flat`), or
     /// interpolated for the samples it is written to (those alone counted
     /// as written).
@@ -198,6 +262,101 @@ impl Sink<'_> {
             self.fb.touch(setup.bounds());
         }
         Filled::of(covered, depth_tested, written, a, tested)
+    }
+}
+
+/// What a specular fill reads of a triangle, set up once: its vertices'
+/// unit normals and positions in the turned world (in the set-up's vertex
+/// order), the run's reflectance and roughness, the lights and the eye.
+pub(crate) struct Shine<'a> {
+    normal: [Vec3; 3],
+    world: [Vec3; 3],
+    /// Reflectance at normal incidence, `None` for a matte run (the full
+    /// pipeline sends every run here: a matte one adds nothing).
+    f0: Option<Vec3A>,
+    /// α², the roughness to the fourth.
+    a2: f32,
+    lights: &'a Lights,
+    eye: Eye,
+    /// [`crate::Highlights::Vertex`]: the highlight found at each corner,
+    /// interpolated.
+    corners: Option<[Vec3A; 3]>,
+}
+
+/// Where the viewer is: a point (perspective) or, for parallel views, a
+/// unit direction towards it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Eye {
+    /// The eye's position.
+    At(Vec3),
+    /// The direction towards the eye.
+    Towards(Vec3),
+}
+
+impl Eye {
+    /// The direction from `p` to the eye (not of unit length for a point).
+    #[inline(always)]
+    pub(crate) fn to_eye(self, p: Vec3) -> Vec3 {
+        match self {
+            Eye::At(e) => e - p,
+            Eye::Towards(d) => d,
+        }
+    }
+}
+
+impl<'a> Shine<'a> {
+    /// `order` is the set-up's vertex order; `normal` and `world` in the
+    /// caller's; `finish` is the run's `(f0, α²)`.
+    /// `per_vertex`: found at the corners and interpolated
+    /// ([`crate::Highlights::Vertex`]).
+    #[inline(always)]
+    pub(crate) fn new(
+        order: [usize; 3],
+        (normal, world): ([Vec3; 3], [Vec3; 3]),
+        finish: Option<(Vec3A, f32)>,
+        (lights, eye): (&'a Lights, Eye),
+        per_vertex: bool,
+    ) -> Shine<'a> {
+        let mut s = Shine {
+            normal: order.map(|i| normal[i]),
+            world: order.map(|i| world[i]),
+            f0: finish.map(|f| f.0),
+            a2: finish.map_or(1.0, |f| f.1),
+            lights,
+            eye,
+            corners: None,
+        };
+        if per_vertex && let Some(f0) = s.f0 {
+            s.corners = Some([0, 1, 2].map(|i| s.light(s.normal[i], s.world[i], f0)));
+        }
+        s
+    }
+
+    /// The specular light at a sample of vertex shares `w`, in the
+    /// renderer's linear units; zero for a matte run.
+    #[inline(always)]
+    fn at(&self, w: [f32; 3]) -> Vec3A {
+        let Some(f0) = self.f0 else {
+            return Vec3A::ZERO;
+        };
+        if let Some([a, b, c]) = self.corners {
+            return a * w[0] + b * w[1] + c * w[2];
+        }
+        let n = self.normal[0] * w[0] + self.normal[1] * w[1] + self.normal[2] * w[2];
+        let p = self.world[0] * w[0] + self.world[1] * w[1] + self.world[2] * w[2];
+        self.light(n, p, f0)
+    }
+
+    /// The specular light at a point `p` of normal `n` (any length).
+    #[inline(always)]
+    fn light(&self, n: Vec3, p: Vec3, f0: Vec3A) -> Vec3A {
+        let v = self.eye.to_eye(p).normalize_or_zero();
+        let mut n = n.normalize_or_zero();
+        // Two-sided: a surface seen from behind shines on its seen side.
+        if n.dot(v) < 0.0 {
+            n = -n;
+        }
+        self.lights.specular_a(n, v, f0, self.a2) * 65535.0
     }
 }
 
@@ -274,6 +433,9 @@ pub(crate) struct ScreenTriangle {
     pub(crate) inv_w: [f32; 3],
     pub(crate) color: [Vec3; 3],
     pub(crate) uv: [Vec2; 3],
+    /// For the specular fill: unit normals and positions in the turned
+    /// world.
+    pub(crate) shine: Option<([Vec3; 3], [Vec3; 3])>,
 }
 
 /// What a fill reads of a triangle at a sample, set up once: its depths
@@ -337,6 +499,16 @@ impl Attributes {
         // `f32::clamp` without its assertion that the range is ordered
         // (it is: see `new`), so nothing here can panic.
         greater(lesser(z, self.z_hi), self.z_lo)
+    }
+
+    /// The weights `e` of a sample made the vertices' shares, through
+    /// `1/w` where the plan corrects for perspective, summing to 1.
+    #[inline(always)]
+    fn shares(&self, e: [f32; 3]) -> [f32; 3] {
+        let [a, b, c] = self.w;
+        let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
+        let sum = wa + wb + wc;
+        [wa / sum, wb / sum, wc / sum]
     }
 
     /// The colour at a sample of weights `e`.

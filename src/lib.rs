@@ -129,9 +129,9 @@ pub use error::{Error, Result};
 pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
 pub use options::{
-    Aa, DEFAULT_MAX_SAMPLES, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS, Pipeline,
-    RenderOptions, Threads,
+    Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS,
+    Pipeline, RenderOptions, Threads,
 };
 pub use plan::{Bands, Decision, Plan};
 pub use render::{FrameStats, FrameTimes, Renderer, render};
-pub use shade::{Lights, Shading};
+pub use shade::{Lights, Shading, specular_reference};

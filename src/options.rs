@@ -49,6 +49,8 @@ pub struct RenderOptions {
     pub aa: Aa,
     /// How interpolated attributes are weighted.
     pub interpolation: Interpolation,
+    /// Where a shining material's highlight is found.
+    pub highlights: Highlights,
     /// How two-colour cells split their samples.
     pub split: Split,
     /// How edge functions are evaluated.
@@ -112,6 +114,24 @@ impl std::str::FromStr for Threads {
         }
     }
 }
+
+/// Where a shining material's specular highlight is found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Highlights {
+    /// At each sample, from the normal and position interpolated there: a
+    /// highlight smaller than a triangle is drawn where it is.
+    #[default]
+    Sample,
+    /// At each vertex, then interpolated (Gouraud): cheaper, and a
+    /// highlight smaller than a triangle dims or vanishes (for measuring
+    /// what per-sample costs).
+    Vertex,
+}
+
+crate::choice::choice!(Highlights {
+    Sample => "sample": "At each sample, from the normal and position interpolated there",
+    Vertex => "vertex": "At each vertex, then interpolated: cheaper, and a highlight smaller than a triangle dims or vanishes (for comparison)",
+});
 
 /// How attributes are interpolated across a triangle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -200,6 +220,7 @@ impl Default for RenderOptions {
             pipeline: Pipeline::default(),
             aa: Aa::None,
             interpolation: Interpolation::default(),
+            highlights: Highlights::default(),
             split: Split::default(),
             precision: Precision::default(),
             filter: None,

@@ -13,6 +13,7 @@
 //! | rim light | a rim was asked for (`RenderOptions::rim`) and the scene is lit | no rim, or nothing lit |
 //! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
 //! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
+//! | specular | a lit mesh's material shines (a highlight): its triangles shaded per sample | no material shines, nothing lit, or exact coverage (a triangle's mean colour) |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -122,6 +123,9 @@ pub struct Plan {
     /// Whether materials' emitted light is added (see
     /// [`crate::scene::Finish::emissive`]).
     pub glow: Decision,
+    /// Whether triangles of shining materials get a specular highlight,
+    /// found per sample (see [`Plan::shines`] for one run of faces).
+    pub specular: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
@@ -235,6 +239,7 @@ impl Plan {
             rim: Decision::run(FORCED),
             texturing: Decision::run(FORCED),
             glow: Decision::run(FORCED),
+            specular: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
             full: true,
@@ -299,10 +304,23 @@ impl Plan {
         } else {
             Decision::skip("no material gives off light")
         };
+        let specular = if !lit {
+            Decision::skip("nothing is lit")
+        } else if opts.aa == Aa::Exact {
+            Decision::skip("exact coverage shades a triangle by its mean colour")
+        } else if full {
+            Decision::run(FORCED)
+        } else if scene.meshes.iter().any(|m| m.shines()) {
+            Decision::run("a material shines: its triangles get a highlight found per sample")
+        } else {
+            Decision::skip("no material shines")
+        };
         let interpolation = if full {
             Decision::run(FORCED)
         } else if textured {
             Decision::run("texture coordinates vary over textured triangles")
+        } else if specular.run {
+            Decision::run("a highlight's normal and position vary over its triangles")
         } else if shading == Shading::Smooth {
             Decision::run("smooth shading varies the light over each triangle")
         } else if vertex_colors {
@@ -379,6 +397,7 @@ impl Plan {
             rim,
             texturing,
             glow,
+            specular,
             filter: opts.filter,
             shading,
             full,
@@ -416,6 +435,14 @@ impl Plan {
             None => texture.sampler,
         };
         Some((texture, sampler))
+    }
+
+    /// Whether a run of faces goes through the specular fill: one whose
+    /// material shines (`shines`), and in the full pipeline every run
+    /// (a matte one adding nothing), so that the property test proves that
+    /// skipping it for matte runs changes nothing.
+    pub fn shines(&self, shines: bool) -> bool {
+        self.specular.run && (shines || self.full)
     }
 
     /// Whether a triangle whose vertices have these colours is
@@ -495,6 +522,7 @@ impl fmt::Display for Plan {
         writeln!(f, "rim            {}", self.rim)?;
         writeln!(f, "texturing      {}", self.texturing)?;
         writeln!(f, "glow           {}", self.glow)?;
+        writeln!(f, "specular       {}", self.specular)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         writeln!(f, "perspective    {}", self.perspective)?;

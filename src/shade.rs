@@ -7,6 +7,11 @@
 //! drawn without culling, an open model like the teapot) is lit as seen
 //! from its visible side.
 //!
+//! A **highlight** ([`Lights::specular_a`], for materials that shine) is
+//! glTF's metallic-roughness specular, found per sample by the specular
+//! fill (`fill.rs`) and added to the lit colour; [`specular_reference`] is
+//! the same lobe in f64, which the bench and tests measure it against.
+//!
 //! A **rim light** (`RenderOptions::rim`) is added, not multiplied: its
 //! colour times `(1 − max(0, n·v))³`, where `v` is the direction towards
 //! the eye, so it is nothing on a surface facing the viewer and its whole
@@ -112,6 +117,45 @@ impl Lights {
         sum
     }
 
+    /// The specular light reflected towards the eye from a surface of unit
+    /// normal `n` (seen from the side it points to) and unit direction to
+    /// the eye `v`, per channel in the units of [`Lights::lambert`]: glTF's
+    /// metallic-roughness specular (GGX distribution, Smith's
+    /// height-correlated visibility, Schlick's Fresnel from `f0`) times
+    /// `π` (the factor that makes Lambert's `1/π` lobe the plain `n·l`
+    /// used here) and each light's direct share. `a2` is α², roughness to
+    /// the fourth. Zero where the eye or a light is behind the surface.
+    #[inline(always)]
+    pub(crate) fn specular_a(&self, n: Vec3, v: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
+        let nv = n.dot(v);
+        let mut sum = Vec3A::ZERO;
+        // Written so that a NaN (a degenerate normal) counts as behind.
+        if nv.is_nan() || nv <= 0.0 {
+            return sum;
+        }
+        for i in 0..self.len {
+            let l = self.towards[i];
+            let nl = n.dot(l);
+            if nl.is_nan() || nl <= 0.0 {
+                continue;
+            }
+            let h = (l + v).normalize_or_zero();
+            let nh = n.dot(h).max(0.0);
+            let vh = v.dot(h).max(0.0);
+            let k = nh * nh * (a2 - 1.0) + 1.0;
+            // π·D, with D = α² / (π k²).
+            let pi_d = a2 / (k * k);
+            let vis = 0.5
+                / (nl * (nv * nv * (1.0 - a2) + a2).sqrt()
+                    + nv * (nl * nl * (1.0 - a2) + a2).sqrt());
+            let m = 1.0 - vh;
+            let m5 = (m * m) * (m * m) * m;
+            let f = f0 + (Vec3A::ONE - f0) * m5;
+            sum += self.color[i] * f * (pi_d * vis * nl * (1.0 - self.ambient[i]));
+        }
+        sum
+    }
+
     /// [`Lights::lambert`] for four unit normals, given as their x, y and z
     /// each in the lanes of a vector; returns the red, green and blue of the
     /// four. The same operations per lane, in the same order, so the same
@@ -133,6 +177,24 @@ impl Lights {
         }
         sum
     }
+}
+
+/// The highlight's lobe (glTF's metallic-roughness specular times π and
+/// `n·l`, as the renderer adds it) for one white light without ambient, in
+/// f64: what the f32 evaluation is measured against
+/// (`rastty bench`, the tests). `n`, `l` and `v` unit vectors.
+pub fn specular_reference(n: glam::DVec3, l: glam::DVec3, v: glam::DVec3, f0: f64, a2: f64) -> f64 {
+    let (nv, nl) = (n.dot(v), n.dot(l));
+    if !(nv > 0.0 && nl > 0.0) {
+        return 0.0;
+    }
+    let h = (l + v).normalize_or_zero();
+    let (nh, vh) = (n.dot(h).max(0.0), v.dot(h).max(0.0));
+    let k = nh * nh * (a2 - 1.0) + 1.0;
+    let vis =
+        0.5 / (nl * (nv * nv * (1.0 - a2) + a2).sqrt() + nv * (nl * nl * (1.0 - a2) + a2).sqrt());
+    let f = f0 + (1.0 - f0) * (1.0 - vh).powi(5);
+    a2 / (k * k) * vis * nl * f
 }
 
 #[cfg(test)]

@@ -117,6 +117,7 @@ fn projected_counts(tris: &[[Vec4; 3]], grid: Grid) -> Vec<u32> {
             pos: glam::DVec4::new(p.x as f64, p.y as f64, p.w as f64, 1.0),
             color: Vec3::ZERO,
             uv: glam::Vec2::ZERO,
+            weights: Vec3::ZERO,
             snapped: None,
         });
         clipper.clip(&verts, &mvp, &vp, &mut poly);

@@ -203,8 +203,10 @@ fn an_obj_material_glows_with_ke_and_shines_with_ks_unless_illum_says_not() {
     let half = Vec3::from(Lin::from_unit([0.5; 3]).to_f32()) / 65535.0;
     assert_eq!((s.reflectance, s.metallic), (half, 0.0));
     assert_eq!(s.roughness, (0.02f32).sqrt().sqrt());
+    // Without a highlight, black lit by anything shows its glow alone.
+    let glowing = obj_square("newmtl m\nKd 0 0 0\nKe 0.2 0.4 0.6\n").geometry;
     assert_eq!(
-        colours(&scene(loaded.geometry, &[DIM_FROM_SIDE])),
+        colours(&scene(glowing, &[DIM_FROM_SIDE])),
         [Lin::from_unit([0.2, 0.4, 0.6])]
     );
     // illum 1: no highlight; d below 1: transparency, noted as not drawn.
@@ -229,4 +231,183 @@ fn a_bad_ns_is_an_error_at_its_line_and_column() {
     let e = obj::parse(src, "t.obj", &dir).unwrap_err().to_string();
     let e = e.replace(&dir.display().to_string(), "DIR");
     assert_eq!(e, "DIR/m.mtl:2:4: `Ns`: \"shiny\" is not an exponent");
+}
+
+/// A metal of `roughness` in white: no diffuse light, only its highlight.
+fn white_metal(roughness: f32) -> rastty::scene::Finish {
+    rastty::scene::Finish {
+        specular: rastty::scene::Specular::metallic_roughness(1.0, roughness),
+        ..Default::default()
+    }
+}
+
+/// `geometry` with one material of `finish` over every face.
+fn finished(mut geometry: Geometry, finish: rastty::scene::Finish) -> Geometry {
+    geometry.materials = vec![rastty::scene::MaterialRun {
+        first: 0,
+        color: None,
+        texture: None,
+        finish,
+    }];
+    geometry
+}
+
+/// A dim white light travelling along −z: from the eye of [`scene`]
+/// (dim, so that the highlights below stay short of full light).
+const FROM_THE_EYE: (Vec3, Rgb, f32) = (Vec3::new(0.0, 0.0, -1.0), Rgb::new(8, 8, 8), 0.0);
+
+/// One sample a cell on an odd grid, square samples: the middle sample's
+/// centre is the view's centre.
+fn odd_grid(highlights: rastty::Highlights) -> RenderOptions {
+    RenderOptions {
+        cols: 41,
+        rows: 41,
+        glyphs: rastty::GlyphMode::Block,
+        cell_aspect: 1.0,
+        highlights,
+        ..RenderOptions::default()
+    }
+}
+
+/// The covered samples' brightness (the channels' sum) by index, and the
+/// index of the brightest (`None` if it is not alone).
+fn brightest(r: &Renderer) -> (Vec<u32>, Option<usize>) {
+    let b: Vec<u32> = r
+        .framebuffer()
+        .samples()
+        .iter()
+        .map(|s| s.map_or(0, |c| c.0.iter().map(|&v| u32::from(v)).sum()))
+        .collect();
+    let max = b.iter().copied().max().unwrap_or(0);
+    let at: Vec<usize> = (0..b.len()).filter(|&i| b[i] == max).collect();
+    (b, (at.len() == 1).then(|| at[0]))
+}
+
+#[test]
+fn a_mirror_like_sphere_lit_from_the_eye_has_its_brightest_sample_where_the_reflection_is() {
+    // Seen along −z through a parallel view and lit from the eye, a sphere
+    // reflects the light back where its normal is +z: the middle of its
+    // image, which the middle sample's centre is.
+    let sphere = finished(
+        (*rastty::scene::Shape::Sphere.geometry()).clone(),
+        white_metal(0.3),
+    );
+    let scene = Scene::builder()
+        .camera(Camera {
+            projection: Projection::Orthographic {
+                height: 3.0,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        })
+        .mesh(Mesh::of(Arc::new(sphere), Rgb::new(255, 255, 255)))
+        .light(rastty::scene::Light {
+            direction: FROM_THE_EYE.0,
+            color: FROM_THE_EYE.1,
+            ambient: FROM_THE_EYE.2,
+        })
+        .build()
+        .unwrap();
+    let mut r = Renderer::new();
+    r.render(&scene, &odd_grid(rastty::Highlights::Sample));
+    let (b, at) = brightest(&r);
+    assert_eq!(
+        at,
+        Some(20 * 41 + 20),
+        "the middle sample alone is brightest"
+    );
+    // A metal is dark away from its highlight: the rim of the disc.
+    assert!(b[20 * 41 + 7] * 4 < b[20 * 41 + 20]);
+    assert!(r.stats().specular_samples > 0);
+}
+
+#[test]
+fn a_highlight_inside_a_triangle_is_drawn_per_sample_and_lost_per_vertex() {
+    // A square of two triangles seen face on through a perspective view,
+    // lit from the eye: its highlight is in the middle, far from every
+    // corner.
+    let square = finished(load(&square("{}")), white_metal(0.3));
+    let s = scene(square, &[FROM_THE_EYE]);
+    let mut per_sample = Renderer::new();
+    per_sample.render(&s, &odd_grid(rastty::Highlights::Sample));
+    let (b, at) = brightest(&per_sample);
+    let middle = 20 * 41 + 20;
+    assert_eq!(at, Some(middle));
+    let mut per_vertex = Renderer::new();
+    per_vertex.render(&s, &odd_grid(rastty::Highlights::Vertex));
+    let (v, _) = brightest(&per_vertex);
+    // Found at the corners and interpolated, the highlight is all but gone.
+    assert!(
+        v[middle] * 10 < b[middle],
+        "{} against {}",
+        v[middle],
+        b[middle]
+    );
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 24, ..Default::default() })]
+
+    /// A shining sphere at any turn and finish, near enough to be cut by
+    /// the near plane or far, through either view, with either kind of
+    /// highlight: the planned frame (which sends only shining runs through
+    /// the specular fill) is the full pipeline's (which sends every run,
+    /// matte ones adding nothing), bit for bit; and one band draws what
+    /// three do.
+    #[test]
+    fn shining_frames_are_the_same_planned_or_full_and_in_bands(
+        metallic in 0.0f32..=1.0,
+        roughness in 0.0f32..=1.0,
+        turn in proptest::array::uniform3(-180.0f32..180.0),
+        distance in proptest::prop_oneof![1.05f32..1.5, 2.0f32..6.0],
+        parallel in proptest::bool::ANY,
+        vertex in proptest::bool::ANY,
+        glyphs in proptest::sample::select(rastty::GlyphMode::ALL.to_vec()),
+    ) {
+        let mut sphere = (*rastty::scene::Shape::Sphere.geometry()).clone();
+        // Half its faces shine; the rest are matte.
+        sphere.materials = vec![
+            rastty::scene::MaterialRun { first: 0, color: None, texture: None, finish: Default::default() },
+            rastty::scene::MaterialRun {
+                first: (sphere.faces.len() / 2) as u32,
+                color: Some(Lin::from_unit([0.8, 0.5, 0.2])),
+                texture: None,
+                finish: rastty::scene::Finish {
+                    specular: rastty::scene::Specular::metallic_roughness(metallic, roughness),
+                    ..Default::default()
+                },
+            },
+        ];
+        let projection = if parallel {
+            Projection::Orthographic { height: 3.0, near: 0.1, far: 20.0 }
+        } else {
+            Projection::Perspective { fov_y: 60.0, near: 0.1, far: 20.0 }
+        };
+        let scene = Scene::builder()
+            .camera(Camera { projection, eye: Vec3::new(0.0, 0.0, distance), target: Vec3::ZERO, ..Camera::default() })
+            .mesh(Mesh::of(Arc::new(sphere), Rgb::new(90, 160, 220)))
+            .light(rastty::scene::Light { direction: Vec3::new(-1.0, -0.5, -1.0), color: Rgb::new(255, 240, 220), ambient: 0.1 })
+            .light(rastty::scene::Light { direction: Vec3::new(1.0, 0.2, -0.3), color: Rgb::new(80, 90, 160), ambient: 0.0 })
+            .build()
+            .unwrap();
+        let o = RenderOptions {
+            glyphs,
+            turn: Vec3::from(turn),
+            highlights: if vertex { rastty::Highlights::Vertex } else { rastty::Highlights::Sample },
+            threads: Threads::Exactly(1),
+            ..opts()
+        };
+        let mut planned = Renderer::new();
+        planned.render(&scene, &o);
+        let mut full = Renderer::new();
+        full.render(&scene, &RenderOptions { pipeline: Pipeline::Full, ..o });
+        proptest::prop_assert_eq!(planned.framebuffer().samples(), full.framebuffer().samples());
+        proptest::prop_assert_eq!(planned.frame(), full.frame());
+        let mut bands = Renderer::new();
+        bands.render(&scene, &RenderOptions { threads: Threads::Exactly(3), ..o });
+        proptest::prop_assert_eq!(planned.frame(), bands.frame());
+    }
 }

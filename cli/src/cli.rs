@@ -17,7 +17,7 @@ use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
 use rastty::picture::CellPx;
 use rastty::transform::Axis;
-use rastty::{Aa, Interpolation};
+use rastty::{Aa, Highlights, Interpolation};
 use rastty::{GlyphMode, color::ColorDepth, raster::Traversal};
 use rastty::{raster::Precision, scene::Cull};
 
@@ -180,6 +180,10 @@ pub struct KnobArgs {
     /// for comparison)
     #[arg(long, value_parser = named::<Interpolation>(), default_value = Interpolation::Perspective.name())]
     pub interpolation: Interpolation,
+    /// Where a shining material's highlight is found (vertex dims or loses
+    /// highlights smaller than a triangle: for comparison)
+    #[arg(long, value_parser = named::<Highlights>(), default_value = Highlights::Sample.name())]
+    pub highlights: Highlights,
     /// How cells of more than two colours are split (widest-channel is
     /// chafa's fast path: for comparison)
     #[arg(long, value_parser = named::<Split>(), default_value = Split::Exhaustive.name())]

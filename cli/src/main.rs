@@ -580,6 +580,7 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         },
         aa: view.aa,
         interpolation: knobs.interpolation,
+        highlights: knobs.highlights,
         split: knobs.split,
         precision: knobs.precision,
         filter: view.filter,

@@ -154,6 +154,18 @@ impl Renderer {
                 format!("{} triangles given emitted light", s.glowing_triangles),
             ),
             (
+                "specular",
+                plan.specular,
+                format!(
+                    "{} samples given a highlight (found {})",
+                    s.specular_samples,
+                    match opts.highlights {
+                        crate::options::Highlights::Sample => "at each sample",
+                        crate::options::Highlights::Vertex => "at each vertex, interpolated",
+                    }
+                ),
+            ),
+            (
                 "lean path",
                 plan.lean,
                 format!(

@@ -36,6 +36,7 @@ use glam::{Mat4, Vec3};
 use crate::blit;
 use crate::clip::{Clipper, Polygon};
 use crate::color::Rgb;
+use crate::fill::Eye;
 use crate::frame::Frame;
 use crate::framebuffer::{Framebuffer, Target};
 use crate::options::{Aa, RenderOptions};
@@ -57,6 +58,8 @@ struct Stage<'a> {
     viewport: transform::Viewport,
     lights: Lights,
     traversal: Traversal,
+    /// Where highlights are found.
+    highlights: crate::options::Highlights,
     precision: Precision,
     /// What the stages do: depth-test or not, interpolate (through 1/w) or
     /// not, which shading, which groups are clip-tested, the full pipeline
@@ -65,21 +68,6 @@ struct Stage<'a> {
     /// Where the viewer is, to tell which side of a face is seen: a point
     /// (perspective) or a direction towards the viewer (parallel views).
     eye: Eye,
-}
-
-#[derive(Clone, Copy)]
-enum Eye {
-    At(Vec3),
-    Towards(Vec3),
-}
-
-impl Eye {
-    fn to_eye(self, p: Vec3) -> Vec3 {
-        match self {
-            Eye::At(e) => e - p,
-            Eye::Towards(d) => d,
-        }
-    }
 }
 
 /// Mesh `i`'s model-space positions and normals for this frame: posed,
@@ -145,19 +133,53 @@ struct PosedMesh {
 
 /// What a run's material adds to its lit colour, in the renderer's linear
 /// units (0–65535 a channel): set once a run.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Surface {
     /// The light it gives off (zero: none).
     emissive: glam::Vec3A,
     /// Drawn in its colour, whatever the lights.
     unlit: bool,
+    /// Its highlight: reflectance at normal incidence and α² (roughness
+    /// to the fourth); `None`: matte.
+    shine: Option<(glam::Vec3A, f32)>,
+    /// The share of its colour lit diffusely: 1 − metallic.
+    diffuse: f32,
+    /// Its triangles go through the specular fill (the plan's
+    /// [`Plan::shines`]).
+    shiny: bool,
+}
+
+impl Default for Surface {
+    fn default() -> Surface {
+        Surface {
+            emissive: glam::Vec3A::ZERO,
+            unlit: false,
+            shine: None,
+            diffuse: 1.0,
+            shiny: false,
+        }
+    }
 }
 
 impl Surface {
-    fn of(finish: &crate::scene::Finish) -> Surface {
+    /// A run's surface as `plan` draws it; `base` its colour (a metal
+    /// reflects in it).
+    fn of(finish: &crate::scene::Finish, base: crate::color::Lin, plan: &Plan) -> Surface {
+        let shine = finish.specular.filter(|_| !finish.unlit).map(|s| {
+            let base = glam::Vec3A::from(base.to_f32()) / 65535.0;
+            let dielectric = glam::Vec3A::from(s.reflectance);
+            let f0 = dielectric + (base - dielectric) * s.metallic;
+            let a = s.roughness * s.roughness;
+            (f0, a * a)
+        });
+        let shiny = plan.shines(shine.is_some());
+        let shine = shine.filter(|_| shiny);
         Surface {
             emissive: finish.emissive.to_lanes(),
             unlit: finish.unlit,
+            diffuse: shine.map_or(1.0, |_| 1.0 - finish.specular.map_or(0.0, |s| s.metallic)),
+            shine,
+            shiny,
         }
     }
 }
@@ -280,6 +302,7 @@ impl Renderer {
                 }
             },
             traversal: opts.traversal,
+            highlights: opts.highlights,
             precision: opts.precision,
             eye,
         };

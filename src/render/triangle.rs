@@ -27,7 +27,8 @@ use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
 use super::{Painter, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
-use crate::fill::{self, Attributes, ScreenTriangle, UvPlanes};
+use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
+use crate::options::Highlights;
 use crate::options::RenderOptions;
 use crate::raster::{
     self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup, SnappedTriangle,
@@ -36,6 +37,13 @@ use crate::scene::{Cull, Mesh, Scene};
 use crate::shade::Shading;
 use crate::texture::{Sampler, Texture};
 use crate::transform;
+
+/// A shining triangle's corners' unit normals and positions in the turned
+/// world, for the specular fill; `None` for a triangle of another run.
+type Shining = Option<Corners>;
+
+/// A triangle's corners' unit normals and positions in the turned world.
+type Corners = ([Vec3; 3], [Vec3; 3]);
 
 /// Where a triangle's model-space vertices are, and the matrix taking them
 /// to clip space: read only if it must be clipped.
@@ -76,16 +84,19 @@ impl Painter<'_> {
             // The plan's path; a run with a texture takes the general one,
             // which on the lean path skips (and counts) a triangle that
             // covers no sample once it is set up.
+            self.surface = Surface::of(&run.finish, run.color, p);
             let lean = p.lean.run && texture.is_none();
+            // A metal's colour is not lit diffusely: its share, once a run.
+            let diffuse = self.surface.diffuse;
             // Converted to lanes once a run, not once a face.
-            let run_color = run.color.to_lanes();
-            self.surface = Surface::of(&run.finish);
+            let run_color = run.color.to_lanes() * diffuse;
             // Every face is handed to the pipeline: counted once a run.
             self.stats.triangles_in += run.faces.len() as u64;
             for face in &mesh.faces[run.faces] {
                 let v = face.map(|i| &verts[i as usize]);
                 let inside = v[0].code | v[1].code | v[2].code == 0;
                 let base = || match &mesh.colors {
+                    Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
                     Some(c) => face.map(|i| c[i as usize].to_lanes()),
                     None => [run_color; 3],
                 };
@@ -105,7 +116,19 @@ impl Painter<'_> {
                     // keys: nothing more to count. The colours are read
                     // only if it covers a sample.
                     if !CentreKey::box_is_empty(v.map(|v| v.key)) {
-                        self.inside_triangle(stage, v, base, &t);
+                        // A shining run's normals and positions, found only
+                        // for a triangle that covers a sample.
+                        let shiny = self.surface.shiny;
+                        let shine = || {
+                            let model = Model {
+                                positions: f.positions,
+                                face: *face,
+                                mvp: &f.transforms.mvp64,
+                                world: &f.transforms.model,
+                            };
+                            corners(shiny, stage, v, &model)
+                        };
+                        self.inside_triangle(stage, v, (base, shine), &t);
                     }
                     continue;
                 }
@@ -199,6 +222,7 @@ impl Painter<'_> {
             self.stats.clip_rejected += 1;
             return;
         }
+        let shiny = self.surface.shiny;
         if v[0].code | v[1].code | v[2].code == 0 {
             // Inside every clip plane: set up first, so that culled
             // triangles and those covering no sample are never lit (the
@@ -215,6 +239,8 @@ impl Painter<'_> {
                 inv_w: v.map(|v| v.inv_w),
                 color,
                 uv,
+                // Found once a triangle is set up and lit, not for one culled.
+                shine: corners(shiny, stage, v, &model),
             };
             let grid = self.fb.grid();
             match stage.precision {
@@ -237,6 +263,7 @@ impl Painter<'_> {
         }
         // Clipped: lit before clipping (colours are interpolated along the
         // cut edges), facing told in the world.
+        let shine = corners(shiny, stage, v, &model);
         let Model {
             positions,
             face,
@@ -251,6 +278,7 @@ impl Painter<'_> {
             pos: positions[face[i] as usize].as_dvec3().extend(1.0),
             color: color[i],
             uv: uv[i],
+            weights: Vec3::AXES[i],
             snapped: (v[i].code == 0).then_some(Snapped {
                 fixed: v[i].fixed,
                 xy: v[i].xy,
@@ -264,12 +292,22 @@ impl Painter<'_> {
             Clipped::Clipped | Clipped::Inside => {
                 self.stats.clipped += 1;
                 for tri in poly.triangles() {
+                    // A piece's normals and positions, from its corners'
+                    // weights in the whole triangle.
+                    let shine = shine.map(|(n, p)| {
+                        let at = |w: Vec3, a: [Vec3; 3]| a[0] * w.x + a[1] * w.y + a[2] * w.z;
+                        (
+                            tri.map(|v| at(v.weights, n).normalize_or_zero()),
+                            tri.map(|v| at(v.weights, p)),
+                        )
+                    });
                     let screen = ScreenTriangle {
                         xy: tri.map(|v| v.xy),
                         z: tri.map(|v| v.z),
                         inv_w: tri.map(|v| v.inv_w),
                         color: tri.map(|v| v.color),
                         uv: tri.map(|v| v.uv),
+                        shine,
                     };
                     let grid = self.fb.grid();
                     match stage.precision {
@@ -344,15 +382,15 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: impl Fn() -> [Vec3A; 3],
+        (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn() -> Shining),
         t: &SnappedTriangle,
     ) {
         let (grid, band) = (self.fb.grid(), self.fb.band());
         match SmallSetup::of(t, grid, band) {
-            Some(s) => self.inside_fill(stage, v, &base, &s),
+            Some(s) => self.inside_fill(stage, v, (&base, &shine), &s),
             None => {
                 let s = Setup::of(t, grid, band);
-                self.inside_fill(stage, v, &base, &s);
+                self.inside_fill(stage, v, (&base, &shine), &s);
             }
         }
     }
@@ -364,7 +402,7 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
-        base: &impl Fn() -> [Vec3A; 3],
+        (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn() -> Shining),
         s: &C,
     ) {
         if !s.covers_any() {
@@ -380,7 +418,10 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&color);
-        self.fill_colour(s, &a, flat, stage);
+        match shine() {
+            Some(corners) => self.fill_shiny(s, &a, flat, (None, corners), stage),
+            None => self.fill_colour(s, &a, flat, stage),
+        }
     }
 
     /// The triangle's colour at each vertex. `back`: seen from behind, so
@@ -512,6 +553,12 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&t.color);
+        if let Some(corners) = t.shine {
+            let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
+            let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
+            self.fill_shiny(setup, &a, flat, (tex, corners), stage);
+            return;
+        }
         match texture {
             Some((texture, sampler)) => {
                 // Texture coordinates are planes over the screen, found
@@ -538,6 +585,34 @@ impl Painter<'_> {
         }
     }
 
+    /// [`Painter::fill`] of a triangle of a shining run (with its texture,
+    /// if any, and its corners' normals and positions), counted.
+    #[inline(always)]
+    fn fill_shiny<C: Coverage>(
+        &mut self,
+        setup: &C,
+        a: &Attributes,
+        flat: bool,
+        (tex, corners): (Option<(&Texture, Sampler, &UvPlanes)>, Corners),
+        stage: &Stage,
+    ) {
+        let shine = Shine::new(
+            setup.order(),
+            corners,
+            self.surface.shine,
+            (&stage.lights, stage.eye),
+            stage.highlights == Highlights::Vertex,
+        );
+        let done = self.sink(stage).shiny(setup, a, flat, tex, &shine);
+        if tex.is_some() {
+            self.stats.textured_samples += done.written;
+        }
+        if self.surface.shine.is_some() {
+            self.stats.specular_samples += done.written;
+        }
+        self.stats.count_fill(done);
+    }
+
     /// [`Painter::fill`] of a triangle without a texture, counted.
     #[inline(always)]
     pub(super) fn fill_colour<C: Coverage>(
@@ -556,4 +631,22 @@ impl Painter<'_> {
 /// signed area every set-up finds).
 fn front_facing(v: [&Vert; 3]) -> bool {
     raster::signed_area2(&v.map(|v| v.fixed)) > 0
+}
+
+/// What the specular fill reads of a triangle of a shiny run: its corners'
+/// unit normals (smooth shading's, or the face's) and positions in the
+/// turned world; `None` for other runs.
+#[inline(always)]
+fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Model<'_>) -> Shining {
+    if !shiny {
+        return None;
+    }
+    let world = model
+        .face
+        .map(|i| model.world.transform_point3(model.positions[i as usize]));
+    let normal = match stage.plan.shading {
+        Shading::Smooth => v.map(|v| v.normal),
+        _ => [transform::face_normal(world[0], world[1], world[2]); 3],
+    };
+    Some((normal, world))
 }

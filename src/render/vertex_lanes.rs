@@ -277,6 +277,7 @@ mod tests {
             viewport: Viewport::new(grid.width as f32, grid.height as f32),
             lights: Lights::new(&scene.lights),
             traversal: opts.traversal,
+            highlights: opts.highlights,
             precision: opts.precision,
             eye: Eye::Towards(Vec3::Z),
         };

@@ -12,7 +12,9 @@
 //! so only factors a file writes make a surface specular. OBJ's Phong
 //! exponent `Ns` becomes a roughness by the usual match of the Phong and
 //! GGX lobes (α = √(2 / (Ns + 2)), roughness = √α), its `Ks` the colour of
-//! the reflection at normal incidence.
+//! the reflection at normal incidence; except in files Blender's exporter
+//! wrote (it says so on the first line), which mean by them what Blender's
+//! importer reads back: reflectance 0.08·`Ks`, roughness 1 − √`Ns` / 30.
 
 use glam::Vec3;
 
@@ -20,7 +22,8 @@ use crate::color::Lin;
 
 /// A specular surface: the glTF core model's metallic-roughness (a GGX
 /// microfacet lobe with Smith's height-correlated visibility and Schlick's
-/// Fresnel), evaluated per sample by [`crate::shade`].
+/// Fresnel), evaluated per sample by the renderer (see
+/// [`crate::specular_reference`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Specular {
     /// Reflectance at normal incidence of the non-metal part, linear, each
@@ -65,6 +68,21 @@ impl Specular {
             roughness: alpha.sqrt().clamp(Self::MIN_ROUGHNESS, 1.0),
         })
     }
+
+    /// OBJ's `Ks` and `Ns` as Blender's exporter writes them: `Ks` its
+    /// Principled surface's specular (reflectance 0.08·`Ks`), `Ns` its
+    /// roughness r as (30·(1 − r))²; `None` where `Ks` is black or a
+    /// number is not finite.
+    pub fn blender(ks: Vec3, ns: f32) -> Option<Specular> {
+        if !ks.is_finite() || !ns.is_finite() || ks.max_element() <= 0.0 {
+            return None;
+        }
+        Some(Specular {
+            reflectance: (ks * 0.08).clamp(Vec3::ZERO, Vec3::ONE),
+            metallic: 0.0,
+            roughness: (1.0 - ns.max(0.0).sqrt() / 30.0).clamp(Self::MIN_ROUGHNESS, 1.0),
+        })
+    }
 }
 
 /// A material's finish; the default is matte, lit, and dark of itself:
@@ -103,6 +121,13 @@ mod tests {
         assert_eq!(s.roughness, Specular::MIN_ROUGHNESS);
         assert_eq!(Specular::phong(Vec3::ZERO, 10.0), None);
         assert_eq!(Specular::phong(Vec3::ONE, f32::NAN), None);
+    }
+
+    #[test]
+    fn blenders_defaults_are_its_principled_surface() {
+        // Ks 0.5, Ns 225: specular 0.5 (reflectance 0.04), roughness 0.5.
+        let s = Specular::blender(Vec3::splat(0.5), 225.0).unwrap();
+        assert_eq!((s.reflectance, s.roughness), (Vec3::splat(0.04), 0.5));
     }
 
     #[test]

@@ -248,6 +248,13 @@ impl Geometry {
         self.textures.get(index? as usize).map(|t| &**t)
     }
 
+    /// Whether any face's material has a highlight (and is lit).
+    pub fn shines(&self) -> bool {
+        self.materials
+            .iter()
+            .any(|r| r.finish.specular.is_some() && !r.finish.unlit)
+    }
+
     /// Whether any face's material gives off light.
     pub fn glows(&self) -> bool {
         self.materials

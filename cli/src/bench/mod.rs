@@ -12,6 +12,7 @@
 //! | precision | unsnapped f32 and f64 edge functions, the exact i64 fixed point | cracks and double hits on random tilings of the screen |
 //! | traversal | scan, bounding box, incremental, spans | samples that differ from spans, the default (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
+//! | highlights | per vertex, per sample | largest and mean colour error (0–255) against the same specular lobe in f64 at the true sphere's normal, on a white metal sphere |
 //! | texture filtering | nearest, bilinear, trilinear | largest and mean colour error (0–255) against an f64 reference supersampled 16×16 per sample, on a textured floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
 //! | palette matching | 256 and 16 colours, nearest in RGB, OKLab or OKLCh | mean OKLab distance to the colour sent; greys sent to a colour; hues moved over 45° |
@@ -44,7 +45,7 @@ use rastty::raster::{Precision, Traversal};
 use rastty::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
 use rastty::texture::FilterMode;
 use rastty::transform::Grid;
-use rastty::{Aa, Interpolation, RenderOptions};
+use rastty::{Aa, Highlights, Interpolation, RenderOptions};
 use rastty::{GlyphMode, Split};
 
 /// A scene to time, and whether it turns from frame to frame.
@@ -253,6 +254,20 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         });
     }
 
+    // 4b. Highlights.
+    for highlights in [Highlights::Vertex, Highlights::Sample] {
+        let (max, mean) = highlight_error(highlights);
+        rows.push(Row {
+            knob: "highlights",
+            setting: highlights.name().into(),
+            times: time_all(&RenderOptions {
+                highlights,
+                ..base()
+            }),
+            errors: vec![("max colour error", max), ("mean colour error", mean)],
+        });
+    }
+
     // 5. Texture filtering.
     for &filter in FilterMode::ALL {
         let (max, mean) = filter_error(filter);
@@ -385,6 +400,17 @@ mod tests {
         let (perspective, _) = interpolation_error(Interpolation::Perspective);
         assert!(perspective <= 2.0, "{perspective}");
         assert!(affine > 40.0, "{affine}");
+    }
+
+    #[test]
+    fn highlights_found_per_sample_err_less_than_per_vertex() {
+        let (vertex, vertex_mean) = highlight_error(Highlights::Vertex);
+        let (sample, sample_mean) = highlight_error(Highlights::Sample);
+        assert!(
+            sample < vertex && sample_mean < vertex_mean / 2.0,
+            "{sample} {vertex}"
+        );
+        assert!(sample <= 2.0, "{sample}");
     }
 
     #[test]

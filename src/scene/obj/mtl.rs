@@ -22,18 +22,27 @@ pub(super) struct Material {
     pub(super) emissive: Lin,
     /// Its `illum` is 0 or 1: no highlight.
     pub(super) dull: bool,
+    /// Written by Blender's exporter.
+    pub(super) blender: bool,
 }
 
 impl Material {
     /// Its finish: a highlight from `Ks` and `Ns` (`Ns` 0 without one:
-    /// the broadest) unless `illum` is 0 or 1, a glow from `Ke`.
+    /// the broadest) unless `illum` is 0 or 1, a glow from `Ke`. A file
+    /// from Blender's exporter means by them its Principled surface's
+    /// specular (reflectance 0.08·`Ks`) and roughness (1 − √`Ns` / 30), as
+    /// Blender's own importer reads them back.
     pub(super) fn finish(&self) -> crate::scene::Finish {
+        use crate::scene::Specular;
+        let ns = self.ns.unwrap_or(0.0);
         crate::scene::Finish {
             specular: self.ks.filter(|_| !self.dull).and_then(|ks| {
-                crate::scene::Specular::phong(
-                    glam::Vec3::from(ks.to_f32()) / 65535.0,
-                    self.ns.unwrap_or(0.0),
-                )
+                let ks = glam::Vec3::from(ks.to_f32()) / 65535.0;
+                if self.blender {
+                    Specular::blender(ks, ns)
+                } else {
+                    Specular::phong(ks, ns)
+                }
             }),
             emissive: self.emissive,
             unlit: false,
@@ -73,6 +82,7 @@ pub(super) fn mtl(
     let mut notes = Vec::new();
     let mut current: Option<Vec<u8>> = None;
     let mut unread: Vec<&'static str> = Vec::new();
+    let mut blender = false;
     let mut lines = Lines::new(file);
     loop {
         let (n, line) = match lines.next_line() {
@@ -80,6 +90,11 @@ pub(super) fn mtl(
             Ok(None) => break,
             Err((n, e)) => return Err(at(n, 1, e)),
         };
+        // Blender's exporter says so on its first line, and writes its
+        // own meaning into `Ks` and `Ns` (see `Material::finish`).
+        if n == 1 && line.starts_with(b"# Blender") {
+            blender = true;
+        }
         let mut c = Cursor::new(line);
         match c.word() {
             Some((b"newmtl", _)) => {
@@ -225,6 +240,9 @@ pub(super) fn mtl(
             }
             _ => {}
         }
+    }
+    if blender {
+        out.values_mut().for_each(|m| m.blender = true);
     }
     if !unread.is_empty() {
         notes.push(format!(
