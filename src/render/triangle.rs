@@ -92,63 +92,91 @@ impl Painter<'_> {
             let run_color = run.color.to_lanes() * diffuse;
             // Every face is handed to the pipeline: counted once a run.
             self.stats.triangles_in += run.faces.len() as u64;
-            for face in &mesh.faces[run.faces] {
-                let v = face.map(|i| &verts[i as usize]);
-                let inside = v[0].code | v[1].code | v[2].code == 0;
-                let base = || match &mesh.colors {
-                    Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
-                    Some(c) => face.map(|i| c[i as usize].to_lanes()),
-                    None => [run_color; 3],
-                };
-                if inside && lean {
-                    // Culled or without area: rejected before anything
-                    // else, as its set-up would reject it (snapped, so in
-                    // range).
-                    let t = match SnappedTriangle::in_range(v.map(|v| v.fixed), f.cull) {
-                        Ok(t) => t,
-                        Err(r) => {
-                            self.stats.raster.count_rejected(r);
-                            continue;
-                        }
-                    };
-                    self.stats.raster.triangles_drawn += 1;
-                    // No sample centre in its box, known from its vertices'
-                    // keys: nothing more to count. The colours are read
-                    // only if it covers a sample.
-                    if !CentreKey::box_is_empty(v.map(|v| v.key)) {
-                        // A shining run's normals and positions, found only
-                        // for a triangle that covers a sample.
-                        let shiny = self.surface.shiny;
-                        let shine = || {
-                            let model = Model {
-                                positions: f.positions,
-                                face: *face,
-                                mvp: &f.transforms.mvp64,
-                                world: &f.transforms.model,
-                            };
-                            corners(shiny, stage, v, &model)
-                        };
-                        self.inside_triangle(stage, v, (base, shine), &t);
-                    }
-                    continue;
-                }
-                let base = base();
-                let tex = texture.map(|(texture, sampler)| Tex {
-                    texture,
-                    sampler,
-                    uv: match &mesh.uvs {
-                        Some(uv) => face.map(|i| uv[i as usize]),
-                        None => [Vec2::ZERO; 3],
-                    },
-                });
-                let model = Model {
-                    positions: f.positions,
-                    face: *face,
-                    mvp: &f.transforms.mvp64,
-                    world: &f.transforms.model,
-                };
-                self.triangle(stage, v, base, f.cull, model, tex);
+            let faces = &mesh.faces[run.faces];
+            // Two copies of the loop: a matte run's carries no trace of the
+            // specular fill (its frames cost what they did before it).
+            if self.surface.shiny {
+                self.run_faces::<true>(stage, f, verts, faces, (lean, texture, run_color, diffuse));
+            } else {
+                self.run_faces::<false>(
+                    stage,
+                    f,
+                    verts,
+                    faces,
+                    (lean, texture, run_color, diffuse),
+                );
             }
+        }
+    }
+
+    /// Draws one run's faces: `SHINY` says whether they go through the
+    /// specular fill (the surface's `shiny`, as a constant).
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn run_faces<const SHINY: bool>(
+        &mut self,
+        stage: &Stage<'_>,
+        f: &Faces<'_>,
+        verts: &[Vert],
+        faces: &[[u32; 3]],
+        (lean, texture, run_color, diffuse): (bool, Option<(&Texture, Sampler)>, Vec3A, f32),
+    ) {
+        let mesh = f.mesh;
+        for face in faces {
+            let v = face.map(|i| &verts[i as usize]);
+            let inside = v[0].code | v[1].code | v[2].code == 0;
+            let base = || match &mesh.colors {
+                Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
+                Some(c) => face.map(|i| c[i as usize].to_lanes()),
+                None => [run_color; 3],
+            };
+            if inside && lean {
+                // Culled or without area: rejected before anything
+                // else, as its set-up would reject it (snapped, so in
+                // range).
+                let t = match SnappedTriangle::in_range(v.map(|v| v.fixed), f.cull) {
+                    Ok(t) => t,
+                    Err(r) => {
+                        self.stats.raster.count_rejected(r);
+                        continue;
+                    }
+                };
+                self.stats.raster.triangles_drawn += 1;
+                // No sample centre in its box, known from its vertices'
+                // keys: nothing more to count. The colours are read
+                // only if it covers a sample.
+                if !CentreKey::box_is_empty(v.map(|v| v.key)) {
+                    // A shining run's normals and positions, found only
+                    // for a triangle that covers a sample.
+                    let shine = || {
+                        let model = Model {
+                            positions: f.positions,
+                            face: *face,
+                            mvp: &f.transforms.mvp64,
+                            world: &f.transforms.model,
+                        };
+                        corners(SHINY, stage, v, &model)
+                    };
+                    self.inside_triangle(stage, v, (base, shine), &t);
+                }
+                continue;
+            }
+            let base = base();
+            let tex = texture.map(|(texture, sampler)| Tex {
+                texture,
+                sampler,
+                uv: match &mesh.uvs {
+                    Some(uv) => face.map(|i| uv[i as usize]),
+                    None => [Vec2::ZERO; 3],
+                },
+            });
+            let model = Model {
+                positions: f.positions,
+                face: *face,
+                mvp: &f.transforms.mvp64,
+                world: &f.transforms.model,
+            };
+            self.triangle::<SHINY>(stage, v, base, f.cull, model, tex);
         }
     }
 
@@ -174,7 +202,7 @@ impl Painter<'_> {
             self.verts.clear();
             self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
             let verts = std::mem::take(self.verts);
-            self.triangle(
+            self.triangle::<false>(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
                 tri.color
@@ -201,7 +229,7 @@ impl Painter<'_> {
     /// `model` is its vertices' model-space positions and the matrix taking
     /// them to clip space, for the clip path. The caller counts it in
     /// [`super::FrameStats::triangles_in`].
-    pub(super) fn triangle(
+    pub(super) fn triangle<const SHINY: bool>(
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
@@ -222,7 +250,7 @@ impl Painter<'_> {
             self.stats.clip_rejected += 1;
             return;
         }
-        let shiny = self.surface.shiny;
+        let shiny = SHINY;
         if v[0].code | v[1].code | v[2].code == 0 {
             // Inside every clip plane: set up first, so that culled
             // triangles and those covering no sample are never lit (the
