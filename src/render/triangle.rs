@@ -111,7 +111,7 @@ impl Painter<'_> {
 
     /// Draws one run's faces: `SHINY` says whether they go through the
     /// specular fill (the surface's `shiny`, as a constant).
-    #[inline(always)]
+    #[inline(never)]
     #[allow(clippy::type_complexity)]
     fn run_faces<const SHINY: bool>(
         &mut self,
