@@ -90,51 +90,15 @@ impl Sink<'_> {
     /// interpolated) times the texel, found only for the samples it is
     /// written to (each counted as written, and interpolated: texture
     /// coordinates are, whatever the colour).
+    #[inline(always)]
     pub(crate) fn textured<C: Coverage>(
         &mut self,
         setup: &C,
         a: &Attributes,
         flat: bool,
-        (texture, sampler, planes): (&Texture, Sampler, &UvPlanes),
+        texture: (&Texture, Sampler, &UvPlanes),
     ) -> Filled {
-        let grid = self.fb.grid();
-        let (at, samples, depths) = self.fb.split_mut();
-        let (mut covered, mut written) = (0u64, 0u64);
-        let shade = move |x: u32, y: u32, e: C::Weights| {
-            let lit = if flat { a.color[0] } else { a.lit(C::f32(e)) };
-            let (uv, dx, dy) = planes.at(x, y);
-            let texel = texture.sample(&sampler, uv, dx, dy);
-            Lin::from_lanes(lit * Vec3A::from(texel))
-        };
-        let tr = self.traversal;
-        // Each loop says whether it tested depth.
-        let (tested, depth) = if self.depth {
-            let tested = setup.walk_samples(grid, tr, |x, y, e| {
-                covered += 1;
-                let z = a.depth(C::f32(e));
-                let i = at.of(x, y);
-                if nearer(z, depths[i]) {
-                    written += 1;
-                    depths[i] = z;
-                    samples[i] = Some(shade(x, y, e));
-                }
-            });
-            (tested, true)
-        } else {
-            let tested = setup.walk_samples(grid, tr, |x, y, e| {
-                covered += 1;
-                let i = at.of(x, y);
-                if samples[i].is_none() {
-                    written += 1;
-                    samples[i] = Some(shade(x, y, e));
-                }
-            });
-            (tested, false)
-        };
-        if written > 0 {
-            self.fb.touch(setup.bounds());
-        }
-        Filled::of(covered, depth, written, a, tested)
+        self.shiny(setup, a, flat, Some(texture), None)
     }
 
     /// Fills a set-up triangle whose material shines: the lit colour (one,
@@ -142,14 +106,15 @@ impl Sink<'_> {
     /// specular light found at each sample it is written to from the
     /// interpolated normal and position (each counted as written and
     /// interpolated). A matte run (the full pipeline's) adds nothing, so
-    /// its samples are the other fills' to the bit.
+    /// its samples are the other fills' to the bit; without a shine it is
+    /// the textured fill.
     pub(crate) fn shiny<C: Coverage>(
         &mut self,
         setup: &C,
         a: &Attributes,
         flat: bool,
         texture: Option<(&Texture, Sampler, &UvPlanes)>,
-        shine: &Shine<'_>,
+        shine: Option<&Shine<'_>>,
     ) -> Filled {
         let grid = self.fb.grid();
         let (at, samples, depths) = self.fb.split_mut();
@@ -161,7 +126,9 @@ impl Sink<'_> {
                 let (uv, dx, dy) = planes.at(x, y);
                 lit *= Vec3A::from(texture.sample(&sampler, uv, dx, dy));
             }
-            if shine.f0.is_some() {
+            if let Some(shine) = shine
+                && shine.f0.is_some()
+            {
                 lit += shine.at(a.shares(e));
             }
             Lin::from_lanes(lit)
@@ -190,7 +157,7 @@ impl Sink<'_> {
             });
             (tested, false)
         };
-        if covered > 0 {
+        if written > 0 {
             self.fb.touch(setup.bounds());
         }
         Filled::of(covered, depth, written, a, tested)

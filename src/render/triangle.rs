@@ -631,7 +631,7 @@ impl Painter<'_> {
             (&stage.lights, stage.eye),
             stage.highlights == Highlights::Vertex,
         );
-        let done = self.sink(stage).shiny(setup, a, flat, tex, &shine);
+        let done = self.sink(stage).shiny(setup, a, flat, tex, Some(&shine));
         if tex.is_some() {
             self.stats.textured_samples += done.written;
         }
