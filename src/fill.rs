@@ -323,7 +323,7 @@ impl<'a> Shine<'a> {
         if n.dot(v) < 0.0 {
             n = -n;
         }
-        self.lights.specular_a(n, v, f0, self.a2) * 65535.0
+        self.lights.specular_a(n, v, p, f0, self.a2) * 65535.0
     }
 }
 

@@ -12,6 +12,7 @@
 //! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
 //! | rim light | a rim was asked for (`RenderOptions::rim`) and the scene is lit | no rim, or nothing lit |
 //! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
+//! | falloff | a point or spot light: each vertex's world position found, its light falling off with distance | only directional lights, or nothing lit |
 //! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
 //! | specular | a lit mesh's material shines (a highlight): its triangles shaded per sample | no material shines, nothing lit, or exact coverage (a triangle's mean colour) |
 //!
@@ -120,6 +121,10 @@ pub struct Plan {
     /// Whether any triangle reads a texture (see [`Plan::texture`] for
     /// one run of faces).
     pub texturing: Decision,
+    /// Whether lights are found from each vertex's position (point and
+    /// spot lights, whose light falls off with distance): the vertex stage
+    /// finds world positions, one vertex at a time.
+    pub falloff: Decision,
     /// Whether materials' emitted light is added (see
     /// [`crate::scene::Finish::emissive`]).
     pub glow: Decision,
@@ -239,6 +244,7 @@ impl Plan {
             rim: Decision::run(FORCED),
             texturing: Decision::run(FORCED),
             glow: Decision::run(FORCED),
+            falloff: Decision::run(FORCED),
             specular: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
@@ -303,6 +309,20 @@ impl Plan {
             Decision::run("a material gives off light: added to its faces after lighting")
         } else {
             Decision::skip("no material gives off light")
+        };
+        let positional = scene
+            .lights
+            .iter()
+            .take(crate::scene::MAX_LIGHTS)
+            .any(|l| l.kind.position().is_some());
+        let falloff = if !lit {
+            Decision::skip("nothing is lit")
+        } else if full {
+            Decision::run(FORCED)
+        } else if positional {
+            Decision::run("a point or spot light: each vertex lit from where it is")
+        } else {
+            Decision::skip("every light is directional")
         };
         let specular = if !lit {
             Decision::skip("nothing is lit")
@@ -397,6 +417,7 @@ impl Plan {
             rim,
             texturing,
             glow,
+            falloff,
             specular,
             filter: opts.filter,
             shading,
@@ -521,6 +542,7 @@ impl fmt::Display for Plan {
         writeln!(f, "lighting       {}", self.lighting)?;
         writeln!(f, "rim            {}", self.rim)?;
         writeln!(f, "texturing      {}", self.texturing)?;
+        writeln!(f, "falloff        {}", self.falloff)?;
         writeln!(f, "glow           {}", self.glow)?;
         writeln!(f, "specular       {}", self.specular)?;
         writeln!(f, "depth          {}", self.depth)?;

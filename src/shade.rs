@@ -24,7 +24,7 @@
 
 use glam::{Vec3, Vec3A, Vec4};
 
-use crate::scene::{Light, MAX_LIGHTS};
+use crate::scene::{Light, LightKind, MAX_LIGHTS};
 
 /// How surfaces are shaded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -53,6 +53,11 @@ pub struct Lights {
     /// so the same results, in fewer instructions.
     color: [Vec3A; MAX_LIGHTS],
     ambient: [f32; MAX_LIGHTS],
+    /// Where each point or spot light is and how its light falls off.
+    reach: [Reach; MAX_LIGHTS],
+    /// Whether any light is a point or a spot (then lighting needs
+    /// positions: [`Lights::lambert_at`]).
+    positional: bool,
     len: usize,
     /// The rim light's colour, in the renderer's linear units (0–65535 a
     /// channel), zero for none.
@@ -71,10 +76,55 @@ impl Lights {
             l.color[i] = Vec3A::from(
                 Vec3::from(crate::color::Lin::from_srgb(light.color).to_f32()) / 65535.0,
             );
+            // Times the intensity (1 for most lights: the same bits).
+            l.color[i] *= light.intensity;
             l.ambient[i] = light.ambient;
+            l.reach[i] = Reach::of(light);
         }
         l.len = lights.len().min(MAX_LIGHTS);
+        l.positional = l.reach[..l.len].iter().any(|r| !matches!(r, Reach::Far));
         l
+    }
+
+    /// Whether a light is a point or a spot, whose light depends on where
+    /// the surface is ([`Lights::lambert_at`]).
+    pub fn positional(&self) -> bool {
+        self.positional
+    }
+
+    /// The unit direction towards light `i` from `p` and the share of its
+    /// light that arrives there (1 for a directional light; for a point or
+    /// a spot, the inverse square of the distance, times the range's
+    /// window and the cone's).
+    #[inline(always)]
+    fn incident(&self, i: usize, p: Vec3) -> (Vec3, f32) {
+        match self.reach[i] {
+            Reach::Far => (self.towards[i], 1.0),
+            Reach::Near {
+                position,
+                inv_range4,
+                cone,
+            } => {
+                let d = position - p;
+                let d2 = d.length_squared();
+                if d2.is_nan() || d2 <= 0.0 {
+                    return (Vec3::ZERO, 0.0);
+                }
+                let t = d / d2.sqrt();
+                let mut share = 1.0 / d2;
+                if inv_range4 > 0.0 {
+                    share *= (1.0 - d2 * d2 * inv_range4).clamp(0.0, 1.0);
+                }
+                if let Some((scale, offset)) = cone {
+                    // The cosine between the spot's axis (where its light
+                    // travels, −towards) and the way to `p` (−t).
+                    let cd = self.towards[i].dot(t);
+                    let s = (cd * scale + offset).clamp(0.0, 1.0);
+                    share *= s * s;
+                }
+                (t, share)
+            }
+        }
     }
 
     /// The same with a rim light of `color` for an eye in direction
@@ -106,6 +156,21 @@ impl Lights {
         Vec3::from(self.lambert_a(n))
     }
 
+    /// The light reaching a surface of unit normal `n` at `p` (in the world
+    /// the lights are in), for every kind of light: for directional lights
+    /// alone the same bits as [`Lights::lambert`] (their share is 1, and a
+    /// product by 1 is exact).
+    #[inline(always)]
+    pub fn lambert_at(&self, n: Vec3, p: Vec3) -> Vec3A {
+        let mut sum = Vec3A::ZERO;
+        for i in 0..self.len {
+            let (t, share) = self.incident(i, p);
+            let direct = n.dot(t).max(0.0);
+            sum += self.color[i] * ((self.ambient[i] + (1.0 - self.ambient[i]) * direct) * share);
+        }
+        sum
+    }
+
     /// [`Lights::lambert`] in SIMD lanes, for the renderer.
     #[inline(always)]
     pub(crate) fn lambert_a(&self, n: Vec3) -> Vec3A {
@@ -124,9 +189,37 @@ impl Lights {
     /// height-correlated visibility, Schlick's Fresnel from `f0`) times
     /// `π` (the factor that makes Lambert's `1/π` lobe the plain `n·l`
     /// used here) and each light's direct share. `a2` is α², roughness to
-    /// the fourth. Zero where the eye or a light is behind the surface.
+    /// the fourth; `p` where the surface is (for point and spot lights).
+    /// Zero where the eye or a light is behind the surface.
     #[inline(always)]
-    pub(crate) fn specular_a(&self, n: Vec3, v: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
+    pub(crate) fn specular_a(&self, n: Vec3, v: Vec3, p: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
+        // Two copies of one loop: directional lights alone skip the
+        // positional match per light (their share of 1 folds away).
+        if self.positional {
+            self.specular_near(n, v, p, f0, a2)
+        } else {
+            self.specular_from(n, v, f0, a2, |i| (self.towards[i], 1.0))
+        }
+    }
+
+    /// [`Lights::specular_a`] with point or spot lights, out of line: the
+    /// fill that inlines the directional loop stays as short as it was.
+    #[inline(never)]
+    fn specular_near(&self, n: Vec3, v: Vec3, p: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
+        self.specular_from(n, v, f0, a2, |i| self.incident(i, p))
+    }
+
+    /// [`Lights::specular_a`] with `incident` giving each light's unit
+    /// direction and share.
+    #[inline(always)]
+    fn specular_from(
+        &self,
+        n: Vec3,
+        v: Vec3,
+        f0: Vec3A,
+        a2: f32,
+        incident: impl Fn(usize) -> (Vec3, f32),
+    ) -> Vec3A {
         let nv = n.dot(v);
         let mut sum = Vec3A::ZERO;
         // Written so that a NaN (a degenerate normal) counts as behind.
@@ -134,7 +227,7 @@ impl Lights {
             return sum;
         }
         for i in 0..self.len {
-            let l = self.towards[i];
+            let (l, share) = incident(i);
             let nl = n.dot(l);
             if nl.is_nan() || nl <= 0.0 {
                 continue;
@@ -151,7 +244,7 @@ impl Lights {
             let m = 1.0 - vh;
             let m5 = (m * m) * (m * m) * m;
             let f = f0 + (Vec3A::ONE - f0) * m5;
-            sum += self.color[i] * f * (pi_d * vis * nl * (1.0 - self.ambient[i]));
+            sum += self.color[i] * f * (pi_d * vis * nl * (1.0 - self.ambient[i]) * share);
         }
         sum
     }
@@ -176,6 +269,50 @@ impl Lights {
             }
         }
         sum
+    }
+}
+
+/// How a light's share falls off, set up once a frame.
+#[derive(Clone, Copy, Debug, Default)]
+enum Reach {
+    /// A directional light: all of it everywhere.
+    #[default]
+    Far,
+    /// A point or a spot light.
+    Near {
+        position: Vec3,
+        /// 1/range⁴, 0 for no range.
+        inv_range4: f32,
+        /// A spot's cone as glTF's scale and offset of the cosine:
+        /// `1 / (cos inner − cos outer)` and `−cos outer` times it.
+        cone: Option<(f32, f32)>,
+    },
+}
+
+impl Reach {
+    fn of(light: &Light) -> Reach {
+        let inv_range4 = |r: Option<f32>| r.map_or(0.0, |r| 1.0 / (r * r * r * r));
+        match light.kind {
+            LightKind::Directional => Reach::Far,
+            LightKind::Point { position, range } => Reach::Near {
+                position,
+                inv_range4: inv_range4(range),
+                cone: None,
+            },
+            LightKind::Spot {
+                position,
+                range,
+                inner,
+                outer,
+            } => {
+                let scale = 1.0 / (inner.cos() - outer.cos()).max(1e-3);
+                Reach::Near {
+                    position,
+                    inv_range4: inv_range4(range),
+                    cone: Some((scale, -outer.cos() * scale)),
+                }
+            }
+        }
     }
 }
 
@@ -220,6 +357,7 @@ mod tests {
             direction: Vec3::NEG_Z,
             color: Rgb::WHITE,
             ambient: 0.2,
+            ..Light::default()
         };
         let lights = Lights::new(&[light]);
         assert_eq!(lights.lambert(Vec3::Z), Vec3::ONE);

@@ -58,6 +58,7 @@ fn scene(geometry: Geometry, lights: &[(Vec3, Rgb, f32)]) -> Scene {
             direction,
             color,
             ambient,
+            ..Default::default()
         });
     }
     b.build().unwrap()
@@ -308,6 +309,7 @@ fn a_mirror_like_sphere_lit_from_the_eye_has_its_brightest_sample_where_the_refl
             direction: FROM_THE_EYE.0,
             color: FROM_THE_EYE.1,
             ambient: FROM_THE_EYE.2,
+            ..Default::default()
         })
         .build()
         .unwrap();
@@ -389,8 +391,8 @@ proptest::proptest! {
         let scene = Scene::builder()
             .camera(Camera { projection, eye: Vec3::new(0.0, 0.0, distance), target: Vec3::ZERO, ..Camera::default() })
             .mesh(Mesh::of(Arc::new(sphere), Rgb::new(90, 160, 220)))
-            .light(rastty::scene::Light { direction: Vec3::new(-1.0, -0.5, -1.0), color: Rgb::new(255, 240, 220), ambient: 0.1 })
-            .light(rastty::scene::Light { direction: Vec3::new(1.0, 0.2, -0.3), color: Rgb::new(80, 90, 160), ambient: 0.0 })
+            .light(rastty::scene::Light { direction: Vec3::new(-1.0, -0.5, -1.0), color: Rgb::new(255, 240, 220), ambient: 0.1, ..Default::default() })
+            .light(rastty::scene::Light { direction: Vec3::new(1.0, 0.2, -0.3), color: Rgb::new(80, 90, 160), ambient: 0.0, ..Default::default() })
             .build()
             .unwrap();
         let o = RenderOptions {

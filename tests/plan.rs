@@ -13,7 +13,7 @@ use rastty::Pipeline;
 use rastty::Shading;
 use rastty::raster::Traversal;
 use rastty::scene::Cull;
-use rastty::scene::{Camera, Light, Projection, Shape, Triangle, TriangleColor};
+use rastty::scene::{Camera, Light, LightKind, Projection, Shape, Triangle, TriangleColor};
 use rastty::{
     Frame, GlyphMode, RenderOptions, Renderer, Threads, color::ColorDepth, color::Rgb,
     encode::Encoder, scene::Scene,
@@ -223,12 +223,37 @@ fn light() -> impl Strategy<Value = Light> {
         (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..-0.1),
         color(),
         0.0f32..0.5,
+        kind(),
+        0.25f32..4.0,
     )
-        .prop_map(|((x, y, z), color, ambient)| Light {
+        .prop_map(|((x, y, z), color, ambient, kind, intensity)| Light {
             direction: Vec3::new(x, y, z).normalize(),
             color,
             ambient,
+            kind,
+            intensity,
         })
+}
+
+/// Directional, point and spot lights, placed about the scene's middle,
+/// with and without a range.
+fn kind() -> impl Strategy<Value = LightKind> {
+    let position =
+        (-3.0f32..3.0, -3.0f32..3.0, -1.0f32..4.0).prop_map(|(x, y, z)| Vec3::new(x, y, z));
+    let range = prop::option::of(0.5f32..8.0);
+    prop_oneof![
+        Just(LightKind::Directional),
+        (position.clone(), range.clone())
+            .prop_map(|(position, range)| LightKind::Point { position, range }),
+        (position, range, 0.0f32..0.6, 0.05f32..0.9).prop_map(|(position, range, inner, gap)| {
+            LightKind::Spot {
+                position,
+                range,
+                inner,
+                outer: (inner + gap).min(std::f32::consts::FRAC_PI_2),
+            }
+        }),
+    ]
 }
 
 /// Loose triangles, meshes, a camera, lights and a background.

@@ -117,6 +117,10 @@ impl Renderer {
                 plan.lighting,
                 format!("{} evaluations", s.lighting_evaluations),
             ),
+            ("falloff", plan.falloff, {
+                let near = scene.lights.iter().filter(|l| l.kind.position().is_some());
+                format!("{} point or spot lights", near.count())
+            }),
             (
                 "rim",
                 plan.rim,

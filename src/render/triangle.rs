@@ -500,13 +500,21 @@ impl Painter<'_> {
                 self.stats.lighting_evaluations += 1;
                 let side = if back { -1.0 } else { 1.0 };
                 let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
-                let light = stage.lights.lambert_a(face * side);
+                let light = if stage.plan.falloff.run {
+                    lit_at_centre(stage, v, face * side)
+                } else {
+                    stage.lights.lambert_a(face * side)
+                };
                 let lit = [b(0) * light, b(1) * light, b(2) * light];
                 if !stage.plan.rim.run {
                     return lit;
                 }
                 let rim = stage.lights.rim_a(face * side);
                 lit.map(|c| c + rim)
+            }
+            Shading::Smooth if back && stage.plan.falloff.run => {
+                self.stats.lighting_evaluations += 3;
+                back_lit_at(stage, v, base)
             }
             Shading::Smooth if back => {
                 self.stats.lighting_evaluations += 3;
@@ -677,4 +685,29 @@ fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Model<'_>) -> 
         _ => [transform::face_normal(world[0], world[1], world[2]); 3],
     };
     Some((normal, world))
+}
+
+/// The light on a flat face of normal `n` at its centre, from lights
+/// whose light depends on where the surface is (out of line, as
+/// [`back_lit_at`], for the same reason).
+#[inline(never)]
+fn lit_at_centre(stage: &Stage<'_>, v: [&Vert; 3], n: Vec3) -> Vec3A {
+    let centre = (v[0].world + v[1].world + v[2].world) / 3.0;
+    stage.lights.lambert_at(n, centre)
+}
+
+/// A smooth triangle's back lit at its corners by lights whose light
+/// depends on where a corner is ([`Painter::light`]'s rare arm, out of
+/// line so that the common arms stay as short as they were).
+#[inline(never)]
+fn back_lit_at(stage: &Stage<'_>, v: [&Vert; 3], base: [Vec3A; 3]) -> [Vec3A; 3] {
+    let l = |i: usize| {
+        let lit = base[i] * stage.lights.lambert_at(-v[i].normal, v[i].world);
+        if stage.plan.rim.run {
+            lit + stage.lights.rim_a(-v[i].normal)
+        } else {
+            lit
+        }
+    };
+    [l(0), l(1), l(2)]
 }

@@ -44,8 +44,8 @@ impl Transforms {
 /// A vertex after the vertex stage.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
-    /// Position in the turned world, where lights live (flat shading only:
-    /// zero otherwise).
+    /// Position in the turned world, where lights live (flat shading, and
+    /// point and spot lights, only: zero otherwise).
     pub(super) world: Vec3,
     /// Unit normal in the turned world (smooth shading only: zero
     /// otherwise).
@@ -119,8 +119,9 @@ pub(super) fn vertex(
     clip_tests: bool,
 ) -> Vert {
     let smooth = stage.plan.shading == Shading::Smooth;
-    // World positions serve flat shading only (the clip path finds its own
-    // from the model).
+    // World positions serve flat shading and point and spot lights (the
+    // clip path finds its own from the model).
+    let falloff = stage.plan.falloff.run;
     let flat = stage.plan.shading == Shading::Flat;
     let clip = t.mvp * p.extend(1.0);
     // Inside bounds need no test: every plane's code is 0.
@@ -138,7 +139,7 @@ pub(super) fn vertex(
         Vec3::ZERO
     };
     let mut v = Vert {
-        world: if flat {
+        world: if flat || falloff {
             t.model.transform_point3(p)
         } else {
             Vec3::ZERO
@@ -148,7 +149,11 @@ pub(super) fn vertex(
         ..Vert::default()
     };
     if smooth {
-        v.light = stage.lights.lambert(normal);
+        v.light = if falloff {
+            Vec3::from(stage.lights.lambert_at(normal, v.world))
+        } else {
+            stage.lights.lambert(normal)
+        };
     }
     if code == 0 {
         v.inv_w = 1.0 / clip.w;

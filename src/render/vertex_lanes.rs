@@ -28,7 +28,8 @@
 //! shading) have normals whose transform is finite and not zero or
 //! subnormal. Any other four go through [`vertex`] one at a time, as does
 //! a mesh's last one to three vertices and every mesh under flat shading
-//! (which needs world positions, and is not the default). Deciding costs a
+//! or point and spot lights (which need world positions, and are not the
+//! default). Deciding costs a
 //! few lane comparisons; the edge cases keep their single, tested path.
 
 use glam::{Vec3, Vec4};
@@ -67,8 +68,9 @@ pub(super) fn vertices(
         },
         clip_tested: if clip_tests { n as u64 } else { 0 },
     };
-    if n < 4 || shading == Shading::Flat {
-        // A loose triangle's three vertices, or flat shading.
+    if n < 4 || shading == Shading::Flat || stage.plan.falloff.run {
+        // A loose triangle's three vertices, flat shading, or lights whose
+        // light depends on where a vertex is.
         out.extend(positions.iter().zip(normals).map(one));
         return work;
     }

@@ -115,11 +115,34 @@ impl From<CullDef> for Cull {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct LightDef {
-    pub(super) direction: Exact<f32, 3>,
+    #[serde(default)]
+    pub(super) kind: LightKindDef,
+    pub(super) direction: Option<Exact<f32, 3>>,
     #[serde(default = "white")]
     pub(super) color: Rgb,
     #[serde(default = "default_ambient")]
     pub(super) ambient: f32,
+    #[serde(default = "one")]
+    pub(super) intensity: f32,
+    pub(super) position: Option<Exact<f32, 3>>,
+    pub(super) range: Option<f32>,
+    /// Degrees.
+    pub(super) inner_cone: Option<f32>,
+    /// Degrees.
+    pub(super) outer_cone: Option<f32>,
+}
+
+#[derive(Deserialize, Clone, Copy, Default, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum LightKindDef {
+    #[default]
+    Directional,
+    Point,
+    Spot,
+}
+
+pub(super) fn one() -> f32 {
+    1.0
 }
 
 pub(super) fn white() -> Rgb {

@@ -44,6 +44,15 @@
 //! direction = [-1.0, -1.0, -1.0]  # the direction the light travels
 //! color = "#ffffff"
 //! ambient = 0.15
+//! intensity = 1.0                 # times the colour (at distance 1 for a point or a spot)
+//!
+//! [[light]]
+//! kind = "spot"                   # "directional" (the default) | "point" | "spot"
+//! position = [0.0, 3.0, 0.0]      # a point's or a spot's
+//! direction = [0.0, -1.0, 0.0]    # a spot's: the middle of its cone
+//! range = 10.0                    # optional: no light beyond
+//! inner_cone = 10.0               # degrees: whole light within
+//! outer_cone = 30.0               # degrees: none beyond (at most 90)
 //! ```
 //!
 //! Parsing is strict: unknown keys, wrong types, a colour that is not
@@ -89,7 +98,7 @@ pub use load::load_geometry;
 use load::*;
 pub(crate) use load::{Format, Kind};
 pub use mesh::MAX_LIGHTS;
-pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, MaterialRun, Mesh};
+pub use mesh::{Cull, DEFAULT_CREASE, Geometry, Light, LightKind, MaterialRun, Mesh};
 pub use shapes::Shape;
 
 use crate::color::{ColorSpace, Rgb};
@@ -307,6 +316,15 @@ impl Scene {
             _ => fit,
         }
         .transformed(mesh.model);
+        // The file's own lights where it places any (carried as the model
+        // is: the up axis's turn is a permutation, no scaling), else the rig.
+        let lights = if mesh.geometry.lights.is_empty() {
+            Light::rig().to_vec()
+        } else {
+            let model = mesh.model;
+            let own = mesh.geometry.lights.iter().take(MAX_LIGHTS);
+            own.map(|l| l.transformed(model, 1.0)).collect()
+        };
         Scene {
             background: None,
             camera: Camera {
@@ -323,7 +341,7 @@ impl Scene {
             },
             triangles: Vec::new(),
             meshes: vec![mesh],
-            lights: Light::rig().to_vec(),
+            lights,
             notes: Vec::new(),
         }
     }
@@ -636,12 +654,7 @@ impl Scene {
                 if scene.lights.len() == MAX_LIGHTS {
                     return Err(at(span, format!("at most {} lights", MAX_LIGHTS)));
                 }
-                let l = l.into_inner();
-                let light = Light {
-                    direction: Vec3::from(l.direction),
-                    color: l.color,
-                    ambient: l.ambient,
-                };
+                let light = light_of(l.into_inner()).map_err(|e| at(span.clone(), e))?;
                 light.check().map_err(|e| at(span, e))?;
                 scene.lights.push(Light {
                     direction: light.direction.normalize(),
@@ -659,6 +672,50 @@ impl Scene {
         }
         Ok(scene)
     }
+}
+
+/// A scene file's `[[light]]`: a directional light needs a direction, a
+/// point light a position, a spot both (its cone in degrees, glTF's
+/// defaults 0° and 45°).
+fn light_of(l: LightDef) -> std::result::Result<Light, String> {
+    let position = l.position.map(Vec3::from);
+    let direction = l.direction.map(Vec3::from);
+    let needs = |kind: &str, keys: &str| format!("a {kind} light needs {keys}");
+    let kind = match l.kind {
+        LightKindDef::Directional => {
+            if position.is_some() || l.range.is_some() {
+                return Err("a directional light has no `position` or `range`".into());
+            }
+            LightKind::Directional
+        }
+        LightKindDef::Point => LightKind::Point {
+            position: position.ok_or_else(|| needs("point", "`position`"))?,
+            range: l.range,
+        },
+        LightKindDef::Spot => LightKind::Spot {
+            position: position.ok_or_else(|| needs("spot", "`position` and `direction`"))?,
+            range: l.range,
+            inner: l.inner_cone.unwrap_or(0.0).to_radians(),
+            outer: l.outer_cone.unwrap_or(45.0).to_radians(),
+        },
+    };
+    if l.kind != LightKindDef::Spot && (l.inner_cone.is_some() || l.outer_cone.is_some()) {
+        return Err("only a spot light has `inner_cone` and `outer_cone`".into());
+    }
+    let direction = match (l.kind, direction) {
+        (LightKindDef::Point, None) => Vec3::NEG_Y,
+        (LightKindDef::Point, Some(_)) => return Err("a point light has no `direction`".into()),
+        (LightKindDef::Directional, None) => return Err(needs("directional", "`direction`")),
+        (LightKindDef::Spot, None) => return Err(needs("spot", "`position` and `direction`")),
+        (_, Some(d)) => d,
+    };
+    Ok(Light {
+        direction,
+        color: l.color,
+        ambient: l.ambient,
+        kind,
+        intensity: l.intensity,
+    })
 }
 
 /// The texels a model's images held as decoded, as the texel budget counts

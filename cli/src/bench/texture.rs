@@ -256,6 +256,7 @@ pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
             direction,
             color: light,
             ambient: 0.0,
+            ..Light::default()
         })
         .build()
         .expect("the sphere's scene");

@@ -32,6 +32,7 @@
 //! refused with the accessor named, never read out of bounds.
 
 mod buffers;
+mod material;
 mod rig;
 
 use std::collections::BTreeMap;
@@ -41,20 +42,20 @@ use std::sync::Arc;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::buffer::Data;
 use ::gltf::mesh::Mode;
-use ::gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use ::gltf::{Accessor, Gltf, Semantic};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
 use super::file;
-use super::mesh::{Geometry, MaterialRun};
+use super::mesh::{Geometry, Light, MaterialRun};
 use super::obj::Loaded;
 use crate::color::Lin;
 use crate::error::{Error, Result};
 use crate::scene::anim::Posed;
-use crate::texture::{Filter, Mipmap, Sampler, Texture, Wrap};
+use crate::texture::Texture;
 use buffers::{buffers, check, fetch};
+use material::{finish, light_of, sampler};
 use rig::{Placement, RigParts};
 
 /// The deepest node hierarchy walked (the format has no cycles; a broken
@@ -172,6 +173,19 @@ pub fn parse(
         if node.camera().is_some() {
             *ignored.entry("cameras").or_default() += 1;
         }
+        if let Some(light) = node.light() {
+            if out.lights.len() == crate::scene::MAX_LIGHTS {
+                *ignored.entry("lights beyond the eighth").or_default() += 1;
+            } else {
+                out.lights.push(light_of(&light, world).map_err(|e| {
+                    bad(format!(
+                        "node {}: light {}: {e}",
+                        node.index(),
+                        light.index()
+                    ))
+                })?);
+            }
+        }
         if let Some(mesh) = node.mesh() {
             for prim in mesh.primitives() {
                 let placed = match (&mut rig, me) {
@@ -224,7 +238,9 @@ pub fn parse(
     if out.faces.is_empty() {
         return Err(bad("no triangles to draw".into()));
     }
+    let lights = std::mem::take(&mut out.lights);
     let mut geometry = out.geometry(name, options.crease);
+    geometry.lights = lights;
     geometry.rig = rig.map(Arc::new);
     Ok(Loaded { geometry, notes })
 }
@@ -361,6 +377,8 @@ struct Parts<'a> {
     base: Vec<Lin>,
     faces: Vec<[u32; 3]>,
     materials: Vec<MaterialRun>,
+    /// The lights its nodes place (`KHR_lights_punctual`), in the world.
+    lights: Vec<Light>,
 }
 
 impl Parts<'_> {
@@ -714,52 +732,9 @@ fn positions_count(prim: &::gltf::Primitive) -> usize {
     prim.get(&Semantic::Positions).map_or(0, |a| a.count())
 }
 
-/// A glTF sampler as rastty's (an unset filter is the best there is).
-fn sampler(s: &::gltf::texture::Sampler) -> Sampler {
-    let wrap = |w| match w {
-        WrappingMode::Repeat => Wrap::Repeat,
-        WrappingMode::MirroredRepeat => Wrap::MirroredRepeat,
-        WrappingMode::ClampToEdge => Wrap::ClampToEdge,
-    };
-    let (min, mipmap) = match s.min_filter() {
-        Some(MinFilter::Nearest) => (Filter::Nearest, Mipmap::None),
-        Some(MinFilter::Linear) => (Filter::Linear, Mipmap::None),
-        Some(MinFilter::NearestMipmapNearest) => (Filter::Nearest, Mipmap::Nearest),
-        Some(MinFilter::LinearMipmapNearest) => (Filter::Linear, Mipmap::Nearest),
-        Some(MinFilter::NearestMipmapLinear) => (Filter::Nearest, Mipmap::Linear),
-        Some(MinFilter::LinearMipmapLinear) | None => (Filter::Linear, Mipmap::Linear),
-    };
-    Sampler {
-        wrap_u: wrap(s.wrap_s()),
-        wrap_v: wrap(s.wrap_t()),
-        mag: match s.mag_filter() {
-            Some(MagFilter::Nearest) => Filter::Nearest,
-            Some(MagFilter::Linear) | None => Filter::Linear,
-        },
-        min,
-        mipmap,
-    }
-}
-
 /// The extensions rastty draws (others are noted as not drawn).
-const DRAWN_EXTENSIONS: &[&str] = &["KHR_materials_unlit", "KHR_materials_emissive_strength"];
-
-/// A material's finish: its metallic-roughness factors where they are not
-/// both glTF's defaults (1 and 1, a rough metal, drawn matte: see
-/// [`crate::scene::Finish`]) or a metallic-roughness texture is given, its
-/// emissive factor times `KHR_materials_emissive_strength`, and
-/// `KHR_materials_unlit`. Factors are linear, as glTF's colours are.
-fn finish(material: &gltf::Material<'_>) -> crate::scene::Finish {
-    let pbr = material.pbr_metallic_roughness();
-    let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
-    let said = (metallic, roughness) != (1.0, 1.0) || pbr.metallic_roughness_texture().is_some();
-    let strength = material.emissive_strength().unwrap_or(1.0);
-    let e = material.emissive_factor().map(|c| c * strength);
-    crate::scene::Finish {
-        specular: said
-            .then(|| crate::scene::Specular::metallic_roughness(metallic, roughness))
-            .flatten(),
-        emissive: Lin::from_unit(e),
-        unlit: material.unlit(),
-    }
-}
+const DRAWN_EXTENSIONS: &[&str] = &[
+    "KHR_materials_unlit",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+];
