@@ -26,13 +26,16 @@
 //! normal and position with the same weights as its colour and adds the
 //! highlight found there ([`Shine`]); a matte run sent through it (the full
 //! pipeline sends every run) adds nothing, so it writes what the other
-//! fills write, to the bit. Alpha and normal maps are to plug in likewise.
+//! fills write, to the bit. A material that is not opaque takes a fill of
+//! its own ([`Sink::see_through`]): a mask's coverage decided per sample
+//! before the depth test, or blending over what is drawn.
 
 use glam::{Vec2, Vec3, Vec3A};
 
 use crate::color::Lin;
 use crate::framebuffer::Target;
 use crate::raster::{Coverage, Traversal};
+use crate::scene::AlphaMode;
 use crate::shade::Lights;
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
@@ -120,18 +123,7 @@ impl Sink<'_> {
         let (at, samples, depths) = self.fb.split_mut();
         let (mut covered, mut written) = (0u64, 0u64);
         let shade = move |x: u32, y: u32, e: C::Weights| {
-            let e = C::f32(e);
-            let mut lit = if flat { a.color[0] } else { a.lit(e) };
-            if let Some((texture, sampler, planes)) = texture {
-                let (uv, dx, dy) = planes.at(x, y);
-                lit *= Vec3A::from(texture.sample(&sampler, uv, dx, dy));
-            }
-            if let Some(shine) = shine
-                && shine.f0.is_some()
-            {
-                lit += shine.at(a.shares(e));
-            }
-            Lin::from_lanes(lit)
+            surface_at(a, flat, texture, shine, x, y, C::f32(e))
         };
         let tr = self.traversal;
         let (tested, depth) = if self.depth {
@@ -157,6 +149,54 @@ impl Sink<'_> {
             });
             (tested, false)
         };
+        if written > 0 {
+            self.fb.touch(setup.bounds());
+        }
+        Filled::of(covered, depth, written, a, tested)
+    }
+
+    /// Fills a set-up triangle of a material that is not opaque, as
+    /// [`Sink::shiny`] does, with `alpha` deciding each covered sample: cut
+    /// where a mask's alpha is below its cut-off (nothing written, depth
+    /// included), composited in linear light over what the sample holds
+    /// where it blends (depth tested, not written).
+    #[inline(never)]
+    pub(crate) fn see_through<C: Coverage>(
+        &mut self,
+        setup: &C,
+        a: &Attributes,
+        (flat, texture, shine): Reads<'_>,
+        alpha: &AlphaFill<'_>,
+    ) -> Filled {
+        let grid = self.fb.grid();
+        let depth = self.depth;
+        let (at, samples, depths) = self.fb.split_mut();
+        let (mut covered, mut written) = (0u64, 0u64);
+        let tested = setup.walk_samples(grid, self.traversal, |x, y, e| {
+            covered += 1;
+            let opacity = alpha.at(x, y);
+            let blend = match alpha.mode {
+                AlphaMode::Mask { cutoff } if opacity < cutoff => return,
+                AlphaMode::Blend => true,
+                _ => false,
+            };
+            let i = at.of(x, y);
+            let z = a.depth(C::f32(e));
+            if depth && !nearer(z, depths[i]) || !depth && !blend && samples[i].is_some() {
+                return;
+            }
+            written += 1;
+            let c = surface_at(a, flat, texture, shine, x, y, C::f32(e));
+            samples[i] = Some(if blend {
+                let under = samples[i].unwrap_or(alpha.behind).to_lanes();
+                Lin::from_lanes(under + (c.to_lanes() - under) * opacity)
+            } else {
+                if depth {
+                    depths[i] = z;
+                }
+                c
+            });
+        });
         if written > 0 {
             self.fb.touch(setup.bounds());
         }
@@ -324,6 +364,68 @@ impl<'a> Shine<'a> {
             n = -n;
         }
         self.lights.specular_a(n, v, p, f0, self.a2) * 65535.0
+    }
+}
+
+/// A surface's colour at sample (`x`, `y`) of edge weights `e`: the lit
+/// colour (one, or interpolated), times the texel where it has a texture,
+/// plus the highlight where it shines.
+#[inline(always)]
+fn surface_at(
+    a: &Attributes,
+    flat: bool,
+    texture: Option<(&Texture, Sampler, &UvPlanes)>,
+    shine: Option<&Shine<'_>>,
+    x: u32,
+    y: u32,
+    e: [f32; 3],
+) -> Lin {
+    let mut lit = if flat { a.color[0] } else { a.lit(e) };
+    if let Some((texture, sampler, planes)) = texture {
+        let (uv, dx, dy) = planes.at(x, y);
+        lit *= Vec3A::from(texture.sample(&sampler, uv, dx, dy));
+    }
+    if let Some(shine) = shine
+        && shine.f0.is_some()
+    {
+        lit += shine.at(a.shares(e));
+    }
+    Lin::from_lanes(lit)
+}
+
+/// What a sample's colour is found from: one colour (`flat`) or
+/// interpolated, the texture, the highlight.
+pub(crate) type Reads<'a> = (
+    bool,
+    Option<(&'a Texture, Sampler, &'a UvPlanes)>,
+    Option<&'a Shine<'a>>,
+);
+
+/// A run's alpha as [`Sink::see_through`] applies it.
+pub(crate) struct AlphaFill<'a> {
+    /// A mask's cut-off, or blending.
+    pub mode: AlphaMode,
+    /// The material's alpha.
+    pub factor: f32,
+    /// Its alpha texture, read as the base colour's texture is (same
+    /// coordinates and sampler).
+    pub texture: Option<(&'a Texture, Sampler, &'a UvPlanes)>,
+    /// What a blended sample with nothing drawn under it is composited
+    /// over: the scene's background, or black.
+    pub behind: Lin,
+}
+
+impl AlphaFill<'_> {
+    /// The alpha at sample (`x`, `y`).
+    #[inline(always)]
+    fn at(&self, x: u32, y: u32) -> f32 {
+        match self.texture {
+            Some((t, s, planes)) => {
+                let (uv, dx, dy) = planes.at(x, y);
+                self.factor * t.sample(&s, uv, dx, dy).x
+            }
+            None => self.factor,
+        }
     }
 }
 

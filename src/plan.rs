@@ -15,6 +15,7 @@
 //! | falloff | a point or spot light: each vertex's world position found, its light falling off with distance | only directional lights, or nothing lit |
 //! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
 //! | specular | a lit mesh's material shines (a highlight): its triangles shaded per sample | no material shines, nothing lit, or exact coverage (a triangle's mean colour) |
+//! | alpha | a material is masked or blended: its triangles, and only they, take the see-through fill (blended ones after the rest, back to front) | every material is opaque, or exact coverage (drawn opaque) |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -131,6 +132,9 @@ pub struct Plan {
     /// Whether triangles of shining materials get a specular highlight,
     /// found per sample (see [`Plan::shines`] for one run of faces).
     pub specular: Decision,
+    /// Whether materials that are masked or blended are drawn so (see
+    /// [`Plan::sees_through`] for one run of faces).
+    pub alpha: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
@@ -246,6 +250,7 @@ impl Plan {
             glow: Decision::run(FORCED),
             falloff: Decision::run(FORCED),
             specular: Decision::run(FORCED),
+            alpha: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
             full: true,
@@ -335,6 +340,15 @@ impl Plan {
         } else {
             Decision::skip("no material shines")
         };
+        let alpha = if opts.aa == Aa::Exact {
+            Decision::skip("exact coverage draws every material opaque")
+        } else if full {
+            Decision::run(FORCED)
+        } else if scene.meshes.iter().any(|m| m.geometry.sees_through()) {
+            Decision::run("a material is masked or blended: its samples decided by its alpha")
+        } else {
+            Decision::skip("every material is opaque")
+        };
         let interpolation = if full {
             Decision::run(FORCED)
         } else if textured {
@@ -419,6 +433,7 @@ impl Plan {
             glow,
             falloff,
             specular,
+            alpha,
             filter: opts.filter,
             shading,
             full,
@@ -464,6 +479,15 @@ impl Plan {
     /// skipping it for matte runs changes nothing.
     pub fn shines(&self, shines: bool) -> bool {
         self.specular.run && (shines || self.full)
+    }
+
+    /// Whether a run of faces of `alpha` goes through the see-through
+    /// fill: a masked or blended one, and in the full pipeline every run
+    /// (an opaque one writing what the other fills write), so that the
+    /// property test proves that skipping it for opaque runs changes
+    /// nothing.
+    pub fn sees_through(&self, alpha: &crate::scene::Alpha) -> bool {
+        self.alpha.run && (alpha.mode != crate::scene::AlphaMode::Opaque || self.full)
     }
 
     /// Whether a triangle whose vertices have these colours is
@@ -545,6 +569,7 @@ impl fmt::Display for Plan {
         writeln!(f, "falloff        {}", self.falloff)?;
         writeln!(f, "glow           {}", self.glow)?;
         writeln!(f, "specular       {}", self.specular)?;
+        writeln!(f, "alpha          {}", self.alpha)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         writeln!(f, "perspective    {}", self.perspective)?;

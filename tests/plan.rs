@@ -144,9 +144,24 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
         (0.0f32..360.0, 0.0f32..360.0),
         0.3f32..1.5,
         prop::sample::select(vec![Cull::Back, Cull::None, Cull::Front]),
+        alpha(),
     )
-        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull)| {
+        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull, alpha)| {
             let mut m = shape.mesh(c);
+            if let Some(alpha) = alpha {
+                // The second half of its faces masked or blended.
+                let g = m.geometry_mut();
+                g.materials = vec![rastty::scene::MaterialRun {
+                    first: (g.faces.len() / 2) as u32,
+                    color: None,
+                    texture: None,
+                    finish: rastty::scene::Finish {
+                        alpha,
+                        ..Default::default()
+                    },
+                }];
+                g.analyze();
+            }
             m.model = rastty::transform::model(
                 Vec3::splat(s),
                 Vec3::new(rx, ry, 0.0),
@@ -155,6 +170,24 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
             m.cull = cull;
             m
         })
+}
+
+/// Opaque (no material) mostly; else a mask or a blend of some alpha.
+fn alpha() -> impl Strategy<Value = Option<rastty::scene::Alpha>> {
+    use rastty::scene::{Alpha, AlphaMode};
+    prop_oneof![
+        3 => Just(None),
+        1 => (0.0f32..=1.0, 0.0f32..=1.0).prop_map(|(cutoff, factor)| Some(Alpha {
+            mode: AlphaMode::Mask { cutoff },
+            factor,
+            texture: None,
+        })),
+        1 => (0.0f32..=1.0).prop_map(|factor| Some(Alpha {
+            mode: AlphaMode::Blend,
+            factor,
+            texture: None,
+        })),
+    ]
 }
 
 /// A cube or a sphere with one corner pushed in (by as little as a

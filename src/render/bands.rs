@@ -36,6 +36,8 @@ use crate::transform::{Band, Rect};
 pub(super) struct BandWork {
     stats: FrameStats,
     poly: Polygon,
+    /// A blended run's faces, back to front (scratch).
+    sorted: Vec<[u32; 3]>,
     /// The loose triangles' vertices, one triangle at a time.
     verts: Vec<Vert>,
     /// Unused: bands are not anti-aliased.
@@ -51,6 +53,7 @@ impl Default for BandWork {
         BandWork {
             stats: FrameStats::default(),
             poly: Polygon::default(),
+            sorted: Vec::new(),
             verts: Vec::new(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
@@ -105,6 +108,7 @@ impl Renderer {
         bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);
         let (verts, meshes, posed) = (&self.verts, &self.meshes, &self.posed);
+        let blended = super::blended_meshes(scene, p, vp, turn);
         let job = |k: usize,
                    band: &mut BandWork,
                    samples: &mut [Option<crate::color::Lin>],
@@ -119,6 +123,7 @@ impl Renderer {
                 surface: Default::default(),
                 stats: &mut band.stats,
                 poly: &mut band.poly,
+                sorted: &mut band.sorted,
                 verts: &mut band.verts,
                 acc: &mut band.acc,
             };
@@ -130,9 +135,20 @@ impl Renderer {
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                painter.faces(stage, &faces, &verts[range.clone()]);
+                painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Opaque);
             }
             painter.loose(scene, opts, stage, vp, turn);
+            for &i in &blended {
+                let mesh = &scene.meshes[i];
+                let (range, transforms) = &meshes[i];
+                let faces = Faces {
+                    mesh,
+                    positions: super::vertices_of(posed, p, i, mesh).0,
+                    transforms,
+                    cull: opts.cull.unwrap_or(mesh.cull),
+                };
+                painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Blend);
+            }
             band.known = blit::blit_band(
                 painter.fb.view(),
                 opts.glyphs,

@@ -170,6 +170,11 @@ impl Renderer {
                 ),
             ),
             (
+                "alpha",
+                plan.alpha,
+                format!("{} samples drawn by their alpha", s.alpha_samples),
+            ),
+            (
                 "lean path",
                 plan.lean,
                 format!(

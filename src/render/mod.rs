@@ -68,6 +68,63 @@ struct Stage<'a> {
     /// Where the viewer is, to tell which side of a face is seen: a point
     /// (perspective) or a direction towards the viewer (parallel views).
     eye: Eye,
+    /// What a blended sample with nothing under it is composited over: the
+    /// scene's background, or black.
+    behind: crate::color::Lin,
+}
+
+/// Which runs a pass over the meshes draws: blended runs are drawn after
+/// every other, back to front.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pass {
+    /// Every run but the blended ones.
+    Opaque,
+    /// The blended runs alone.
+    Blend,
+}
+
+/// The meshes with a blended material (none unless the plan draws alpha),
+/// the farthest first: by the depth of their bounding sphere's centre, in
+/// the order a back-to-front pass draws them.
+fn blended_meshes(scene: &Scene, plan: &Plan, vp: Mat4, turn: Mat4) -> Vec<usize> {
+    use crate::scene::AlphaMode;
+    if !plan.alpha.run {
+        return Vec::new();
+    }
+    let mut order: Vec<(f32, usize)> = (scene.meshes.iter().enumerate())
+        .filter(|(_, m)| {
+            m.geometry
+                .materials
+                .iter()
+                .any(|r| r.finish.alpha.mode == AlphaMode::Blend)
+        })
+        .map(|(i, m)| {
+            let centre = m
+                .geometry
+                .bounding_sphere()
+                .map_or(Vec3::ZERO, |(c, _)| c.as_vec3());
+            let clip = vp * turn * m.model * centre.extend(1.0);
+            (clip.z / clip.w, i)
+        })
+        .collect();
+    // Larger depth is nearer: the smallest first.
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    order.into_iter().map(|(_, i)| i).collect()
+}
+
+/// `faces` into `out`, the farthest first: by the depth of each face's
+/// centre, as the model-view-projection puts it (larger depth is nearer).
+/// Faces whose depths tie keep their order.
+fn back_to_front(faces: &[[u32; 3]], f: &Faces<'_>, out: &mut Vec<[u32; 3]>) {
+    let mvp = f.transforms.mvp;
+    let depth = |face: &[u32; 3]| {
+        let c = face.map(|i| f.positions[i as usize]);
+        let clip = mvp * ((c[0] + c[1] + c[2]) / 3.0).extend(1.0);
+        clip.z / clip.w
+    };
+    out.clear();
+    out.extend_from_slice(faces);
+    out.sort_by(|a, b| depth(a).total_cmp(&depth(b)));
 }
 
 /// Mesh `i`'s model-space positions and normals for this frame: posed,
@@ -91,6 +148,8 @@ pub struct Renderer {
     frame: Frame,
     verts: Vec<Vert>,
     poly: Polygon,
+    /// A blended run's faces, back to front (scratch).
+    sorted: Vec<[u32; 3]>,
     stats: FrameStats,
     plan: Option<Plan>,
     times: FrameTimes,
@@ -133,8 +192,11 @@ struct PosedMesh {
 
 /// What a run's material adds to its lit colour, in the renderer's linear
 /// units (0–65535 a channel): set once a run.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Surface {
+    /// Its alpha and alpha texture, where the plan draws it through the
+    /// see-through fill ([`Plan::sees_through`]).
+    see: Option<(crate::scene::Alpha, Option<Arc<crate::texture::Texture>>)>,
     /// The light it gives off (zero: none).
     emissive: glam::Vec3A,
     /// Drawn in its colour, whatever the lights.
@@ -152,6 +214,7 @@ struct Surface {
 impl Default for Surface {
     fn default() -> Surface {
         Surface {
+            see: None,
             emissive: glam::Vec3A::ZERO,
             unlit: false,
             shine: None,
@@ -175,6 +238,7 @@ impl Surface {
         let shiny = plan.shines(shine.is_some());
         let shine = shine.filter(|_| shiny);
         Surface {
+            see: None,
             emissive: finish.emissive.to_lanes(),
             unlit: finish.unlit,
             diffuse: shine.map_or(1.0, |_| 1.0 - finish.specular.map_or(0.0, |s| s.metallic)),
@@ -193,6 +257,8 @@ struct Painter<'a> {
     surface: Surface,
     stats: &'a mut FrameStats,
     poly: &'a mut Polygon,
+    /// A blended run's faces, back to front.
+    sorted: &'a mut Vec<[u32; 3]>,
     verts: &'a mut Vec<Vert>,
     acc: &'a mut Vec<[f32; 4]>,
 }
@@ -211,6 +277,7 @@ impl Renderer {
             frame: Frame::default(),
             verts: Vec::new(),
             poly: Polygon::default(),
+            sorted: Vec::new(),
             stats: FrameStats::default(),
             plan: None,
             times: FrameTimes::default(),
@@ -305,6 +372,9 @@ impl Renderer {
             highlights: opts.highlights,
             precision: opts.precision,
             eye,
+            behind: scene
+                .background
+                .map_or(crate::color::Lin::BLACK, crate::color::Lin::from_srgb),
         };
 
         self.pose(scene, p);
@@ -349,6 +419,7 @@ impl Renderer {
                 surface: Surface::default(),
                 stats: &mut self.stats,
                 poly: &mut self.poly,
+                sorted: &mut self.sorted,
                 verts: &mut self.verts,
                 acc: &mut self.acc,
             },
@@ -442,11 +513,34 @@ impl Renderer {
             };
             // Borrowed out of the painter for the loop, and put back.
             let verts = std::mem::take(painter.verts);
-            painter.faces(stage, &faces, &verts);
+            painter.faces(stage, &faces, &verts, Pass::Opaque);
             *painter.verts = verts;
             times.triangles += lap();
         }
         painter.loose(scene, opts, stage, vp, turn);
+        // Blended runs last, the farthest mesh first, each mesh's vertices
+        // found again (one mesh's are kept at a time).
+        for i in blended_meshes(scene, p, vp, turn) {
+            let mesh = &scene.meshes[i];
+            let transforms = Transforms::new(vp, turn * mesh.model);
+            painter.verts.clear();
+            let (positions, normals) = vertices_of(posed, p, i, mesh);
+            // Counted once, in the first pass (as bands, which keep every
+            // mesh's vertices, count them).
+            let counted = *painter.stats;
+            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
+            *painter.stats = counted;
+            let faces = Faces {
+                mesh,
+                positions,
+                transforms: &transforms,
+                cull: opts.cull.unwrap_or(mesh.cull),
+            };
+            let verts = std::mem::take(painter.verts);
+            painter.faces(stage, &faces, &verts, Pass::Blend);
+            *painter.verts = verts;
+        }
+        times.triangles += lap();
     }
 
     /// The last frame [`Renderer::render`] drew (not one drawn with

@@ -27,6 +27,9 @@ pub struct FrameStats {
     /// Triangles whose colours had their material's emitted light added
     /// (after lighting; every triangle shaded where the plan adds glow).
     pub glowing_triangles: u64,
+    /// Samples a masked or blended material's alpha decided (those it
+    /// drew; the full pipeline counts every run's).
+    pub alpha_samples: u64,
     /// Per-sample depth comparisons.
     pub depth_tests: u64,
     /// Samples written with an interpolated colour (not a flat write): a
@@ -72,6 +75,7 @@ impl FrameStats {
         }
         self.lighting_evaluations += band.lighting_evaluations;
         self.glowing_triangles += band.glowing_triangles;
+        self.alpha_samples += band.alpha_samples;
         self.depth_tests += band.depth_tests;
         self.interpolated_samples += band.interpolated_samples;
         self.textured_samples += band.textured_samples;

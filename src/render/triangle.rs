@@ -24,16 +24,16 @@
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
 use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
-use super::{Painter, Stage, Surface};
+use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
-use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
+use crate::fill::{self, AlphaFill, Attributes, ScreenTriangle, Shine, UvPlanes};
 use crate::options::Highlights;
 use crate::options::RenderOptions;
 use crate::raster::{
     self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup, SnappedTriangle,
 };
-use crate::scene::{Cull, Mesh, Scene};
+use crate::scene::{AlphaMode, Cull, Mesh, Scene};
 use crate::shade::Shading;
 use crate::texture::{Sampler, Texture};
 use crate::transform;
@@ -76,23 +76,41 @@ pub(super) struct Faces<'a> {
 impl Painter<'_> {
     /// Draws one mesh's faces, whose vertices went through the vertex stage
     /// into `verts`.
-    pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert]) {
+    pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert], pass: Pass) {
         let p = stage.plan;
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
+            let blend = p.alpha.run && run.finish.alpha.mode == AlphaMode::Blend;
+            if blend != (pass == Pass::Blend) {
+                continue;
+            }
             let texture = p.texture(run.texture);
             // The plan's path; a run with a texture takes the general one,
             // which on the lean path skips (and counts) a triangle that
             // covers no sample once it is set up.
             self.surface = Surface::of(&run.finish, run.color, p);
-            let lean = p.lean.run && texture.is_none();
+            if p.sees_through(&run.finish.alpha) {
+                // Its alpha texture is read through the base texture's
+                // coordinates: none without one.
+                let alpha_texture = (run.finish.alpha.texture)
+                    .filter(|_| texture.is_some())
+                    .and_then(|i| mesh.geometry.textures.get(i as usize).cloned());
+                self.surface.see = Some((run.finish.alpha, alpha_texture));
+            }
+            let lean = p.lean.run && texture.is_none() && self.surface.see.is_none();
             // A metal's colour is not lit diffusely: its share, once a run.
             let diffuse = self.surface.diffuse;
             // Converted to lanes once a run, not once a face.
             let run_color = run.color.to_lanes() * diffuse;
             // Every face is handed to the pipeline: counted once a run.
             self.stats.triangles_in += run.faces.len() as u64;
-            let faces = &mesh.faces[run.faces];
+            let mut sorted = std::mem::take(self.sorted);
+            let faces = if blend {
+                super::back_to_front(&mesh.faces[run.faces], f, &mut sorted);
+                &sorted[..]
+            } else {
+                &mesh.faces[run.faces]
+            };
             // Two copies of the loop: a matte run's carries no trace of the
             // specular fill (its frames cost what they did before it).
             if self.surface.shiny {
@@ -106,6 +124,7 @@ impl Painter<'_> {
                     (lean, texture, run_color, diffuse),
                 );
             }
+            *self.sorted = sorted;
         }
     }
 
@@ -589,6 +608,10 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&t.color);
+        if self.surface.see.is_some() {
+            self.fill_see_through(setup, t, &a, flat, stage, texture);
+            return;
+        }
         if let Some(corners) = t.shine {
             let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
             let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
@@ -640,6 +663,58 @@ impl Painter<'_> {
             stage.highlights == Highlights::Vertex,
         );
         let done = self.sink(stage).shiny(setup, a, flat, tex, Some(&shine));
+        if tex.is_some() {
+            self.stats.textured_samples += done.written;
+        }
+        if self.surface.shine.is_some() {
+            self.stats.specular_samples += done.written;
+        }
+        self.stats.count_fill(done);
+    }
+
+    /// [`Painter::fill`] of a triangle of a masked or blended run (with
+    /// its texture and highlight, if any), counted. Out of line: the
+    /// opaque fills inlined beside it stay as they were.
+    #[inline(never)]
+    fn fill_see_through<C: Coverage>(
+        &mut self,
+        setup: &C,
+        t: &ScreenTriangle,
+        a: &Attributes,
+        flat: bool,
+        stage: &Stage,
+        texture: Option<(&Texture, Sampler)>,
+    ) {
+        let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
+        let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
+        let shine = t.shine.map(|corners| {
+            Shine::new(
+                setup.order(),
+                corners,
+                self.surface.shine,
+                (&stage.lights, stage.eye),
+                stage.highlights == Highlights::Vertex,
+            )
+        });
+        let Some((alpha, alpha_texture)) = &self.surface.see else {
+            return;
+        };
+        let fill = AlphaFill {
+            mode: alpha.mode,
+            factor: alpha.factor,
+            texture: (alpha_texture.as_deref().zip(tex))
+                .map(|(at, (_, sampler, planes))| (at, sampler, planes)),
+            behind: stage.behind,
+        };
+        // The sink built from the fields (as `sink` does), beside the
+        // borrowed surface.
+        let mut sink = fill::Sink {
+            fb: self.fb.reborrow(),
+            depth: stage.plan.depth.run,
+            traversal: stage.traversal,
+        };
+        let done = sink.see_through(setup, a, (flat, tex, shine.as_ref()), &fill);
+        self.stats.alpha_samples += done.written;
         if tex.is_some() {
             self.stats.textured_samples += done.written;
         }

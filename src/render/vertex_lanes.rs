@@ -282,6 +282,7 @@ mod tests {
             highlights: opts.highlights,
             precision: opts.precision,
             eye: Eye::Towards(Vec3::Z),
+            behind: crate::color::Lin::BLACK,
         };
         f(&stage, &Transforms::new(vp, turn * scene.meshes[0].model));
     }

@@ -1,10 +1,12 @@
 //! A material's finish: what its surface does with light beyond its colour
 //! (a specular highlight, from glTF's metallic-roughness or OBJ's `Ks` and
-//! `Ns`), the light it gives off itself (emissive), and whether lights
-//! reach it at all (unlit).
+//! `Ns`), the light it gives off itself (emissive), whether lights reach
+//! it at all (unlit), and how much of what is behind shows through (alpha:
+//! masked or blended, with the base texture's alpha channel).
 //!
-//! Trade-offs. A finish is a few numbers a run of faces, not a texture:
-//! the maps (metallic-roughness, emissive, occlusion, normal) are for
+//! Trade-offs. A finish is a few numbers a run of faces, not a texture
+//! (except alpha's, which is the base colour's texture's own): the maps
+//! (metallic-roughness, emissive, occlusion, normal) are for
 //! later work and are noted where a file has them. A file that says
 //! nothing of its finish is drawn matte, as before: glTF's defaults
 //! (metallic 1, roughness 1) describe a rough metal, which without light
@@ -96,6 +98,51 @@ pub struct Finish {
     /// Drawn in its colour whatever the lights (glTF's
     /// `KHR_materials_unlit`).
     pub unlit: bool,
+    /// How much of what is behind it shows through.
+    pub alpha: Alpha,
+}
+
+/// How a material's coverage (glTF's `alphaMode`) is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum AlphaMode {
+    /// Every covered sample is the surface's (alpha ignored).
+    #[default]
+    Opaque,
+    /// A sample is the surface's where its alpha is at least `cutoff`, and
+    /// left as it was (nothing written, not even depth) elsewhere: a
+    /// coverage decision per sample, as exact as a triangle's edge.
+    Mask {
+        /// The least alpha drawn (glTF's `alphaCutoff`, 0.5 by default).
+        cutoff: f32,
+    },
+    /// Composited over what is behind in linear light, `alpha` of the
+    /// surface's colour and the rest of the sample's; drawn after every
+    /// opaque surface, back to front, testing depth without writing it.
+    Blend,
+}
+
+/// A material's alpha: its mode, its factor (glTF's `baseColorFactor`'s
+/// fourth number, OBJ's `d`) and the texture whose alpha channel
+/// multiplies it (an index into [`crate::scene::Geometry::textures`], read
+/// through the base colour's coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Alpha {
+    /// How coverage is drawn.
+    pub mode: AlphaMode,
+    /// The alpha of the whole material, in [0, 1].
+    pub factor: f32,
+    /// The texture of its alpha channel (held in every channel, linear).
+    pub texture: Option<u32>,
+}
+
+impl Default for Alpha {
+    fn default() -> Alpha {
+        Alpha {
+            mode: AlphaMode::Opaque,
+            factor: 1.0,
+            texture: None,
+        }
+    }
 }
 
 impl Finish {

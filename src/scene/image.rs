@@ -47,6 +47,37 @@ pub fn decode(
     sampler: Sampler,
     max_texels: u64,
 ) -> Result<Texture, String> {
+    let rgb = open(bytes, max_texels)?.into_rgb8();
+    Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
+}
+
+/// The alpha channel of a PNG image as a texture (linear, as alpha is, in
+/// every channel), `None` for an image without one; under the same checks
+/// and budget as [`decode`].
+pub fn decode_alpha(
+    bytes: &[u8],
+    name: &str,
+    sampler: Sampler,
+    max_texels: u64,
+) -> Result<Option<Texture>, String> {
+    let image = open(bytes, max_texels)?;
+    if !image.color().has_alpha() {
+        return Ok(None);
+    }
+    let a = image.into_rgba8();
+    let texels = a.pixels().map(|p| [f32::from(p.0[3]) / 255.0; 3]).collect();
+    let (w, h) = a.dimensions();
+    Ok(Some(Texture::from_linear(
+        format!("{name} (alpha)"),
+        w,
+        h,
+        texels,
+        sampler,
+    )))
+}
+
+/// A PNG or JPEG image decoded within the side, allocation and texel limits.
+fn open(bytes: &[u8], max_texels: u64) -> Result<image::DynamicImage, String> {
     use image::ImageDecoder as _;
     let format = match image::guess_format(bytes) {
         Ok(f @ (ImageFormat::Png | ImageFormat::Jpeg)) => f,
@@ -71,7 +102,5 @@ pub fn decode(
             "a {w}×{h} image is {texels} texels, more than the {max_texels} left in the texel budget (--max-texels raises it)"
         ));
     }
-    let image = image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
-    let rgb = image.into_rgb8();
-    Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
+    image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())
 }

@@ -269,6 +269,14 @@ impl Geometry {
             .any(|r| r.finish.emissive != Lin::BLACK)
     }
 
+    /// Whether any material is masked or blended.
+    pub fn sees_through(&self) -> bool {
+        use crate::scene::AlphaMode;
+        self.materials
+            .iter()
+            .any(|r| r.finish.alpha.mode != AlphaMode::Opaque)
+    }
+
     /// Whether any face is drawn with a texture.
     pub fn textured(&self) -> bool {
         self.materials

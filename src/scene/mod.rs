@@ -93,7 +93,7 @@ pub use builder::SceneBuilder;
 pub(crate) use camera::Fit;
 pub use camera::{Camera, Projection};
 use def::*;
-pub use finish::{Finish, Specular};
+pub use finish::{Alpha, AlphaMode, Finish, Specular};
 pub use load::load_geometry;
 use load::*;
 pub(crate) use load::{Format, Kind};

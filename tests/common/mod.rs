@@ -140,6 +140,21 @@ pub fn png_rgb(w: u32, h: u32, pixels: &[[u8; 3]]) -> Vec<u8> {
     out
 }
 
+/// A PNG of 8-bit RGBA pixels.
+pub fn png_rgba(w: u32, h: u32, pixels: &[[u8; 4]]) -> Vec<u8> {
+    assert_eq!(pixels.len(), (w * h) as usize);
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, w, h);
+    enc.set_color(png::ColorType::Rgba);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().unwrap();
+    writer
+        .write_image_data(&pixels.iter().flatten().copied().collect::<Vec<u8>>())
+        .unwrap();
+    writer.finish().unwrap();
+    out
+}
+
 /// A textured mesh as glTF parts: positions, texture coordinates,
 /// triangle indices, the image (PNG bytes, or `image_uri` naming it) and
 /// the sampler's JSON (`{}` for the defaults).

@@ -101,5 +101,25 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
             .flatten(),
         emissive: Lin::from_unit(e),
         unlit: material.unlit(),
+        alpha: alpha(material),
+    }
+}
+
+/// A material's `alphaMode`, `alphaCutoff` and base colour alpha (JSON has
+/// no NaN; a factor outside [0, 1] is held to it). The texture's alpha is
+/// the primitive's to add, once the image is read.
+fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
+    use crate::scene::AlphaMode;
+    let mode = match material.alpha_mode() {
+        ::gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
+        ::gltf::material::AlphaMode::Mask => AlphaMode::Mask {
+            cutoff: material.alpha_cutoff().unwrap_or(0.5).max(0.0),
+        },
+        ::gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+    };
+    crate::scene::Alpha {
+        mode,
+        factor: material.pbr_metallic_roughness().base_color_factor()[3].clamp(0.0, 1.0),
+        texture: None,
     }
 }

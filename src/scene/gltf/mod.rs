@@ -10,7 +10,8 @@
 //! format says. Read: `POSITION`, `NORMAL` (when every primitive has them;
 //! otherwise normals are computed as for OBJ), `COLOR_0`, `TEXCOORD_0`,
 //! and the material's `baseColorFactor` (glTF colours are linear light
-//! already) and `baseColorTexture` with its sampler (filters and wrap
+//! already; its alpha, with `alphaMode` and `alphaCutoff`, see
+//! [`crate::scene::Alpha`]) and `baseColorTexture` with its sampler (filters and wrap
 //! modes; an unset filter is trilinear). Buffers and images come from the
 //! GLB's binary chunk, data URIs, or files beside the `.gltf`; images are
 //! PNG or JPEG, sRGB-encoded, decoded once each however many materials
@@ -23,8 +24,10 @@
 //!
 //! Not read, and said in one note: points and lines, textures read through
 //! a second texture coordinate set, the other material textures (normal,
-//! occlusion, emissive, metallic-roughness), cameras, and extensions. An extension the file marks as
-//! required is an error, since the model cannot be drawn right without it.
+//! occlusion, emissive, metallic-roughness), cameras, and extensions other
+//! than unlit, emissive strength and punctual lights (`material.rs`). An
+//! extension the file marks as required is an error, since the model
+//! cannot be drawn right without it.
 //!
 //! Trade-offs: the crate parses and validates the JSON and resolves
 //! buffers; the byte ranges of the accessors used are checked here before
@@ -353,8 +356,9 @@ struct Images<'a> {
     root: Option<&'a ::gltf::json::Root>,
     /// Notes on the files read.
     notes: Vec<String>,
-    /// The texture made of each glTF texture, as an index into `textures`.
-    decoded: FxHashMap<usize, u32>,
+    /// The texture made of each glTF texture's colour (and alpha: `true`),
+    /// as an index into `textures` (`None`: an image without alpha).
+    decoded: FxHashMap<(usize, bool), Option<u32>>,
 }
 
 /// The primitives gathered so far, in world space.
@@ -403,7 +407,7 @@ impl Parts<'_> {
             *ignored.entry("morph targets").or_default() += 1;
         }
         let material = prim.material();
-        let finish = finish(&material);
+        let mut finish = finish(&material);
         let others = [
             material.normal_texture().is_some(),
             material.occlusion_texture().is_some(),
@@ -420,7 +424,14 @@ impl Parts<'_> {
                 .or_default() += n_others;
         }
         let texture = match material.pbr_metallic_roughness().base_color_texture() {
-            Some(info) if info.tex_coord() == 0 => Some(self.texture(&info.texture(), buffers)?),
+            Some(info) if info.tex_coord() == 0 => {
+                // A mask's or a blend's alpha is the texture's alpha
+                // channel times the factor.
+                if finish.alpha.mode != crate::scene::AlphaMode::Opaque {
+                    finish.alpha.texture = self.texture(&info.texture(), buffers, true)?;
+                }
+                self.texture(&info.texture(), buffers, false)?
+            }
             Some(_) => {
                 *ignored
                     .entry("textures on a second coordinate set")
@@ -631,12 +642,15 @@ impl Parts<'_> {
 
     /// The texture made of glTF texture `t` (decoded the first time), as
     /// an index into `self.textures`.
+    /// The texture of glTF texture `t`'s colour, or with `alpha` of its
+    /// alpha channel (`None` for an image without one), decoded once each.
     fn texture(
         &mut self,
         t: &::gltf::Texture,
         buffers: &[Data],
-    ) -> std::result::Result<u32, String> {
-        if let Some(&id) = self.images.decoded.get(&t.index()) {
+        alpha: bool,
+    ) -> std::result::Result<Option<u32>, String> {
+        if let Some(&id) = self.images.decoded.get(&(t.index(), alpha)) {
             return Ok(id);
         }
         let index = t.source().index();
@@ -691,14 +705,19 @@ impl Parts<'_> {
             (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
             (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
         };
-        let texture =
-            super::image::decode(bytes, &what, sampler(&t.sampler()), self.images.texels_left)
-                .map_err(bad)?;
-        let (w, h) = texture.original_size();
-        self.images.texels_left -= u64::from(w) * u64::from(h);
-        let id = self.textures.len() as u32;
-        self.textures.push(Arc::new(texture));
-        self.images.decoded.insert(t.index(), id);
+        let (sampler, left) = (sampler(&t.sampler()), self.images.texels_left);
+        let texture = if alpha {
+            super::image::decode_alpha(bytes, &what, sampler, left).map_err(bad)?
+        } else {
+            Some(super::image::decode(bytes, &what, sampler, left).map_err(bad)?)
+        };
+        let id = texture.map(|texture| {
+            let (w, h) = texture.original_size();
+            self.images.texels_left -= u64::from(w) * u64::from(h);
+            self.textures.push(Arc::new(texture));
+            self.textures.len() as u32 - 1
+        });
+        self.images.decoded.insert((t.index(), alpha), id);
         Ok(id)
     }
 

@@ -24,6 +24,8 @@ pub(super) struct Material {
     pub(super) dull: bool,
     /// Written by Blender's exporter.
     pub(super) blender: bool,
+    /// Its `d` (or 1 − `Tr`), in [0, 1]: below 1, blended.
+    pub(super) opacity: Option<f32>,
 }
 
 impl Material {
@@ -46,6 +48,14 @@ impl Material {
             }),
             emissive: self.emissive,
             unlit: false,
+            alpha: match self.opacity {
+                Some(d) if d < 1.0 => crate::scene::Alpha {
+                    mode: crate::scene::AlphaMode::Blend,
+                    factor: d,
+                    texture: None,
+                },
+                _ => crate::scene::Alpha::default(),
+            },
         }
     }
 }
@@ -212,8 +222,9 @@ pub(super) fn mtl(
                 out.entry(m.clone()).or_default().ns = Some(x);
             }
             Some((key @ (b"d" | b"Tr" | b"illum"), _)) => {
-                // Read for what they say: an opaque `d 1` or `Tr 0` draws as
-                // it is; anything else is transparency, not drawn (noted).
+                // Read for what they say: `d` in [0, 1] (or `Tr`, its
+                // complement) is the material's opacity, blended below 1;
+                // a value outside it is noted as not drawn.
                 let x = c.number().and_then(Result::ok).unwrap_or(f32::NAN);
                 let opaque = match key {
                     b"d" => x == 1.0,
@@ -226,9 +237,18 @@ pub(super) fn mtl(
                         true
                     }
                 };
-                let key = if key == b"d" { "d" } else { "Tr" };
-                if !opaque && !unread.contains(&key) {
-                    unread.push(key);
+                let d = match key {
+                    b"d" => Some(("d", x)),
+                    b"Tr" => Some(("Tr", 1.0 - x)),
+                    _ => None,
+                };
+                match (d, &current) {
+                    // Drawn blended: see `Material::finish`.
+                    (Some((_, d)), Some(m)) if (0.0..=1.0).contains(&d) => {
+                        out.entry(m.clone()).or_default().opacity = Some(d);
+                    }
+                    (Some((key, _)), _) if !opaque && !unread.contains(&key) => unread.push(key),
+                    _ => {}
                 }
             }
             Some((key, _)) => {
