@@ -671,3 +671,78 @@ fn a_scene_file_places_a_textured_gltf_as_the_library_does() {
     assert_eq!(a.framebuffer().samples(), b.framebuffer().samples());
     assert!(a.stats().textured_samples > 1000);
 }
+
+/// The canonical-square quad of [`screen_quad`] with its corners' UVs
+/// given, its base colour texture's `textureInfo` extended by `transform`
+/// (`KHR_texture_transform` JSON) when there is one.
+fn quad_with_uvs(png: &[u8], uvs: &[[f32; 2]; 4], transform: Option<&str>) -> Scene {
+    let mesh = TexturedMesh {
+        positions: &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
+        uvs,
+        indices: &[0, 1, 2, 0, 2, 3],
+        png,
+        sampler: r#"{"magFilter":9728,"minFilter":9728}"#,
+        base_color: [1.0; 4],
+    };
+    let (mut json, bin) = mesh.parts(None);
+    if let Some(t) = transform {
+        json = json.replace(
+            r#""baseColorTexture":{"index":0}"#,
+            &format!(
+                r#""baseColorTexture":{{"index":0,"extensions":{{"KHR_texture_transform":{t}}}}}"#
+            ),
+        );
+        json = json.replacen('{', r#"{"extensionsUsed":["KHR_texture_transform"],"#, 1);
+    }
+    let loaded = gltf::parse(&glb(&json, &bin), None, "quad.glb", &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let camera = Camera {
+        projection: Projection::None,
+        ..Camera::default()
+    };
+    scene_of(loaded, camera)
+}
+
+#[test]
+fn a_texture_transform_moves_the_lookup_as_the_same_uvs_moved_by_hand() {
+    // Four texels, repeated; the quad's UVs run over [0, 1]². The
+    // extension's T · R · S, with R turning the texture counter-clockwise
+    // as the file is seen (the UV rotation (u, v) → (u cos r + v sin r,
+    // −u sin r + v cos r)), gives the same frame as those UVs written out.
+    let png = png_rgb(2, 2, &[RED, BLUE, [0, 255, 0], [255; 3]]);
+    let corners = [[0.0f32, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let moved = |offset: [f32; 2], r: f32, scale: [f32; 2]| {
+        corners.map(|[u, v]| {
+            let (u, v) = (u * scale[0], v * scale[1]);
+            let (s, c) = r.sin_cos();
+            [u * c + v * s + offset[0], -u * s + v * c + offset[1]]
+        })
+    };
+    let cases = [
+        (
+            r#"{"offset":[0.5,0.25]}"#,
+            moved([0.5, 0.25], 0.0, [1.0, 1.0]),
+        ),
+        (r#"{"scale":[3,0.5]}"#, moved([0.0, 0.0], 0.0, [3.0, 0.5])),
+        (
+            r#"{"rotation":1.5707963267948966}"#,
+            [[1.0, 0.0], [1.0, -1.0], [0.0, -1.0], [0.0, 0.0]],
+        ),
+        (
+            r#"{"offset":[-0.2,-0.1],"rotation":0.3,"scale":[1.5,1.5]}"#,
+            moved([-0.2, -0.1], 0.3, [1.5, 1.5]),
+        ),
+    ];
+    let (plain, _) = samples(&quad_with_uvs(&png, &corners, None), None);
+    for (transform, by_hand) in cases {
+        let (got, _) = samples(&quad_with_uvs(&png, &corners, Some(transform)), None);
+        let (want, _) = samples(&quad_with_uvs(&png, &by_hand, None), None);
+        assert_eq!(got, want, "{transform}");
+        assert_ne!(got, plain, "{transform} moves the texture");
+    }
+}

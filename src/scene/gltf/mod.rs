@@ -423,8 +423,22 @@ impl Parts<'_> {
                 .entry("normal, occlusion, emissive or metallic-roughness textures")
                 .or_default() += n_others;
         }
-        let texture = match material.pbr_metallic_roughness().base_color_texture() {
-            Some(info) if info.tex_coord() == 0 => {
+        // KHR_texture_transform on the base colour's texture: its
+        // coordinates moved once, here (T · R · S, as the extension says).
+        let base_info = material.pbr_metallic_roughness().base_color_texture();
+        let moved = base_info.as_ref().and_then(|i| i.texture_transform());
+        let uv_transform = moved.as_ref().map(|t| {
+            glam::Affine2::from_scale_angle_translation(
+                Vec2::from(t.scale()),
+                -t.rotation(),
+                Vec2::from(t.offset()),
+            )
+        });
+        let set = |i: &::gltf::texture::Info| {
+            (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
+        };
+        let texture = match base_info {
+            Some(info) if set(&info) == 0 => {
                 // A mask's or a blend's alpha is the texture's alpha
                 // channel times the factor.
                 if finish.alpha.mode != crate::scene::AlphaMode::Opaque {
@@ -569,7 +583,10 @@ impl Parts<'_> {
         match reader.read_tex_coords(0) {
             Some(ts) => {
                 let all = self.uvs.get_or_insert_with(|| vec![Vec2::ZERO; start]);
-                all.extend(ts.into_f32().map(Vec2::from));
+                match uv_transform {
+                    Some(m) => all.extend(ts.into_f32().map(|t| m.transform_point2(Vec2::from(t)))),
+                    None => all.extend(ts.into_f32().map(Vec2::from)),
+                }
             }
             None => {
                 if let Some(all) = &mut self.uvs {
@@ -756,4 +773,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_materials_unlit",
     "KHR_materials_emissive_strength",
     "KHR_lights_punctual",
+    "KHR_texture_transform",
 ];
