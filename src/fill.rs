@@ -40,6 +40,10 @@ use crate::shade::Lights;
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
 
+mod mapped;
+
+pub(crate) use mapped::{Corners as MappedCorners, MapSet, Mapped};
+
 /// Where a triangle's samples go, and how they are tested: the
 /// framebuffer's rows drawn into, whether samples are depth-tested (else written only where
 /// still empty: the first drawn stays) and how a set-up triangle is
@@ -110,7 +114,10 @@ impl Sink<'_> {
     /// interpolated normal and position (each counted as written and
     /// interpolated). A matte run (the full pipeline's) adds nothing, so
     /// its samples are the other fills' to the bit; without a shine it is
-    /// the textured fill.
+    /// the textured fill. Inlined into each caller: its walk loops are
+    /// the frame's hottest code, and the inliner's own choice changes with
+    /// how many callers it has.
+    #[inline(always)]
     pub(crate) fn shiny<C: Coverage>(
         &mut self,
         setup: &C,
@@ -160,12 +167,13 @@ impl Sink<'_> {
     /// where a mask's alpha is below its cut-off (nothing written, depth
     /// included), composited in linear light over what the sample holds
     /// where it blends (depth tested, not written).
+    /// `shade` finds a sample's colour from its position and edge weights.
     #[inline(never)]
     pub(crate) fn see_through<C: Coverage>(
         &mut self,
         setup: &C,
         a: &Attributes,
-        (flat, texture, shine): Reads<'_>,
+        shade: impl Fn(u32, u32, [f32; 3]) -> Lin,
         alpha: &AlphaFill<'_>,
     ) -> Filled {
         let grid = self.fb.grid();
@@ -186,7 +194,7 @@ impl Sink<'_> {
                 return;
             }
             written += 1;
-            let c = surface_at(a, flat, texture, shine, x, y, C::f32(e));
+            let c = shade(x, y, C::f32(e));
             samples[i] = Some(if blend {
                 let under = samples[i].unwrap_or(alpha.behind).to_lanes();
                 Lin::from_lanes(under + (c.to_lanes() - under) * opacity)
@@ -371,7 +379,7 @@ impl<'a> Shine<'a> {
 /// colour (one, or interpolated), times the texel where it has a texture,
 /// plus the highlight where it shines.
 #[inline(always)]
-fn surface_at(
+pub(crate) fn surface_at(
     a: &Attributes,
     flat: bool,
     texture: Option<(&Texture, Sampler, &UvPlanes)>,
@@ -392,14 +400,6 @@ fn surface_at(
     }
     Lin::from_lanes(lit)
 }
-
-/// What a sample's colour is found from: one colour (`flat`) or
-/// interpolated, the texture, the highlight.
-pub(crate) type Reads<'a> = (
-    bool,
-    Option<(&'a Texture, Sampler, &'a UvPlanes)>,
-    Option<&'a Shine<'a>>,
-);
 
 /// A run's alpha as [`Sink::see_through`] applies it.
 pub(crate) struct AlphaFill<'a> {

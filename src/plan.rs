@@ -16,6 +16,7 @@
 //! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
 //! | specular | a lit mesh's material shines (a highlight): its triangles shaded per sample | no material shines, nothing lit, or exact coverage (a triangle's mean colour) |
 //! | alpha | a material is masked or blended: its triangles, and only they, take the see-through fill (blended ones after the rest, back to front) | every material is opaque, or exact coverage (drawn opaque) |
+//! | maps | a material has normal, metallic-roughness, occlusion or emissive textures: its triangles, and only they, are shaded per sample from them | no material has maps, or exact coverage (a triangle's mean colour) |
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -135,6 +136,13 @@ pub struct Plan {
     /// Whether materials that are masked or blended are drawn so (see
     /// [`Plan::sees_through`] for one run of faces).
     pub alpha: Decision,
+    /// Whether materials' maps are read (see [`Plan::maps_of`] for one run
+    /// of faces). Not a stage the full pipeline forces on every run: a
+    /// run shaded per sample is not the same picture as one shaded per
+    /// vertex, so both pipelines shade per sample exactly the runs whose
+    /// materials have maps, and the decision is skipped only where there
+    /// are none.
+    pub maps: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
@@ -251,6 +259,7 @@ impl Plan {
             falloff: Decision::run(FORCED),
             specular: Decision::run(FORCED),
             alpha: Decision::run(FORCED),
+            maps: Decision::run(FORCED),
             filter: opts.filter,
             shading: opts.shading,
             full: true,
@@ -349,12 +358,21 @@ impl Plan {
         } else {
             Decision::skip("every material is opaque")
         };
+        let maps = if opts.aa == Aa::Exact {
+            Decision::skip("exact coverage shades a triangle by its mean colour")
+        } else if scene.meshes.iter().any(|m| m.geometry.mapped()) {
+            Decision::run("a material has maps: its triangles shaded per sample from them")
+        } else {
+            Decision::skip("no material has maps")
+        };
         let interpolation = if full {
             Decision::run(FORCED)
         } else if textured {
             Decision::run("texture coordinates vary over textured triangles")
         } else if specular.run {
             Decision::run("a highlight's normal and position vary over its triangles")
+        } else if maps.run {
+            Decision::run("a mapped material's coordinates vary over its triangles")
         } else if shading == Shading::Smooth {
             Decision::run("smooth shading varies the light over each triangle")
         } else if vertex_colors {
@@ -434,6 +452,7 @@ impl Plan {
             falloff,
             specular,
             alpha,
+            maps,
             filter: opts.filter,
             shading,
             full,
@@ -488,6 +507,12 @@ impl Plan {
     /// nothing.
     pub fn sees_through(&self, alpha: &crate::scene::Alpha) -> bool {
         self.alpha.run && (alpha.mode != crate::scene::AlphaMode::Opaque || self.full)
+    }
+
+    /// The maps a run of faces of `finish` is shaded from: its own, where
+    /// the plan reads maps (in both pipelines: see [`Plan::maps`]).
+    pub fn maps_of(&self, finish: &crate::scene::Finish) -> Option<crate::scene::Maps> {
+        (self.maps.run && !finish.maps.is_empty()).then_some(finish.maps)
     }
 
     /// Whether a triangle whose vertices have these colours is
@@ -570,6 +595,7 @@ impl fmt::Display for Plan {
         writeln!(f, "glow           {}", self.glow)?;
         writeln!(f, "specular       {}", self.specular)?;
         writeln!(f, "alpha          {}", self.alpha)?;
+        writeln!(f, "maps           {}", self.maps)?;
         writeln!(f, "depth          {}", self.depth)?;
         writeln!(f, "interpolation  {}", self.interpolation)?;
         writeln!(f, "perspective    {}", self.perspective)?;

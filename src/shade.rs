@@ -171,6 +171,20 @@ impl Lights {
         sum
     }
 
+    /// [`Lights::lambert_at`] with each light's ambient share times
+    /// `occlusion` (a material's occlusion map: 1 lets all of it in).
+    #[inline(always)]
+    pub(crate) fn lambert_occluded(&self, n: Vec3, p: Vec3, occlusion: f32) -> Vec3A {
+        let mut sum = Vec3A::ZERO;
+        for i in 0..self.len {
+            let (t, share) = self.incident(i, p);
+            let direct = n.dot(t).max(0.0);
+            let ambient = self.ambient[i];
+            sum += self.color[i] * ((ambient * occlusion + (1.0 - ambient) * direct) * share);
+        }
+        sum
+    }
+
     /// [`Lights::lambert`] in SIMD lanes, for the renderer.
     #[inline(always)]
     pub(crate) fn lambert_a(&self, n: Vec3) -> Vec3A {

@@ -5,6 +5,7 @@
 
 use rastty::Choice;
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::Vec3;
 use proptest::prelude::*;
@@ -48,8 +49,11 @@ fn same_both_ways(scene: &Scene, opts: &RenderOptions) -> Result<rastty::FrameSt
             .iter()
             .zip(full.framebuffer().samples())
             .position(|(x, y)| x != y);
+        let at = |r: &Renderer| i.map(|i| r.framebuffer().samples()[i]);
         return Err(format!(
-            "samples differ at {i:?}; plan: {:?}",
+            "samples differ at {i:?} ({:?} planned, {:?} full); plan: {:?}",
+            at(&planned),
+            at(&full),
             planned.plan()
         ));
     }
@@ -145,20 +149,26 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
         0.3f32..1.5,
         prop::sample::select(vec![Cull::Back, Cull::None, Cull::Front]),
         alpha(),
+        prop::option::weighted(0.25, (0u8..16, 0.0f32..1.0)),
     )
-        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull, alpha)| {
+        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps)| {
             let mut m = shape.mesh(c);
-            if let Some(alpha) = alpha {
-                // The second half of its faces masked or blended.
+            if alpha.is_some() || maps.is_some() {
+                // The second half of its faces masked or blended, with
+                // maps (and UVs and tangents to read them by) or not.
                 let g = m.geometry_mut();
+                let mut finish = rastty::scene::Finish {
+                    alpha: alpha.unwrap_or_default(),
+                    ..Default::default()
+                };
+                if let Some((which, k)) = maps {
+                    finish = mapped(g, finish, which, k);
+                }
                 g.materials = vec![rastty::scene::MaterialRun {
                     first: (g.faces.len() / 2) as u32,
                     color: None,
                     texture: None,
-                    finish: rastty::scene::Finish {
-                        alpha,
-                        ..Default::default()
-                    },
+                    finish,
                 }];
                 g.analyze();
             }
@@ -170,6 +180,49 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
             m.cull = cull;
             m
         })
+}
+
+/// `finish` with the maps of the bits of `which` (normal, occlusion,
+/// emissive, metallic-roughness), each a 2×2 texture made from `k`, and
+/// the UVs (x and y) and tangents (along x) of `g` to read them by.
+fn mapped(
+    g: &mut rastty::scene::Geometry,
+    mut finish: rastty::scene::Finish,
+    which: u8,
+    k: f32,
+) -> rastty::scene::Finish {
+    use rastty::texture::{Sampler, Texture};
+    g.uvs = Some(g.positions.iter().map(|p| p.truncate() * 2.0).collect());
+    g.tangents = Some(vec![
+        [rastty::glam::Vec4::new(1.0, 0.0, 0.0, 1.0); 3];
+        g.faces.len()
+    ]);
+    let texels = [
+        [k, 0.5, 1.0],
+        [1.0 - k, k, 0.8],
+        [0.3, 1.0 - k, 0.9],
+        [k, k, k],
+    ];
+    g.textures.push(Arc::new(Texture::from_linear(
+        "map",
+        2,
+        2,
+        texels.to_vec(),
+        Sampler::default(),
+    )));
+    let t = g.textures.len() as u32 - 1;
+    let maps = &mut finish.maps;
+    maps.normal = (which & 1 != 0).then_some((t, 1.0 - k));
+    maps.occlusion = (which & 2 != 0).then_some((t, k));
+    maps.emissive = (which & 4 != 0).then_some(t);
+    maps.metallic_roughness = (which & 8 != 0).then_some(t);
+    if which & 8 != 0 {
+        finish.specular = rastty::scene::Specular::metallic_roughness(k, 1.0 - k);
+    }
+    if which & 4 != 0 {
+        finish.emissive = rastty::color::Lin::from_f32([20000.0, 5000.0, 0.0]);
+    }
+    finish
 }
 
 /// Opaque (no material) mostly; else a mask or a blend of some alpha.

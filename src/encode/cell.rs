@@ -352,6 +352,7 @@ impl Packed {
     /// fewest bytes written `count` times from `pen`: the SGR and the
     /// characters (a space is one byte, a block element three).
     /// `count` is asked for only when the choice is open.
+    #[inline]
     pub(super) fn cheapest_from(&self, pen: Inks, count: impl FnOnce() -> usize) -> Packed {
         // A cell that fits is cheapest, unless it is a full block whose
         // blank (a third of its bytes) would pay for an SGR over a run.

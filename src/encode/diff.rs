@@ -45,6 +45,7 @@ pub(super) fn unequal_cells(
 /// [`quantize_in`] and [`unequal_cells`] in one pass for 24-bit colour,
 /// where a cell packs straight from its bytes (no palette, no dithering):
 /// each cell is compared with `shown`'s while it is in registers.
+#[inline]
 pub(super) fn quantize_truecolor(
     frame: &Frame,
     shown: &[Packed],
@@ -83,6 +84,7 @@ pub(super) fn quantize_truecolor(
 /// Keeps, of the cells `candidates` lists, those whose picture differs
 /// between `shown` and `next` (the same picture drawn the other way round
 /// is no change), in order.
+#[inline]
 pub(super) fn changed_cells<'a>(
     shown: &[Packed],
     next: &[Packed],

@@ -21,7 +21,7 @@ use glam::Mat4;
 use super::stats::FrameStats;
 use super::triangle::Faces;
 use super::vertex::{Transforms, Vert};
-use super::{Painter, Renderer, Stage};
+use super::{Painter, Renderer, Sorted, Stage};
 use crate::blit;
 use crate::clip::Polygon;
 use crate::frame::{Cell, Frame, Known};
@@ -37,7 +37,9 @@ pub(super) struct BandWork {
     stats: FrameStats,
     poly: Polygon,
     /// A blended run's faces, back to front (scratch).
-    sorted: Vec<[u32; 3]>,
+    sorted: Sorted,
+    /// A mapped run's maps and face (scratch).
+    mapping: super::mapped::Mapping,
     /// The loose triangles' vertices, one triangle at a time.
     verts: Vec<Vert>,
     /// Unused: bands are not anti-aliased.
@@ -53,7 +55,8 @@ impl Default for BandWork {
         BandWork {
             stats: FrameStats::default(),
             poly: Polygon::default(),
-            sorted: Vec::new(),
+            sorted: Sorted::default(),
+            mapping: Default::default(),
             verts: Vec::new(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
@@ -124,6 +127,7 @@ impl Renderer {
                 stats: &mut band.stats,
                 poly: &mut band.poly,
                 sorted: &mut band.sorted,
+                mapping: &mut band.mapping,
                 verts: &mut band.verts,
                 acc: &mut band.acc,
             };

@@ -175,6 +175,11 @@ impl Renderer {
                 format!("{} samples drawn by their alpha", s.alpha_samples),
             ),
             (
+                "maps",
+                plan.maps,
+                format!("{} samples shaded from their maps", s.mapped_samples),
+            ),
+            (
                 "lean path",
                 plan.lean,
                 format!(

@@ -21,6 +21,7 @@
 mod aa;
 mod bands;
 mod explain;
+mod mapped;
 mod stats;
 mod triangle;
 mod vertex;
@@ -46,6 +47,7 @@ use crate::scene::anim::{Pose, Posed};
 use crate::scene::{Camera, Geometry, Projection, Scene};
 use crate::shade::Lights;
 use crate::transform::{self, Grid};
+use mapped::Ids;
 use triangle::Faces;
 use vertex::{Transforms, Vert};
 
@@ -112,19 +114,32 @@ fn blended_meshes(scene: &Scene, plan: &Plan, vp: Mat4, turn: Mat4) -> Vec<usize
     order.into_iter().map(|(_, i)| i).collect()
 }
 
-/// `faces` into `out`, the farthest first: by the depth of each face's
-/// centre, as the model-view-projection puts it (larger depth is nearer).
-/// Faces whose depths tie keep their order.
-fn back_to_front(faces: &[[u32; 3]], f: &Faces<'_>, out: &mut Vec<[u32; 3]>) {
+/// A blended run's faces, back to front: scratch memory kept from frame
+/// to frame.
+#[derive(Debug, Default)]
+struct Sorted {
+    /// Their indices in the mesh.
+    ids: Vec<u32>,
+    /// The faces themselves, in the same order.
+    faces: Vec<[u32; 3]>,
+}
+
+/// Faces `run` of the mesh into `out`, the farthest first: by the depth of
+/// each face's centre, as the model-view-projection puts it (larger depth
+/// is nearer). Faces whose depths tie keep their order.
+fn back_to_front(run: std::ops::Range<usize>, f: &Faces<'_>, out: &mut Sorted) {
     let mvp = f.transforms.mvp;
-    let depth = |face: &[u32; 3]| {
-        let c = face.map(|i| f.positions[i as usize]);
+    let faces = &f.mesh.faces;
+    let depth = |id: &u32| {
+        let c = faces[*id as usize].map(|i| f.positions[i as usize]);
         let clip = mvp * ((c[0] + c[1] + c[2]) / 3.0).extend(1.0);
         clip.z / clip.w
     };
-    out.clear();
-    out.extend_from_slice(faces);
-    out.sort_by(|a, b| depth(a).total_cmp(&depth(b)));
+    out.ids.clear();
+    out.ids.extend(run.start as u32..run.end as u32);
+    out.ids.sort_by(|a, b| depth(a).total_cmp(&depth(b)));
+    out.faces.clear();
+    out.faces.extend(out.ids.iter().map(|&i| faces[i as usize]));
 }
 
 /// Mesh `i`'s model-space positions and normals for this frame: posed,
@@ -149,7 +164,9 @@ pub struct Renderer {
     verts: Vec<Vert>,
     poly: Polygon,
     /// A blended run's faces, back to front (scratch).
-    sorted: Vec<[u32; 3]>,
+    sorted: Sorted,
+    /// A mapped run's maps and face (scratch).
+    mapping: mapped::Mapping,
     stats: FrameStats,
     plan: Option<Plan>,
     times: FrameTimes,
@@ -246,6 +263,18 @@ impl Surface {
             shiny,
         }
     }
+
+    /// A mapped run's surface: its vertices carry its base colour alone
+    /// (unlit, without glow or a highlight: the mapped fill adds them per
+    /// sample, from [`mapped::Mapping`]), and its triangles' corners'
+    /// normals and positions are found (as a shining run's are).
+    fn mapped() -> Surface {
+        Surface {
+            unlit: true,
+            shiny: true,
+            ..Surface::default()
+        }
+    }
 }
 
 /// What the vertex, triangle and fill stages draw with: the samples drawn
@@ -258,7 +287,9 @@ struct Painter<'a> {
     stats: &'a mut FrameStats,
     poly: &'a mut Polygon,
     /// A blended run's faces, back to front.
-    sorted: &'a mut Vec<[u32; 3]>,
+    sorted: &'a mut Sorted,
+    /// The mapped run being drawn's maps and face (none for other runs).
+    mapping: &'a mut mapped::Mapping,
     verts: &'a mut Vec<Vert>,
     acc: &'a mut Vec<[f32; 4]>,
 }
@@ -277,7 +308,8 @@ impl Renderer {
             frame: Frame::default(),
             verts: Vec::new(),
             poly: Polygon::default(),
-            sorted: Vec::new(),
+            sorted: Sorted::default(),
+            mapping: mapped::Mapping::default(),
             stats: FrameStats::default(),
             plan: None,
             times: FrameTimes::default(),
@@ -420,6 +452,7 @@ impl Renderer {
                 stats: &mut self.stats,
                 poly: &mut self.poly,
                 sorted: &mut self.sorted,
+                mapping: &mut self.mapping,
                 verts: &mut self.verts,
                 acc: &mut self.acc,
             },

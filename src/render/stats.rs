@@ -30,6 +30,9 @@ pub struct FrameStats {
     /// Samples a masked or blended material's alpha decided (those it
     /// drew; the full pipeline counts every run's).
     pub alpha_samples: u64,
+    /// Samples shaded from their material's maps (normal,
+    /// metallic-roughness, occlusion, emissive), those drawn.
+    pub mapped_samples: u64,
     /// Per-sample depth comparisons.
     pub depth_tests: u64,
     /// Samples written with an interpolated colour (not a flat write): a
@@ -76,6 +79,7 @@ impl FrameStats {
         self.lighting_evaluations += band.lighting_evaluations;
         self.glowing_triangles += band.glowing_triangles;
         self.alpha_samples += band.alpha_samples;
+        self.mapped_samples += band.mapped_samples;
         self.depth_tests += band.depth_tests;
         self.interpolated_samples += band.interpolated_samples;
         self.textured_samples += band.textured_samples;

@@ -27,7 +27,7 @@ use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
 use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
-use crate::fill::{self, AlphaFill, Attributes, ScreenTriangle, Shine, UvPlanes};
+use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
 use crate::options::Highlights;
 use crate::options::RenderOptions;
 use crate::raster::{
@@ -40,10 +40,10 @@ use crate::transform;
 
 /// A shining triangle's corners' unit normals and positions in the turned
 /// world, for the specular fill; `None` for a triangle of another run.
-type Shining = Option<Corners>;
+pub(super) type Shining = Option<Corners>;
 
 /// A triangle's corners' unit normals and positions in the turned world.
-type Corners = ([Vec3; 3], [Vec3; 3]);
+pub(super) type Corners = ([Vec3; 3], [Vec3; 3]);
 
 /// Where a triangle's model-space vertices are, and the matrix taking them
 /// to clip space: read only if it must be clipped.
@@ -88,7 +88,16 @@ impl Painter<'_> {
             // The plan's path; a run with a texture takes the general one,
             // which on the lean path skips (and counts) a triangle that
             // covers no sample once it is set up.
-            self.surface = Surface::of(&run.finish, run.color, p);
+            let maps = p.maps_of(&run.finish).filter(|_| mesh.uvs.is_some());
+            self.mapping.set = maps.map(|maps| {
+                fill::MapSet::new(maps, &run.finish, &mesh.geometry.textures, |t| {
+                    p.texture(Some(t)).map_or(t.sampler, |(_, s)| s)
+                })
+            });
+            self.surface = match maps {
+                Some(_) => Surface::mapped(),
+                None => Surface::of(&run.finish, run.color, p),
+            };
             if p.sees_through(&run.finish.alpha) {
                 // Its alpha texture is read through the base texture's
                 // coordinates: none without one.
@@ -97,7 +106,10 @@ impl Painter<'_> {
                     .and_then(|i| mesh.geometry.textures.get(i as usize).cloned());
                 self.surface.see = Some((run.finish.alpha, alpha_texture));
             }
-            let lean = p.lean.run && texture.is_none() && self.surface.see.is_none();
+            let lean = p.lean.run
+                && texture.is_none()
+                && self.surface.see.is_none()
+                && self.mapping.set.is_none();
             // A metal's colour is not lit diffusely: its share, once a run.
             let diffuse = self.surface.diffuse;
             // Converted to lanes once a run, not once a face.
@@ -106,14 +118,22 @@ impl Painter<'_> {
             self.stats.triangles_in += run.faces.len() as u64;
             let mut sorted = std::mem::take(self.sorted);
             let faces = if blend {
-                super::back_to_front(&mesh.faces[run.faces], f, &mut sorted);
-                &sorted[..]
+                super::back_to_front(run.faces.clone(), f, &mut sorted);
+                &sorted.faces[..]
             } else {
-                &mesh.faces[run.faces]
+                &mesh.faces[run.faces.clone()]
             };
             // Two copies of the loop: a matte run's carries no trace of the
-            // specular fill (its frames cost what they did before it).
-            if self.surface.shiny {
+            // specular fill (its frames cost what they did before it); and
+            // a mapped run's loop of its own.
+            if self.mapping.set.is_some() {
+                let ids = if blend {
+                    super::Ids::Listed(&sorted.ids)
+                } else {
+                    super::Ids::Range(run.faces)
+                };
+                self.run_mapped(stage, f, verts, ids, (texture, run_color));
+            } else if self.surface.shiny {
                 self.run_faces::<true>(stage, f, verts, faces, (lean, texture, run_color, diffuse));
             } else {
                 self.run_faces::<false>(
@@ -195,7 +215,7 @@ impl Painter<'_> {
                 mvp: &f.transforms.mvp64,
                 world: &f.transforms.model,
             };
-            self.triangle::<SHINY>(stage, v, base, f.cull, model, tex);
+            self.triangle::<SHINY, false>(stage, v, base, f.cull, model, tex);
         }
     }
 
@@ -214,6 +234,7 @@ impl Painter<'_> {
         let loose_tests = p.clip_tests(scene.meshes.len());
         // Loose triangles have no material: the plain finish.
         self.surface = Surface::default();
+        self.mapping.set = None;
         self.stats.triangles_in += scene.triangles.len() as u64;
         for tri in &scene.triangles {
             let [a, b, c] = tri.vertices;
@@ -221,7 +242,7 @@ impl Painter<'_> {
             self.verts.clear();
             self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
             let verts = std::mem::take(self.verts);
-            self.triangle::<false>(
+            self.triangle::<false, false>(
                 stage,
                 [&verts[0], &verts[1], &verts[2]],
                 tri.color
@@ -248,7 +269,10 @@ impl Painter<'_> {
     /// `model` is its vertices' model-space positions and the matrix taking
     /// them to clip space, for the clip path. The caller counts it in
     /// [`super::FrameStats::triangles_in`].
-    pub(super) fn triangle<const SHINY: bool>(
+    /// `MAPPED`: a mapped run's (see `mapped.rs`), whose fill is the
+    /// mapped fill; its own copy of this and the functions below it, so
+    /// that the others are the code they were before maps.
+    pub(super) fn triangle<const SHINY: bool, const MAPPED: bool>(
         &mut self,
         stage: &Stage<'_>,
         v: [&Vert; 3],
@@ -295,15 +319,36 @@ impl Painter<'_> {
                     let band = self.fb.band();
                     let setup =
                         SnappedTriangle::new(fixed, cull).map(|t| Setup::of(&t, grid, band));
-                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
+                    self.inside_setup::<_, MAPPED>(
+                        stage,
+                        &setup,
+                        (v, base),
+                        early,
+                        screen,
+                        texture,
+                    );
                 }
                 Precision::F64 => {
                     let setup = FloatSetup::<f64>::new(xy, grid, cull);
-                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
+                    self.inside_setup::<_, MAPPED>(
+                        stage,
+                        &setup,
+                        (v, base),
+                        early,
+                        screen,
+                        texture,
+                    );
                 }
                 Precision::F32 => {
                     let setup = FloatSetup::<f32>::new(xy, grid, cull);
-                    self.inside_setup(stage, &setup, (v, base), early, screen, texture);
+                    self.inside_setup::<_, MAPPED>(
+                        stage,
+                        &setup,
+                        (v, base),
+                        early,
+                        screen,
+                        texture,
+                    );
                 }
             }
             return;
@@ -362,15 +407,15 @@ impl Painter<'_> {
                             let band = self.fb.band();
                             let setup = SnappedTriangle::new(tri.map(|v| v.fixed), cull)
                                 .map(|t| Setup::of(&t, grid, band));
-                            self.set_up_and_fill(&setup, &screen, stage, texture);
+                            self.set_up_and_fill::<_, MAPPED>(&setup, &screen, stage, texture);
                         }
                         Precision::F64 => {
                             let setup = FloatSetup::<f64>::new(screen.xy, grid, cull);
-                            self.set_up_and_fill(&setup, &screen, stage, texture);
+                            self.set_up_and_fill::<_, MAPPED>(&setup, &screen, stage, texture);
                         }
                         Precision::F32 => {
                             let setup = FloatSetup::<f32>::new(screen.xy, grid, cull);
-                            self.set_up_and_fill(&setup, &screen, stage, texture);
+                            self.set_up_and_fill::<_, MAPPED>(&setup, &screen, stage, texture);
                         }
                     }
                 }
@@ -386,7 +431,7 @@ impl Painter<'_> {
     /// (the full pipeline fills it anyway: the same nothing), and is
     /// counted as its walk would count it.
     #[inline(always)]
-    pub(super) fn inside_setup<C: Coverage>(
+    pub(super) fn inside_setup<C: Coverage, const MAPPED: bool>(
         &mut self,
         stage: &Stage<'_>,
         setup: &Result<C, Rejected>,
@@ -401,14 +446,14 @@ impl Painter<'_> {
                 return;
             }
             let c = early.unwrap_or_else(|| self.shade(stage, v, base, !s.ccw()));
-            self.fill(s, &screen(c), stage, texture);
+            self.fill::<_, MAPPED>(s, &screen(c), stage, texture);
         }
     }
 
     /// A clipped piece, set up with the frame's precision: counted and
     /// filled (it was lit before clipping).
     #[inline(always)]
-    pub(super) fn set_up_and_fill<C: Coverage>(
+    pub(super) fn set_up_and_fill<C: Coverage, const MAPPED: bool>(
         &mut self,
         setup: &Result<C, Rejected>,
         screen: &ScreenTriangle,
@@ -416,7 +461,7 @@ impl Painter<'_> {
         texture: Option<(&Texture, Sampler)>,
     ) {
         if let Some(s) = self.setup(setup) {
-            self.fill(s, screen, stage, texture);
+            self.fill::<_, MAPPED>(s, screen, stage, texture);
         }
     }
 
@@ -585,7 +630,7 @@ impl Painter<'_> {
     /// (when the plan skips depth) only where still empty; one colour, or
     /// interpolated, through `1/w` where the plan asks for it; times its
     /// texture, where it has one.
-    pub(super) fn fill<C: Coverage>(
+    pub(super) fn fill<C: Coverage, const MAPPED: bool>(
         &mut self,
         setup: &C,
         t: &ScreenTriangle,
@@ -608,8 +653,8 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&t.color);
-        if self.surface.see.is_some() {
-            self.fill_see_through(setup, t, &a, flat, stage, texture);
+        if MAPPED || self.surface.see.is_some() {
+            self.fill_special(setup, t, &a, flat, stage, texture);
             return;
         }
         if let Some(corners) = t.shine {
@@ -672,58 +717,6 @@ impl Painter<'_> {
         self.stats.count_fill(done);
     }
 
-    /// [`Painter::fill`] of a triangle of a masked or blended run (with
-    /// its texture and highlight, if any), counted. Out of line: the
-    /// opaque fills inlined beside it stay as they were.
-    #[inline(never)]
-    fn fill_see_through<C: Coverage>(
-        &mut self,
-        setup: &C,
-        t: &ScreenTriangle,
-        a: &Attributes,
-        flat: bool,
-        stage: &Stage,
-        texture: Option<(&Texture, Sampler)>,
-    ) {
-        let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
-        let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
-        let shine = t.shine.map(|corners| {
-            Shine::new(
-                setup.order(),
-                corners,
-                self.surface.shine,
-                (&stage.lights, stage.eye),
-                stage.highlights == Highlights::Vertex,
-            )
-        });
-        let Some((alpha, alpha_texture)) = &self.surface.see else {
-            return;
-        };
-        let fill = AlphaFill {
-            mode: alpha.mode,
-            factor: alpha.factor,
-            texture: (alpha_texture.as_deref().zip(tex))
-                .map(|(at, (_, sampler, planes))| (at, sampler, planes)),
-            behind: stage.behind,
-        };
-        // The sink built from the fields (as `sink` does), beside the
-        // borrowed surface.
-        let mut sink = fill::Sink {
-            fb: self.fb.reborrow(),
-            depth: stage.plan.depth.run,
-            traversal: stage.traversal,
-        };
-        let done = sink.see_through(setup, a, (flat, tex, shine.as_ref()), &fill);
-        self.stats.alpha_samples += done.written;
-        if tex.is_some() {
-            self.stats.textured_samples += done.written;
-        }
-        if self.surface.shine.is_some() {
-            self.stats.specular_samples += done.written;
-        }
-        self.stats.count_fill(done);
-    }
-
     /// [`Painter::fill`] of a triangle without a texture, counted.
     #[inline(always)]
     pub(super) fn fill_colour<C: Coverage>(
@@ -748,7 +741,7 @@ fn front_facing(v: [&Vert; 3]) -> bool {
 /// unit normals (smooth shading's, or the face's) and positions in the
 /// turned world; `None` for other runs.
 #[inline(always)]
-fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Model<'_>) -> Shining {
+pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Model<'_>) -> Shining {
     if !shiny {
         return None;
     }

@@ -4,10 +4,12 @@
 //! it at all (unlit), and how much of what is behind shows through (alpha:
 //! masked or blended, with the base texture's alpha channel).
 //!
-//! Trade-offs. A finish is a few numbers a run of faces, not a texture
-//! (except alpha's, which is the base colour's texture's own): the maps
-//! (metallic-roughness, emissive, occlusion, normal) are for
-//! later work and are noted where a file has them. A file that says
+//! Trade-offs. A finish is a few numbers a run of faces and, where the
+//! file has them, its maps ([`Maps`]: normal, metallic-roughness,
+//! occlusion and emissive textures, read through the base colour's
+//! coordinates). A run with maps is shaded per sample from them (the
+//! renderer's mapped fill); one without is shaded per vertex, as before,
+//! whatever other runs have. A file that says
 //! nothing of its finish is drawn matte, as before: glTF's defaults
 //! (metallic 1, roughness 1) describe a rough metal, which without light
 //! from its surroundings (no image-based lighting here) is nearly black,
@@ -100,6 +102,35 @@ pub struct Finish {
     pub unlit: bool,
     /// How much of what is behind it shows through.
     pub alpha: Alpha,
+    /// Its textures beyond the base colour's.
+    pub maps: Maps,
+}
+
+/// A material's textures beyond its base colour's, each an index into
+/// [`crate::scene::Geometry::textures`], read through the base colour's
+/// texture coordinates (glTF's `TEXCOORD_0`). Any of them makes its faces
+/// shaded per sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Maps {
+    /// A tangent-space normal map (linear; x right along the tangent, y
+    /// along the bitangent, z out of the surface) and the scale of its x
+    /// and y.
+    pub normal: Option<(u32, f32)>,
+    /// Metalness in blue and roughness in green (linear), multiplying the
+    /// [`Specular`] factors.
+    pub metallic_roughness: Option<u32>,
+    /// Ambient occlusion in red (linear) and its strength: how much of a
+    /// light's ambient share reaches the sample.
+    pub occlusion: Option<(u32, f32)>,
+    /// Emitted colour (sRGB-decoded), multiplying [`Finish::emissive`].
+    pub emissive: Option<u32>,
+}
+
+impl Maps {
+    /// Whether it has no map.
+    pub fn is_empty(&self) -> bool {
+        *self == Maps::default()
+    }
 }
 
 /// How a material's coverage (glTF's `alphaMode`) is drawn.

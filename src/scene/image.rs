@@ -51,6 +51,25 @@ pub fn decode(
     Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
 }
 
+/// Decodes PNG or JPEG bytes whose numbers are not colours (a normal,
+/// metallic-roughness or occlusion map) into a texture of their values
+/// over 255, not sRGB-decoded; under the same checks and budget as
+/// [`decode`].
+pub fn decode_linear(
+    bytes: &[u8],
+    name: &str,
+    sampler: Sampler,
+    max_texels: u64,
+) -> Result<Texture, String> {
+    let rgb = open(bytes, max_texels)?.into_rgb8();
+    let texels = rgb
+        .pixels()
+        .map(|p| p.0.map(|v| f32::from(v) / 255.0))
+        .collect();
+    let (w, h) = rgb.dimensions();
+    Ok(Texture::from_linear(name, w, h, texels, sampler))
+}
+
 /// The alpha channel of a PNG image as a texture (linear, as alpha is, in
 /// every channel), `None` for an image without one; under the same checks
 /// and budget as [`decode`].

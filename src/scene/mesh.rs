@@ -50,7 +50,7 @@
 
 use std::sync::{Arc, OnceLock};
 
-use glam::{DVec3, Mat4, Vec2, Vec3};
+use glam::{DVec3, Mat4, Vec2, Vec3, Vec4};
 use rustc_hash::FxHashMap;
 
 use super::anim::{Pose, Rig};
@@ -131,6 +131,12 @@ pub struct Geometry {
     /// positions (glTF's `KHR_lights_punctual`); a model shown alone is lit
     /// by them instead of [`Light::rig`].
     pub lights: Vec<Light>,
+    /// For a model with normal maps: each face's corners' tangents in
+    /// model space (unit `xyz`, and in `w` the sign of the bitangent
+    /// `cross(normal, tangent)`), the file's or MikkTSpace's. Per corner,
+    /// not per vertex: where UVs are mirrored, a vertex on the mirror line
+    /// has a tangent on each side.
+    pub tangents: Option<Vec<[Vec4; 3]>>,
 }
 
 impl Clone for Geometry {
@@ -150,6 +156,7 @@ impl Clone for Geometry {
             convex: self.convex.clone(),
             rig: self.rig.clone(),
             lights: self.lights.clone(),
+            tangents: self.tangents.clone(),
         }
     }
 }
@@ -165,6 +172,7 @@ impl PartialEq for Geometry {
             && self.materials == o.materials
             && self.lights == o.lights
             && self.rig == o.rig
+            && self.tangents == o.tangents
     }
 }
 
@@ -199,6 +207,7 @@ impl Geometry {
             convex: OnceLock::new(),
             rig: None,
             lights: Vec::new(),
+            tangents: None,
         }
     }
 
@@ -275,6 +284,13 @@ impl Geometry {
         self.materials
             .iter()
             .any(|r| r.finish.alpha.mode != AlphaMode::Opaque)
+    }
+
+    /// Whether any material has maps (normal, metallic-roughness,
+    /// occlusion or emissive textures) that can be read: the vertices have
+    /// UVs.
+    pub fn mapped(&self) -> bool {
+        self.uvs.is_some() && self.materials.iter().any(|r| !r.finish.maps.is_empty())
     }
 
     /// Whether any face is drawn with a texture.

@@ -77,6 +77,8 @@ pub mod obj;
 pub mod ply;
 mod polygon;
 mod shapes;
+#[cfg(feature = "gltf")]
+mod tangents;
 mod def;
 pub mod stl;
 
@@ -93,7 +95,7 @@ pub use builder::SceneBuilder;
 pub(crate) use camera::Fit;
 pub use camera::{Camera, Projection};
 use def::*;
-pub use finish::{Alpha, AlphaMode, Finish, Specular};
+pub use finish::{Alpha, AlphaMode, Finish, Maps, Specular};
 pub use load::load_geometry;
 use load::*;
 pub(crate) use load::{Format, Kind};

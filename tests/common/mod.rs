@@ -330,6 +330,17 @@ impl Doc {
         component: u32,
         extra: &str,
     ) -> usize {
+        self.view(&bytes);
+        self.accessors.push(format!(
+            r#"{{"bufferView":{},"componentType":{component},"count":{count},"type":"{kind}"{extra}}}"#,
+            self.views.len() - 1
+        ));
+        self.accessors.len() - 1
+    }
+
+    /// Appends `bytes` (an image) as a buffer view alone; returns the
+    /// view's index.
+    pub fn view(&mut self, bytes: &[u8]) -> usize {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
@@ -338,12 +349,8 @@ impl Doc {
             self.bin.len(),
             bytes.len()
         ));
-        self.bin.extend_from_slice(&bytes);
-        self.accessors.push(format!(
-            r#"{{"bufferView":{},"componentType":{component},"count":{count},"type":"{kind}"{extra}}}"#,
-            self.views.len() - 1
-        ));
-        self.accessors.len() - 1
+        self.bin.extend_from_slice(bytes);
+        self.views.len() - 1
     }
 
     pub fn vec3(&mut self, v: &[[f32; 3]]) -> usize {

@@ -1,12 +1,20 @@
-//! What a glTF material, sampler and light say, as rastty's types: the
-//! finish (metallic-roughness, emissive, unlit), the sampler's filters and
-//! wrap modes, and `KHR_lights_punctual` lights placed by their nodes.
+//! What a glTF material, its textures, sampler and light say, as
+//! rastty's types: the finish (metallic-roughness, emissive, unlit, alpha,
+//! maps), each image decoded once each way it is read, the sampler's
+//! filters and wrap modes, and `KHR_lights_punctual` lights placed by their
+//! nodes.
 //!
 //! Trade-offs: each is read once at load into a small value the renderer
 //! uses as it is, so nothing glTF-specific reaches the frame.
 
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use ::gltf::buffer::Data;
 use ::gltf::texture::{MagFilter, MinFilter, WrappingMode};
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
+
+use super::{Parts, fetch};
 
 use crate::color::Lin;
 use crate::scene::mesh::{Light, LightKind};
@@ -102,6 +110,8 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
         emissive: Lin::from_unit(e),
         unlit: material.unlit(),
         alpha: alpha(material),
+        // The primitive's to add, once the images are read.
+        maps: crate::scene::Maps::default(),
     }
 }
 
@@ -122,4 +132,191 @@ fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
         factor: material.pbr_metallic_roughness().base_color_factor()[3].clamp(0.0, 1.0),
         texture: None,
     }
+}
+
+impl Parts<'_> {
+    /// A material's textures: its base colour's (and, masked or blended,
+    /// its alpha) and its maps, each decoded once, onto `finish`; and the
+    /// `KHR_texture_transform` its coordinates are moved by. A texture on
+    /// a second coordinate set is counted in `ignored` and left out.
+    pub(super) fn textures_of(
+        &mut self,
+        material: &::gltf::Material<'_>,
+        finish: &mut crate::scene::Finish,
+        buffers: &[Data],
+        ignored: &mut BTreeMap<&'static str, usize>,
+    ) -> std::result::Result<(Option<u32>, Option<glam::Affine2>), String> {
+        // KHR_texture_transform: the coordinates moved once, here
+        // (T · R · S, as the extension says), by the base colour's
+        // transform, or the first other map's where the base has none.
+        let pbr = material.pbr_metallic_roughness();
+        let base_info = pbr.base_color_texture();
+        let infos = [
+            base_info.clone(),
+            pbr.metallic_roughness_texture(),
+            material.emissive_texture(),
+        ];
+        let uv_transform = infos
+            .iter()
+            .flatten()
+            .find_map(|i| i.texture_transform())
+            .map(|t| {
+                glam::Affine2::from_scale_angle_translation(
+                    Vec2::from(t.scale()),
+                    -t.rotation(),
+                    Vec2::from(t.offset()),
+                )
+            });
+        let set = |i: &::gltf::texture::Info| {
+            (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
+        };
+        // Only the first coordinate set is read: a texture on another is
+        // noted and left out.
+        let mut second = 0;
+        let mut first_set = |set: u32| {
+            second += usize::from(set != 0);
+            set == 0
+        };
+        let texture = match base_info {
+            Some(info) if first_set(set(&info)) => {
+                // A mask's or a blend's alpha is the texture's alpha
+                // channel times the factor.
+                if finish.alpha.mode != crate::scene::AlphaMode::Opaque {
+                    finish.alpha.texture = self.texture(&info.texture(), buffers, Decode::Alpha)?;
+                }
+                self.texture(&info.texture(), buffers, Decode::Colour)?
+            }
+            _ => None,
+        };
+        if let Some(info) = pbr
+            .metallic_roughness_texture()
+            .filter(|i| first_set(set(i)))
+        {
+            finish.maps.metallic_roughness =
+                self.texture(&info.texture(), buffers, Decode::Values)?;
+        }
+        if let Some(info) = material.emissive_texture().filter(|i| first_set(set(i))) {
+            finish.maps.emissive = self.texture(&info.texture(), buffers, Decode::Colour)?;
+        }
+        if let Some(n) = material
+            .normal_texture()
+            .filter(|n| first_set(n.tex_coord()))
+        {
+            finish.maps.normal = self
+                .texture(&n.texture(), buffers, Decode::Values)?
+                .map(|t| (t, n.scale()));
+        }
+        if let Some(o) = material
+            .occlusion_texture()
+            .filter(|o| first_set(o.tex_coord()))
+        {
+            finish.maps.occlusion = self
+                .texture(&o.texture(), buffers, Decode::Values)?
+                .map(|t| (t, o.strength().clamp(0.0, 1.0)));
+        }
+        if second > 0 {
+            *ignored
+                .entry("textures on a second coordinate set")
+                .or_default() += second;
+        }
+        Ok((texture, uv_transform))
+    }
+
+    /// The texture of glTF texture `t` decoded as `how` says (`None` for
+    /// its alpha where the image has none), as an index into
+    /// `self.textures`; each image decoded once each way.
+    fn texture(
+        &mut self,
+        t: &::gltf::Texture,
+        buffers: &[Data],
+        how: Decode,
+    ) -> std::result::Result<Option<u32>, String> {
+        if let Some(&id) = self.images.decoded.get(&(t.index(), how)) {
+            return Ok(id);
+        }
+        let index = t.source().index();
+        let json = self
+            .images
+            .root
+            .and_then(|r| r.images.get(index))
+            .ok_or("its image is missing")?;
+        let what = match (&json.uri, json.buffer_view) {
+            (Some(uri), None) if !uri.starts_with("data:") => {
+                format!("image {index} ({})", crate::text::name(uri, 80))
+            }
+            _ => format!("image {index}"),
+        };
+        let bad = |e: String| format!("texture {}: {what}: {e}", t.index());
+        let owned;
+        let bytes: &[u8] = match (&json.uri, json.buffer_view) {
+            (None, Some(view)) => {
+                let view = self
+                    .images
+                    .root
+                    .and_then(|r| r.buffer_views.get(view.value()))
+                    .ok_or_else(|| bad("its buffer view is missing".into()))?;
+                let buffer = buffers
+                    .get(view.buffer.value())
+                    .ok_or_else(|| bad("its buffer is missing".into()))?;
+                let offset = view.byte_offset.map_or(0, |o| o.0 as usize);
+                let range = offset
+                    .checked_add(view.byte_length.0 as usize)
+                    .filter(|&end| end <= buffer.len())
+                    .map(|end| offset..end)
+                    .ok_or_else(|| {
+                        bad(format!(
+                            "its buffer view ({} bytes at offset {offset}) is out of range of its {}-byte buffer",
+                            view.byte_length.0,
+                            buffer.len()
+                        ))
+                    })?;
+                &buffer[range]
+            }
+            (Some(uri), None) => {
+                owned = fetch(
+                    uri,
+                    self.images.base,
+                    self.images.owner,
+                    self.images.max_bytes,
+                    &mut self.images.notes,
+                )
+                .map_err(bad)?;
+                &owned
+            }
+            (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
+            (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
+        };
+        let (sampler, left) = (sampler(&t.sampler()), self.images.texels_left);
+        let texture = match how {
+            Decode::Alpha => {
+                crate::scene::image::decode_alpha(bytes, &what, sampler, left).map_err(bad)?
+            }
+            Decode::Colour => {
+                Some(crate::scene::image::decode(bytes, &what, sampler, left).map_err(bad)?)
+            }
+            Decode::Values => {
+                Some(crate::scene::image::decode_linear(bytes, &what, sampler, left).map_err(bad)?)
+            }
+        };
+        let id = texture.map(|texture| {
+            let (w, h) = texture.original_size();
+            self.images.texels_left -= u64::from(w) * u64::from(h);
+            self.textures.push(Arc::new(texture));
+            self.textures.len() as u32 - 1
+        });
+        self.images.decoded.insert((t.index(), how), id);
+        Ok(id)
+    }
+}
+
+/// How an image becomes a texture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum Decode {
+    /// A colour: sRGB-decoded (base colour, emissive).
+    Colour,
+    /// Its alpha channel.
+    Alpha,
+    /// Numbers, not colours: each byte over 255 (normal,
+    /// metallic-roughness, occlusion).
+    Values,
 }

@@ -22,10 +22,15 @@
 //! each primitive as its node places it a part of it; its geometry holds
 //! the rest pose, written by the code that poses it (`rig.rs`).
 //!
+//! A material's normal, metallic-roughness, occlusion and emissive
+//! textures are its maps ([`crate::scene::Maps`]: normal, MR and occlusion
+//! images decoded as numbers, not sRGB), with the file's `TANGENT`s or
+//! MikkTSpace's (`scene/tangents.rs`); `KHR_texture_transform` moves the
+//! coordinates once, at load (`material.rs`).
+//!
 //! Not read, and said in one note: points and lines, textures read through
-//! a second texture coordinate set, the other material textures (normal,
-//! occlusion, emissive, metallic-roughness), cameras, and extensions other
-//! than unlit, emissive strength and punctual lights (`material.rs`). An
+//! a second texture coordinate set, cameras, and extensions other than
+//! unlit, emissive strength, punctual lights and texture transform. An
 //! extension the file marks as required is an error, since the model
 //! cannot be drawn right without it.
 //!
@@ -46,7 +51,7 @@ use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::buffer::Data;
 use ::gltf::mesh::Mode;
 use ::gltf::{Accessor, Gltf, Semantic};
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
@@ -58,7 +63,7 @@ use crate::error::{Error, Result};
 use crate::scene::anim::Posed;
 use crate::texture::Texture;
 use buffers::{buffers, check, fetch};
-use material::{finish, light_of, sampler};
+use material::{Decode, finish, light_of};
 use rig::{Placement, RigParts};
 
 /// The deepest node hierarchy walked (the format has no cycles; a broken
@@ -358,7 +363,7 @@ struct Images<'a> {
     notes: Vec<String>,
     /// The texture made of each glTF texture's colour (and alpha: `true`),
     /// as an index into `textures` (`None`: an image without alpha).
-    decoded: FxHashMap<(usize, bool), Option<u32>>,
+    decoded: FxHashMap<(usize, Decode), Option<u32>>,
 }
 
 /// The primitives gathered so far, in world space.
@@ -373,6 +378,9 @@ struct Parts<'a> {
     /// Normals, while every primitive so far has them.
     normals: Vec<Vec3>,
     normals_missing: bool,
+    /// Tangents (`TANGENT`), while every primitive so far has them.
+    tangents: Vec<Vec4>,
+    tangents_missing: bool,
     /// Per-vertex colours, once a primitive has them; earlier vertices get
     /// their material's colour.
     colors: Option<Vec<Lin>>,
@@ -408,52 +416,8 @@ impl Parts<'_> {
         }
         let material = prim.material();
         let mut finish = finish(&material);
-        let others = [
-            material.normal_texture().is_some(),
-            material.occlusion_texture().is_some(),
-            material.emissive_texture().is_some(),
-            material
-                .pbr_metallic_roughness()
-                .metallic_roughness_texture()
-                .is_some(),
-        ];
-        let n_others = others.iter().filter(|&&t| t).count();
-        if n_others > 0 {
-            *ignored
-                .entry("normal, occlusion, emissive or metallic-roughness textures")
-                .or_default() += n_others;
-        }
-        // KHR_texture_transform on the base colour's texture: its
-        // coordinates moved once, here (T · R · S, as the extension says).
-        let base_info = material.pbr_metallic_roughness().base_color_texture();
-        let moved = base_info.as_ref().and_then(|i| i.texture_transform());
-        let uv_transform = moved.as_ref().map(|t| {
-            glam::Affine2::from_scale_angle_translation(
-                Vec2::from(t.scale()),
-                -t.rotation(),
-                Vec2::from(t.offset()),
-            )
-        });
-        let set = |i: &::gltf::texture::Info| {
-            (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
-        };
-        let texture = match base_info {
-            Some(info) if set(&info) == 0 => {
-                // A mask's or a blend's alpha is the texture's alpha
-                // channel times the factor.
-                if finish.alpha.mode != crate::scene::AlphaMode::Opaque {
-                    finish.alpha.texture = self.texture(&info.texture(), buffers, true)?;
-                }
-                self.texture(&info.texture(), buffers, false)?
-            }
-            Some(_) => {
-                *ignored
-                    .entry("textures on a second coordinate set")
-                    .or_default() += 1;
-                None
-            }
-            None => None,
-        };
+        let (texture, uv_transform) = self.textures_of(&material, &mut finish, buffers, ignored)?;
+        let wants_uvs = texture.is_some() || !finish.maps.is_empty();
         let tex_coords = prim.get(&Semantic::TexCoords(0));
         if let Some(t) = &tex_coords {
             check(
@@ -471,10 +435,9 @@ impl Parts<'_> {
                 ));
             }
         }
-        let texture = match (texture, &tex_coords) {
-            (Some(_), None) => return Err("it has a texture but no TEXCOORD_0".into()),
-            (t, _) => t,
-        };
+        if wants_uvs && tex_coords.is_none() {
+            return Err("it has a texture but no TEXCOORD_0".into());
+        }
         let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
         check(
             &positions,
@@ -561,6 +524,26 @@ impl Parts<'_> {
                     .extend(ns.map(|v| (m * Vec3::from(v)).normalize_or_zero()));
             }
             _ => self.normals_missing = true,
+        }
+        // Tangents turn with the node (a mirroring node turns the
+        // bitangent's sign with them); a moving part keeps its own.
+        match reader.read_tangents() {
+            Some(ts) if !self.tangents_missing => {
+                let m = Mat3::from_mat4(if local.is_some() {
+                    Mat4::IDENTITY
+                } else {
+                    world
+                });
+                let sign = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+                self.tangents.extend(ts.map(|t| {
+                    let xyz = (m * Vec3::from_slice(&t[..3])).normalize_or_zero();
+                    xyz.extend(if t[3] < 0.0 { -sign } else { sign })
+                }));
+                if self.tangents.len() != start + n {
+                    return Err("TANGENT could not be read".into());
+                }
+            }
+            _ => self.tangents_missing = true,
         }
         let factor = material.pbr_metallic_roughness().base_color_factor();
         let base = Lin::from_unit([factor[0], factor[1], factor[2]]);
@@ -657,108 +640,37 @@ impl Parts<'_> {
         Ok(())
     }
 
-    /// The texture made of glTF texture `t` (decoded the first time), as
-    /// an index into `self.textures`.
-    /// The texture of glTF texture `t`'s colour, or with `alpha` of its
-    /// alpha channel (`None` for an image without one), decoded once each.
-    fn texture(
-        &mut self,
-        t: &::gltf::Texture,
-        buffers: &[Data],
-        alpha: bool,
-    ) -> std::result::Result<Option<u32>, String> {
-        if let Some(&id) = self.images.decoded.get(&(t.index(), alpha)) {
-            return Ok(id);
-        }
-        let index = t.source().index();
-        let json = self
-            .images
-            .root
-            .and_then(|r| r.images.get(index))
-            .ok_or("its image is missing")?;
-        let what = match (&json.uri, json.buffer_view) {
-            (Some(uri), None) if !uri.starts_with("data:") => {
-                format!("image {index} ({})", crate::text::name(uri, 80))
-            }
-            _ => format!("image {index}"),
-        };
-        let bad = |e: String| format!("texture {}: {what}: {e}", t.index());
-        let owned;
-        let bytes: &[u8] = match (&json.uri, json.buffer_view) {
-            (None, Some(view)) => {
-                let view = self
-                    .images
-                    .root
-                    .and_then(|r| r.buffer_views.get(view.value()))
-                    .ok_or_else(|| bad("its buffer view is missing".into()))?;
-                let buffer = buffers
-                    .get(view.buffer.value())
-                    .ok_or_else(|| bad("its buffer is missing".into()))?;
-                let offset = view.byte_offset.map_or(0, |o| o.0 as usize);
-                let range = offset
-                    .checked_add(view.byte_length.0 as usize)
-                    .filter(|&end| end <= buffer.len())
-                    .map(|end| offset..end)
-                    .ok_or_else(|| {
-                        bad(format!(
-                            "its buffer view ({} bytes at offset {offset}) is out of range of its {}-byte buffer",
-                            view.byte_length.0,
-                            buffer.len()
-                        ))
-                    })?;
-                &buffer[range]
-            }
-            (Some(uri), None) => {
-                owned = fetch(
-                    uri,
-                    self.images.base,
-                    self.images.owner,
-                    self.images.max_bytes,
-                    &mut self.images.notes,
-                )
-                .map_err(bad)?;
-                &owned
-            }
-            (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
-            (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
-        };
-        let (sampler, left) = (sampler(&t.sampler()), self.images.texels_left);
-        let texture = if alpha {
-            super::image::decode_alpha(bytes, &what, sampler, left).map_err(bad)?
-        } else {
-            Some(super::image::decode(bytes, &what, sampler, left).map_err(bad)?)
-        };
-        let id = texture.map(|texture| {
-            let (w, h) = texture.original_size();
-            self.images.texels_left -= u64::from(w) * u64::from(h);
-            self.textures.push(Arc::new(texture));
-            self.textures.len() as u32 - 1
-        });
-        self.images.decoded.insert((t.index(), alpha), id);
-        Ok(id)
-    }
-
     fn geometry(self, name: &str, crease: f32) -> Geometry {
         let mut g = Geometry::new_raw(name, self.positions, self.faces);
         // Runs that are all "the mesh's colour", untextured, say nothing.
-        if self.materials.iter().any(|m| m.texture.is_some()) {
+        let maps = self.materials.iter().any(|m| !m.finish.maps.is_empty());
+        if maps || self.materials.iter().any(|m| m.texture.is_some()) {
             g.uvs = self.uvs;
             g.textures = self.textures;
         }
         if self
             .materials
             .iter()
-            .any(|m| m.color.is_some() || m.texture.is_some())
+            .any(|m| m.color.is_some() || m.texture.is_some() || !m.finish.maps.is_empty())
         {
             g.materials = self.materials;
         }
         g.colors = self.colors;
-        if !self.normals_missing && self.normals.len() == g.positions.len() {
+        let file_normals = !self.normals_missing && self.normals.len() == g.positions.len();
+        if file_normals {
             g.normals = self.normals;
         } else {
             g.compute_normals(crease);
         }
         g.analyze();
+        if g.materials.iter().any(|m| m.finish.maps.normal.is_some()) {
+            // The file's tangents go with its normals (computed normals
+            // split vertices at creases: then MikkTSpace's, from them).
+            let file = (file_normals && !self.tangents_missing)
+                .then_some(self.tangents)
+                .filter(|t| t.len() == g.positions.len());
+            g.tangents = Some(super::tangents::of(&g, file.as_deref()));
+        }
         g
     }
 }
