@@ -262,6 +262,14 @@ fn a_mapped_frame_is_the_same_planned_or_full_and_in_bands() {
         r.stats().mapped_samples,
         planned.iter().flatten().count() as u64
     );
+    // --explain says which faces get which maps.
+    let report = r.explain(&scene, &RenderOptions::default(), Default::default(), 0);
+    assert!(
+        report.contains(
+            "faces 0..2: maps (normal, metallic-roughness, occlusion, emissive): shaded per sample"
+        ),
+        "{report}"
+    );
     let (full, _) = draw(&scene, Pipeline::Full);
     assert_eq!(planned, full);
     let mut banded = Renderer::new();

@@ -192,6 +192,7 @@ impl Renderer {
         for (name, d, work) in &rows {
             let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
         }
+        effects(&mut out, scene, plan);
         let r = &s.raster;
         let _ = writeln!(
             out,
@@ -225,6 +226,80 @@ impl Renderer {
             bytes
         );
         out
+    }
+}
+
+/// The most runs of one mesh `--explain` lists one by one.
+const RUNS_LISTED: usize = 8;
+
+/// Which meshes' faces get which of the plan's per-material effects, run
+/// by run, and what in their material calls for it; a mesh whose faces
+/// get none is not listed.
+fn effects(out: &mut String, scene: &Scene, plan: &crate::Plan) {
+    for (i, m) in scene.meshes.iter().enumerate() {
+        let runs: Vec<String> = m
+            .runs(crate::color::Lin::from_srgb(m.color))
+            .filter_map(|run| {
+                let f = &run.finish;
+                let mut e = Vec::new();
+                if run.texture.is_some() && plan.texturing.run {
+                    e.push("texture (its base colour's)".to_string());
+                }
+                if let Some(maps) = plan.maps_of(f).filter(|_| m.uvs.is_some()) {
+                    let which: Vec<&str> = [
+                        (maps.normal.is_some(), "normal"),
+                        (maps.metallic_roughness.is_some(), "metallic-roughness"),
+                        (maps.occlusion.is_some(), "occlusion"),
+                        (maps.emissive.is_some(), "emissive"),
+                    ]
+                    .iter()
+                    .filter_map(|&(has, name)| has.then_some(name))
+                    .collect();
+                    e.push(format!("maps ({}): shaded per sample", which.join(", ")));
+                } else if f.specular.is_some() && !f.unlit && plan.shines(true) {
+                    e.push("highlight (its metallic-roughness or Ks)".into());
+                }
+                if plan.glow.run && f.emissive != crate::color::Lin::BLACK {
+                    e.push("glow (its emissive colour)".into());
+                }
+                if plan.sees_through(&f.alpha) {
+                    match f.alpha.mode {
+                        crate::scene::AlphaMode::Mask { cutoff } => {
+                            e.push(format!("mask (cut at alpha {cutoff})"));
+                        }
+                        crate::scene::AlphaMode::Blend => {
+                            e.push("blend (drawn last, back to front)".into());
+                        }
+                        crate::scene::AlphaMode::Opaque => {}
+                    }
+                }
+                if f.unlit {
+                    e.push("unlit (drawn in its colour)".into());
+                }
+                (!e.is_empty()).then(|| {
+                    format!(
+                        "faces {}..{}: {}",
+                        run.faces.start,
+                        run.faces.end,
+                        e.join(", ")
+                    )
+                })
+            })
+            .collect();
+        if runs.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "mesh {i} ({}), its materials' effects:",
+            crate::text::name(&m.geometry.name, 40)
+        );
+        for r in runs.iter().take(RUNS_LISTED) {
+            let _ = writeln!(out, "  {r}");
+        }
+        if runs.len() > RUNS_LISTED {
+            let _ = writeln!(out, "  … and {} more runs", runs.len() - RUNS_LISTED);
+        }
     }
 }
 
