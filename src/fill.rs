@@ -292,7 +292,10 @@ pub(crate) struct Shine<'a> {
     /// α², the roughness to the fourth.
     a2: f32,
     lights: &'a Lights,
-    eye: Eye,
+    /// The eye as `(e, k, d)`, towards it from `p` being `e − k·p + d`:
+    /// `(eye, 1, 0)` for a point, `(0, 0, direction)` for a direction; no
+    /// branch per sample.
+    eye: (Vec3, f32, Vec3),
     /// [`crate::Highlights::Vertex`]: the highlight found at each corner,
     /// interpolated.
     corners: Option<[Vec3A; 3]>,
@@ -338,7 +341,10 @@ impl<'a> Shine<'a> {
             f0: finish.map(|f| f.0),
             a2: finish.map_or(1.0, |f| f.1),
             lights,
-            eye,
+            eye: match eye {
+                Eye::At(e) => (e, 1.0, Vec3::ZERO),
+                Eye::Towards(d) => (Vec3::ZERO, 0.0, d),
+            },
             corners: None,
         };
         if per_vertex && let Some(f0) = s.f0 {
@@ -365,7 +371,8 @@ impl<'a> Shine<'a> {
     /// The specular light at a point `p` of normal `n` (any length).
     #[inline(always)]
     fn light(&self, n: Vec3, p: Vec3, f0: Vec3A) -> Vec3A {
-        let v = self.eye.to_eye(p).normalize_or_zero();
+        let (e, k, d) = self.eye;
+        let v = (e - p * k + d).normalize_or_zero();
         let mut n = n.normalize_or_zero();
         // Two-sided: a surface seen from behind shines on its seen side.
         if n.dot(v) < 0.0 {
