@@ -28,7 +28,10 @@
 //! pipeline sends every run) adds nothing, so it writes what the other
 //! fills write, to the bit. A material that is not opaque takes a fill of
 //! its own ([`Sink::see_through`]): a mask's coverage decided per sample
-//! before the depth test, or blending over what is drawn.
+//! before the depth test, or blending over what is drawn. A material with
+//! maps (normal, metallic-roughness, occlusion, emissive) is shaded per
+//! sample from them (`mapped.rs`), through that same fill with its
+//! alpha (opaque, for most).
 
 use glam::{Vec2, Vec3, Vec3A};
 

@@ -235,7 +235,7 @@ const RUNS_LISTED: usize = 8;
 /// Which meshes' faces get which of the plan's per-material effects, run
 /// by run, and what in their material calls for it; a mesh whose faces
 /// get none is not listed.
-fn effects(out: &mut String, scene: &Scene, plan: &crate::Plan) {
+fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
     for (i, m) in scene.meshes.iter().enumerate() {
         let runs: Vec<String> = m
             .runs(crate::color::Lin::from_srgb(m.color))
