@@ -530,8 +530,12 @@ pub(crate) struct Attributes {
     /// `1/w` where the plan corrects for perspective (scaled to [1, 2) at
     /// its largest where one is outside [2^−40, 2^40)), else 1.
     w: [f32; 3],
-    /// In SIMD lanes: the same operations on each channel as three f32s,
-    /// so the same results, in fewer instructions.
+    /// The first vertex's colour, then the others' differences from it
+    /// (so that three equal colours interpolate to exactly that colour:
+    /// the planned pipeline's plain write of a one-colour triangle and the
+    /// full pipeline's interpolation of it agree bit for bit, also once a
+    /// texel multiplies them). In SIMD lanes: the same operations on each
+    /// channel as three f32s, so the same results, in fewer instructions.
     color: [Vec3A; 3],
     /// Whether `w` holds perspective weights.
     perspective: bool,
@@ -566,7 +570,10 @@ impl Attributes {
             } else {
                 [1.0; 3]
             },
-            color: order.map(|i| Vec3A::from(color[i])),
+            color: {
+                let [a, b, c] = order.map(|i| Vec3A::from(color[i]));
+                [a, b - a, c - a]
+            },
             perspective,
         }
     }
@@ -594,9 +601,9 @@ impl Attributes {
     #[inline(always)]
     fn lit(&self, e: [f32; 3]) -> Vec3A {
         let [a, b, c] = self.w;
-        let [ca, cb, cc] = self.color;
+        let [ca, db, dc] = self.color;
         let (wa, wb, wc) = (e[0] * a, e[1] * b, e[2] * c);
-        (ca * wa + cb * wb + cc * wc) / (wa + wb + wc)
+        ca + (db * wb + dc * wc) / (wa + wb + wc)
     }
 }
 

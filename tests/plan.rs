@@ -150,36 +150,41 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
         prop::sample::select(vec![Cull::Back, Cull::None, Cull::Front]),
         alpha(),
         prop::option::weighted(0.25, (0u8..16, 0.0f32..1.0)),
+        prop::option::weighted(0.25, 0.0f32..1.0),
     )
-        .prop_map(|(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps)| {
-            let mut m = shape.mesh(c);
-            if alpha.is_some() || maps.is_some() {
-                // The second half of its faces masked or blended, with
-                // maps (and UVs and tangents to read them by) or not.
-                let g = m.geometry_mut();
-                let mut finish = rastty::scene::Finish {
-                    alpha: alpha.unwrap_or_default(),
-                    ..Default::default()
-                };
-                if let Some((which, k)) = maps {
-                    finish = mapped(g, finish, which, k);
+        .prop_map(
+            |(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps, texture)| {
+                let mut m = shape.mesh(c);
+                if alpha.is_some() || maps.is_some() || texture.is_some() {
+                    // The second half of its faces masked or blended, with
+                    // maps (and UVs and tangents to read them by) or not, with
+                    // a base colour texture or not.
+                    let g = m.geometry_mut();
+                    let mut finish = rastty::scene::Finish {
+                        alpha: alpha.unwrap_or_default(),
+                        ..Default::default()
+                    };
+                    if let Some((which, k)) = maps {
+                        finish = mapped(g, finish, which, k);
+                    }
+                    let texture = texture.map(|k| texture_2x2(g, k));
+                    g.materials = vec![rastty::scene::MaterialRun {
+                        first: (g.faces.len() / 2) as u32,
+                        color: None,
+                        texture,
+                        finish,
+                    }];
+                    g.analyze();
                 }
-                g.materials = vec![rastty::scene::MaterialRun {
-                    first: (g.faces.len() / 2) as u32,
-                    color: None,
-                    texture: None,
-                    finish,
-                }];
-                g.analyze();
-            }
-            m.model = rastty::transform::model(
-                Vec3::splat(s),
-                Vec3::new(rx, ry, 0.0),
-                Vec3::new(x, y, z),
-            );
-            m.cull = cull;
-            m
-        })
+                m.model = rastty::transform::model(
+                    Vec3::splat(s),
+                    Vec3::new(rx, ry, 0.0),
+                    Vec3::new(x, y, z),
+                );
+                m.cull = cull;
+                m
+            },
+        )
 }
 
 /// `finish` with the maps of the bits of `which` (normal, occlusion,
@@ -191,12 +196,31 @@ fn mapped(
     which: u8,
     k: f32,
 ) -> rastty::scene::Finish {
-    use rastty::texture::{Sampler, Texture};
-    g.uvs = Some(g.positions.iter().map(|p| p.truncate() * 2.0).collect());
     g.tangents = Some(vec![
         [rastty::glam::Vec4::new(1.0, 0.0, 0.0, 1.0); 3];
         g.faces.len()
     ]);
+    let t = texture_2x2(g, k);
+    let maps = &mut finish.maps;
+    maps.normal = (which & 1 != 0).then_some((t, 1.0 - k));
+    maps.occlusion = (which & 2 != 0).then_some((t, k));
+    maps.emissive = (which & 4 != 0).then_some(t);
+    maps.metallic_roughness = (which & 8 != 0).then_some(t);
+    if which & 8 != 0 {
+        finish.specular = rastty::scene::Specular::metallic_roughness(k, 1.0 - k);
+    }
+    if which & 4 != 0 {
+        finish.emissive = rastty::color::Lin::from_f32([20000.0, 5000.0, 0.0]);
+    }
+    finish
+}
+
+/// A 2×2 texture made from `k` (a white texel among them: one that a
+/// colour a hair under its own, interpolated, would round down a step)
+/// added to `g`, and the UVs (x and y) to read it by; its index.
+fn texture_2x2(g: &mut rastty::scene::Geometry, k: f32) -> u32 {
+    use rastty::texture::{Sampler, Texture};
+    g.uvs = Some(g.positions.iter().map(|p| p.truncate() * 2.0).collect());
     let texels = [
         [k, 0.5, 1.0],
         [1.0 - k, k, 0.8],
@@ -210,19 +234,7 @@ fn mapped(
         texels.to_vec(),
         Sampler::default(),
     )));
-    let t = g.textures.len() as u32 - 1;
-    let maps = &mut finish.maps;
-    maps.normal = (which & 1 != 0).then_some((t, 1.0 - k));
-    maps.occlusion = (which & 2 != 0).then_some((t, k));
-    maps.emissive = (which & 4 != 0).then_some(t);
-    maps.metallic_roughness = (which & 8 != 0).then_some(t);
-    if which & 8 != 0 {
-        finish.specular = rastty::scene::Specular::metallic_roughness(k, 1.0 - k);
-    }
-    if which & 4 != 0 {
-        finish.emissive = rastty::color::Lin::from_f32([20000.0, 5000.0, 0.0]);
-    }
-    finish
+    g.textures.len() as u32 - 1
 }
 
 /// Opaque (no material) mostly; else a mask or a blend of some alpha.

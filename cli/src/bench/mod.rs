@@ -13,6 +13,7 @@
 //! | traversal | scan, bounding box, incremental, spans | samples that differ from spans, the default (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
 //! | highlights | per vertex, per sample | largest and mean colour error (0–255) against the same specular lobe in f64 at the true sphere's normal, on a white metal sphere |
+//! | effects | planned, full pipeline | samples unlike the planned frame (must be 0): the time column is what drawing highlights, masks, blends, glow and textures on runs whose materials have none would cost, and what the planner saves |
 //! | texture filtering | nearest, bilinear, trilinear | largest and mean colour error (0–255) against an f64 reference supersampled 16×16 per sample, on a textured floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
 //! | palette matching | 256 and 16 colours, nearest in RGB, OKLab or OKLCh | mean OKLab distance to the colour sent; greys sent to a colour; hues moved over 45° |
@@ -45,7 +46,7 @@ use rastty::raster::{Precision, Traversal};
 use rastty::scene::{Camera, Projection, Scene, Triangle, TriangleColor};
 use rastty::texture::FilterMode;
 use rastty::transform::Grid;
-use rastty::{Aa, Highlights, Interpolation, RenderOptions};
+use rastty::{Aa, Highlights, Interpolation, Pipeline, RenderOptions};
 use rastty::{GlyphMode, Split};
 
 /// A scene to time, and whether it turns from frame to frame.
@@ -268,6 +269,24 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
         });
     }
 
+    // 4c. Effects: what the planner saves by running each stage and effect
+    // only where the scene calls for it (none of the workloads' materials
+    // mask, blend or carry maps), and that skipping changes no sample.
+    for pipeline in [Pipeline::Planned, Pipeline::Full] {
+        rows.push(Row {
+            knob: "effects",
+            setting: match pipeline {
+                Pipeline::Planned => "planned: each where a material calls for it".into(),
+                Pipeline::Full => "full pipeline: every stage and effect on every run".into(),
+            },
+            times: time_all(&RenderOptions { pipeline, ..base() }),
+            errors: vec![(
+                "samples unlike the planned frame",
+                samples_unlike(workloads, |o| RenderOptions { pipeline, ..o }) as f64,
+            )],
+        });
+    }
+
     // 5. Texture filtering.
     for &filter in FilterMode::ALL {
         let (max, mean) = filter_error(filter);
@@ -400,6 +419,28 @@ mod tests {
         let (perspective, _) = interpolation_error(Interpolation::Perspective);
         assert!(perspective <= 2.0, "{perspective}");
         assert!(affine > 40.0, "{affine}");
+    }
+
+    #[test]
+    fn the_full_pipeline_draws_every_sample_the_planner_draws() {
+        // The textured floor found a difference once: a one-colour triangle
+        // interpolated (as the full pipeline does) to a hair under its
+        // colour, times a white texel, rounded down a step.
+        let w = vec![Workload {
+            name: "textured floor".into(),
+            scene: textured_floor(),
+        }];
+        let full = |o| RenderOptions {
+            pipeline: Pipeline::Full,
+            ..o
+        };
+        assert_eq!(samples_unlike(&w, full), 0);
+        // The measure sees a change: affine interpolation moves samples.
+        let affine = |o| RenderOptions {
+            interpolation: Interpolation::Affine,
+            ..o
+        };
+        assert!(samples_unlike(&w, affine) > 0);
     }
 
     #[test]

@@ -119,6 +119,15 @@ pub(super) fn gcd(a: u32, b: u32) -> u32 {
 /// Samples of every workload's frame drawn differently by `traversal` than
 /// by the default one (spans).
 pub(super) fn traversal_mismatch(workloads: &[Workload], traversal: Traversal) -> u64 {
+    samples_unlike(workloads, |opts| RenderOptions { traversal, ..opts })
+}
+
+/// Samples of every workload's frame (80×24 cells) drawn differently with
+/// the options `change` makes of the base ones than with the base ones.
+pub(super) fn samples_unlike(
+    workloads: &[Workload],
+    change: impl Fn(RenderOptions) -> RenderOptions,
+) -> u64 {
     let opts = RenderOptions {
         cols: 80,
         rows: 24,
@@ -130,7 +139,7 @@ pub(super) fn traversal_mismatch(workloads: &[Workload], traversal: Traversal) -
             let mut a = Renderer::new();
             let mut b = Renderer::new();
             a.render(&w.scene, &opts);
-            b.render(&w.scene, &RenderOptions { traversal, ..opts });
+            b.render(&w.scene, &change(opts));
             a.framebuffer()
                 .samples()
                 .iter()
