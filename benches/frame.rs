@@ -36,6 +36,7 @@ fn frames(c: &mut Criterion) {
             ..RenderOptions::default()
         };
         let spin = Spin {
+            view: Default::default(),
             axis: Axis::Y,
             step: 3.0,
             play: None,

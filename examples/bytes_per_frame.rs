@@ -42,6 +42,7 @@ const SPIN: Spin = Spin {
     axis: Axis::Z,
     step: 6.0,
     play: None,
+    view: rastty::scene::View::AS_GIVEN,
 };
 
 fn main() {

@@ -10,22 +10,23 @@
 //! terminal draws one cell wide, asked of it with [`rastty::GlyphSupport`]
 //! (octants, or sextants in a tmux whose C library lacks them). Keys: arrows orbit, `+`/`-` zoom, Tab and
 //! Shift-Tab pick a model, `g` the next glyph mode, space pauses, `q` or
-//! Esc quits. Mouse: drag in the view to orbit, the wheel zooms, a click in
-//! the list picks a model.
+//! Esc quits. Mouse: drag in the view to orbit, right- or Shift-drag to
+//! pan (the library's [`rastty::scene::View`], as `rastty spin` moves it),
+//! the wheel zooms, a click in the list picks a model.
 
 use rastty::Choice;
 use std::io;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use rastty::glam::Vec3;
+use rastty::glam::{Vec2, Vec3};
 use rastty::ratatui::{SceneState, SceneWidget};
-use rastty::scene::Shape;
+use rastty::scene::{Shape, View};
 use rastty::{GlyphMode, GlyphSupport, RenderOptions, color::ColorDepth, color::Rgb, scene::Scene};
 use ratatui::crossterm::cursor::{MoveTo, position};
 use ratatui::crossterm::event::{
-    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, MouseButton,
-    MouseEventKind,
+    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, KeyModifiers,
+    MouseButton, MouseEventKind,
 };
 use ratatui::crossterm::execute;
 use ratatui::crossterm::style::Print;
@@ -62,10 +63,9 @@ struct App {
     list: ListState,
     options: RenderOptions,
     state: SceneState,
-    /// Orbit (degrees of yaw and pitch) and zoom of the camera.
-    yaw: f32,
-    pitch: f32,
-    zoom: f32,
+    /// Orbit, zoom and pan of the camera: the library's view, which
+    /// `rastty spin`'s mouse moves the same way.
+    view: View,
     /// The model's own turn, in degrees, and whether it goes on turning.
     spin: f32,
     /// Seconds played of a moving model's first clip.
@@ -129,9 +129,7 @@ impl App {
                 ..Default::default()
             },
             state: SceneState::new(),
-            yaw: 0.0,
-            pitch: 0.0,
-            zoom: 1.0,
+            view: View::AS_GIVEN,
             spin: 0.0,
             clock: 0.0,
             paused: false,
@@ -149,17 +147,16 @@ impl App {
     fn pick(&mut self, i: usize) {
         if i < self.entries.len() && i != self.selected() {
             self.list.select(Some(i));
-            (self.yaw, self.pitch, self.zoom) = (0.0, 0.0, 1.0);
+            self.view = View::AS_GIVEN;
         }
     }
 
     fn orbit(&mut self, yaw: f32, pitch: f32) {
-        self.yaw += yaw;
-        self.pitch = (self.pitch + pitch).clamp(-85.0, 85.0);
+        self.view.orbit(yaw, pitch);
     }
 
     fn zoom(&mut self, factor: f32) {
-        self.zoom = (self.zoom * factor).clamp(0.2, 5.0);
+        self.view.zoom(factor);
     }
 
     /// Handles one event; `false` to quit.
@@ -197,15 +194,22 @@ impl App {
                         let row = m.row.saturating_sub(self.list_area.y + 1) as usize;
                         self.pick(row + self.list.offset());
                     }
-                    MouseEventKind::Down(MouseButton::Left) if self.view_area.contains(at) => {
+                    MouseEventKind::Down(MouseButton::Left | MouseButton::Right)
+                        if self.view_area.contains(at) =>
+                    {
                         self.drag = Some((m.column, m.row));
                     }
-                    MouseEventKind::Drag(MouseButton::Left) => {
+                    MouseEventKind::Drag(button @ (MouseButton::Left | MouseButton::Right)) => {
                         if let Some((x, y)) = self.drag {
-                            // Three degrees a column; a row is twice as tall.
-                            let dx = m.column as f32 - x as f32;
-                            let dy = m.row as f32 - y as f32;
-                            self.orbit(-3.0 * dx, 6.0 * dy);
+                            // As `rastty spin` turns it: a drag across the
+                            // view's height is half a turn; the right
+                            // button (or Shift) pans.
+                            let cells =
+                                Vec2::new(m.column as f32 - x as f32, m.row as f32 - y as f32);
+                            let pan = button == MouseButton::Right
+                                || m.modifiers.contains(KeyModifiers::SHIFT);
+                            let rows = self.view_area.height.saturating_sub(2);
+                            self.view.drag(cells, rows, self.options.cell_aspect, pan);
                             self.drag = Some((m.column, m.row));
                         }
                     }
@@ -238,14 +242,11 @@ impl App {
         let inner = block.inner(view);
         f.render_widget(block, view);
         let i = self.selected();
-        let (name, (yaw, pitch, zoom)) = (
-            self.entries[i].name.clone(),
-            (self.yaw, self.pitch, self.zoom),
-        );
+        let (name, view) = (self.entries[i].name.clone(), self.view);
         let text = match self.entries[i].scene() {
             Ok(scene) => {
                 let mut scene = scene.clone();
-                scene.camera = scene.camera.orbited(yaw, pitch, zoom);
+                scene.camera = view.apply(&scene.camera);
                 // A model that moves plays its first clip.
                 if !scene.clips().is_empty() {
                     scene.set_pose(0, self.clock);
@@ -266,9 +267,9 @@ impl App {
                     self.options.glyphs.name(),
                     self.options.color.name(),
                     self.fps,
-                    yaw,
-                    pitch,
-                    1.0 / zoom,
+                    view.yaw,
+                    view.pitch,
+                    1.0 / view.distance,
                     if self.paused { " · paused" } else { "" },
                 )
             }

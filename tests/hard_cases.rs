@@ -382,6 +382,7 @@ fn neighbours_cut_by_the_near_plane_stay_watertight() {
     // around a point on it: every triangle crosses or touches the near plane.
     let scene = |triangles| Scene {
         camera: Camera {
+            shift: rastty::glam::Vec2::ZERO,
             projection: Projection::Perspective {
                 fov_y: 70.0,
                 near: 0.5,

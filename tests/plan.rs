@@ -296,6 +296,7 @@ fn camera() -> impl Strategy<Value = Camera> {
         0.05f32..2.0,
     )
         .prop_map(|(kind, (x, y, z), fov, near)| Camera {
+            shift: rastty::glam::Vec2::ZERO,
             projection: match kind {
                 0 => Projection::Perspective {
                     fov_y: fov,

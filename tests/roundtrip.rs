@@ -268,6 +268,7 @@ fn spinning_square_stays_within_budget_in_every_mode() {
     use rastty::transform::Axis;
     let scene = scene("square");
     let spin = Spin {
+        view: Default::default(),
         axis: Axis::Z,
         step: 6.0,
         play: None,

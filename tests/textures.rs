@@ -55,6 +55,7 @@ fn scene_of(loaded: obj::Loaded, camera: Camera) -> Scene {
 
 fn floor_camera() -> Camera {
     Camera {
+        shift: rastty::glam::Vec2::ZERO,
         projection: Projection::Perspective {
             fov_y: 60.0,
             near: 0.1,

@@ -40,7 +40,7 @@ pub enum Command {
     /// Print one frame of a scene or model to stdout.
     Render(RenderArgs),
     /// Spin a scene or model in the terminal (q quits).
-    #[command(after_help = crate::live::KEYS)]
+    #[command(after_help = rastty::animate::keys_text())]
     Spin(SpinArgs),
     /// Measure what accuracy costs: every accuracy knob's time per frame
     /// and error, as a Markdown table on stdout and an SVG plot.
@@ -72,6 +72,10 @@ pub struct RenderArgs {
     /// skipped, why, what it did and how long it took
     #[arg(long, help_heading = "Output")]
     pub explain: bool,
+    /// For a file manager's preview: an error is one line within --cols
+    /// characters (the file's name, then what is wrong, cut with …)
+    #[arg(long, help_heading = "Output")]
+    pub preview: bool,
     /// Write the frame to PATH instead of stdout, in the format its
     /// extension names: .png or .svg (a picture: each cell painted at
     /// --cell-px, no font needed), .ans (the ANSI frame) or .txt (plain
@@ -110,6 +114,10 @@ pub struct SpinArgs {
     /// Degrees turned per frame
     #[arg(help_heading = "Spin", long, value_name = "DEG", default_value_t = 3.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub step: f32,
+    /// Degrees turned per second, whatever the frame rate (0 stands
+    /// still); instead of --step
+    #[arg(help_heading = "Spin", long, value_name = "DEG/s", allow_negative_numbers = true, value_parser = parse_angle, conflicts_with = "step")]
+    pub turn: Option<f32>,
     /// Frames per second
     #[arg(help_heading = "Spin", long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: u32,
@@ -283,6 +291,32 @@ pub struct ViewArgs {
     /// Turn the scene about the world's z axis, in degrees
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub roll: f32,
+    /// Move the eye around its target: degrees of yaw (about the camera's
+    /// up axis) and pitch (towards it, within ±85), as a drag or the
+    /// arrows do in spin [default: 0,0]
+    #[arg(long, value_name = "YAW,PITCH", allow_hyphen_values = true, value_parser = parse_orbit, help_heading = "Camera")]
+    pub orbit: Option<[f32; 2]>,
+    /// Draw the scene X times larger, the eye brought nearer its target
+    /// (0.05 to 20), as the wheel and + / - do in spin [default: 1]
+    #[arg(long, value_name = "X", value_parser = parse_zoom, help_heading = "Camera")]
+    pub zoom: Option<f32>,
+    /// Move the picture by X,Y view heights (right, up), as a right-drag
+    /// does in spin [default: 0,0]
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_pair, help_heading = "Camera")]
+    pub pan: Option<[f32; 2]>,
+    /// The point the eye looks at and orbits, X,Y,Z in the scene's units
+    /// [default: the scene file's target, or the model's centre]
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = parse_point, help_heading = "Camera")]
+    pub target: Option<[f32; 3]>,
+    /// The eye's distance from its target, in the scene's units (a model
+    /// shown alone is scaled into a sphere of radius 1, and otherwise
+    /// placed so that it fits the view)
+    #[arg(long, value_name = "D", value_parser = parse_distance, help_heading = "Camera")]
+    pub distance: Option<f32>,
+    /// The camera's vertical field of view, in degrees (a perspective
+    /// camera's) [default: the scene file's, or 45]
+    #[arg(long, value_name = "DEG", value_parser = parse_fov, help_heading = "Camera")]
+    pub fov: Option<f32>,
     /// Anti-aliasing: 4 or 16 sub-samples per sample, or each triangle's
     /// exact area in the sample's square
     #[arg(long, value_parser = named::<Aa>(), default_value = Aa::None.name())]
@@ -419,6 +453,63 @@ fn parse_crease(s: &str) -> Result<f32, String> {
         Ok(d)
     } else {
         Err(format!("{s} is not between 0 and 180"))
+    }
+}
+
+/// Comma-separated finite numbers, exactly `N` of them.
+fn parse_numbers<const N: usize>(s: &str, what: &str) -> Result<[f32; N], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(format!("{s:?} is not {what}"));
+    }
+    let mut out = [0.0; N];
+    for (o, p) in out.iter_mut().zip(parts) {
+        *o = p
+            .parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| format!("{p:?} in {s:?} is not a finite number"))?;
+    }
+    Ok(out)
+}
+
+fn parse_orbit(s: &str) -> Result<[f32; 2], String> {
+    parse_numbers(s, "YAW,PITCH (two angles in degrees, as 30,-10)")
+}
+
+fn parse_pair(s: &str) -> Result<[f32; 2], String> {
+    parse_numbers(s, "X,Y (two numbers, as 0.1,-0.2)")
+}
+
+fn parse_point(s: &str) -> Result<[f32; 3], String> {
+    parse_numbers(s, "X,Y,Z (three numbers, as 0,1.5,0)")
+}
+
+fn parse_zoom(s: &str) -> Result<f32, String> {
+    let z: f32 = parse_finite(s, "zoom")?;
+    let (lo, hi) = rastty::scene::View::DISTANCE;
+    if (lo..=hi).contains(&z) {
+        Ok(z)
+    } else {
+        Err(format!("{s} is not between {lo} and {hi}"))
+    }
+}
+
+fn parse_distance(s: &str) -> Result<f32, String> {
+    let d: f32 = parse_finite(s, "distance")?;
+    if d > 0.0 {
+        Ok(d)
+    } else {
+        Err(format!("{s} is not a distance above 0"))
+    }
+}
+
+fn parse_fov(s: &str) -> Result<f32, String> {
+    let f: f32 = parse_finite(s, "angle")?;
+    if f > 0.0 && f < 180.0 {
+        Ok(f)
+    } else {
+        Err(format!("{s} is not between 0 and 180 degrees"))
     }
 }
 

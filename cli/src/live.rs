@@ -41,6 +41,7 @@ use std::collections::VecDeque;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
+use crate::gesture::Pointer;
 use crate::terminal::input::{Input, Key, Parser};
 use crate::terminal::probe::{self, Capabilities};
 use crate::terminal::signals::{self, Signals};
@@ -103,21 +104,6 @@ pub enum Action {
     Suspend,
 }
 
-/// The keys `spin` knows, as `--help` lists them.
-pub const KEYS: &str = "\
-Keys:
-  q, Esc, Ctrl-C   quit
-  space            pause (the turn and the clip)
-  t                stop turning, or turn again (the clip plays on)
-  [ / ]            previous / next clip of a model that moves
-  arrows           orbit the camera around its target
-  + / -            zoom in / out
-  m                next glyph mode (skipping those the terminal cannot draw)
-  c                next colour depth (truecolor included)
-  s                next shading
-  Ctrl-L           redraw
-  Ctrl-Z           suspend (fg resumes)";
-
 /// The action a key asks for.
 pub fn action_for(key: Key) -> Option<Action> {
     let cmd = match key {
@@ -149,6 +135,8 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Char('m') => Command::NextGlyphs,
         Key::Char('c') => Command::NextColor,
         Key::Char('s') => Command::NextShading,
+        Key::Char('r') => Command::Reset,
+        Key::Char('?') => Command::ToggleHelp,
         _ => return None,
     };
     Some(Action::Player(cmd))
@@ -419,6 +407,7 @@ pub fn run(
         player,
         opts: *opts,
         parser: Parser::new(),
+        pointer: Pointer::default(),
         inputs: Vec::with_capacity(64),
         out: Vec::new(),
         written: 0,
@@ -440,6 +429,8 @@ struct Live<'a, 'b> {
     player: &'a mut Player,
     opts: LiveOptions,
     parser: Parser,
+    /// The mouse between reports (a drag's last cell, a first click).
+    pointer: Pointer,
     inputs: Vec<Input>,
     /// The frame being sent, and how much of it is written.
     out: Vec<u8>,
@@ -577,6 +568,12 @@ impl Live<'_, '_> {
                         Some(Action::Suspend) => suspend = true,
                         None => {}
                     },
+                    Input::Mouse(m) => {
+                        if let Some(cmd) = self.pointer.command(m, now) {
+                            self.player.apply(cmd);
+                            dirty = true;
+                        }
+                    }
                     Input::StatusOk => link.acked(now),
                     _ => {}
                 }

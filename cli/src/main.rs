@@ -3,6 +3,7 @@
 
 mod bench;
 mod cli;
+mod gesture;
 mod live;
 mod terminal;
 
@@ -24,19 +25,32 @@ use rastty::animate::{Player, Spin};
 use rastty::cast::{self, Recorder};
 use rastty::encode::Encoder;
 use rastty::picture::{self, Format, Theme};
-use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, encode, scene::Scene};
+use rastty::scene::{Projection, Scene, View};
+use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, encode};
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
+    // A preview of a given width gets an error that fits it.
+    let fit = match &cli.command {
+        Some(Command::Render(args)) if args.preview => args
+            .view
+            .cols
+            .map(|w| (usize::from(w), args.input.scene.clone())),
+        _ => None,
+    };
     let code = match try_main(cli) {
         Ok(code) => code,
         // A closed pipe (`rastty render | head`) is not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            say("error", &e.to_string());
+            let line = format!("error: {}", rastty::text::line(&e.to_string()));
+            say_lines(&match fit {
+                Some((width, path)) => fitted(line, width, path.as_deref()),
+                None => line,
+            });
             ExitCode::FAILURE
         }
     };
@@ -45,6 +59,27 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     }
     code
+}
+
+/// `line` in `width` characters: the model's path shortened to its file
+/// name where the line is wider, then the end cut off with `…` (the start
+/// says which file and what is wrong).
+fn fitted(line: String, width: usize, path: Option<&Path>) -> String {
+    let width = width.max(10);
+    let mut line = line;
+    if line.chars().count() > width
+        && let Some(path) = path
+        && let Some(name) = path.file_name()
+    {
+        let (full, name) = (path.to_string_lossy(), name.to_string_lossy());
+        line = line.replacen(full.as_ref(), name.as_ref(), 1);
+    }
+    if line.chars().count() <= width {
+        return line;
+    }
+    let mut cut: String = line.chars().take(width - 1).collect();
+    cut.push('…');
+    cut
 }
 
 /// Set when a line for stderr could not be written.
@@ -308,7 +343,15 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
             }
             Ok(s)
         })
-        .map(|s| with_background(s, &args.view))
+        .and_then(|s| {
+            let (mut s, view) = with_view(s, &args.view)?;
+            // The view as `spin` applies it, where one is asked for (else
+            // the camera as it is, to the bit).
+            if view != View::AS_GIVEN {
+                s.camera = view.apply(&s.camera);
+            }
+            Ok(s)
+        })
         .inspect_err(|_| {
             // No recording of a frame that was never drawn.
             if let Some((_, path)) = &record {
@@ -364,14 +407,54 @@ fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
         .map_err(|e| rastty::Error::io(path, e))
 }
 
-/// `scene` with the background `--background` asks for, if it asks.
-fn with_background(mut scene: Scene, view: &ViewArgs) -> Scene {
+/// `scene` with the background and camera the view's flags ask for
+/// (`--background`, `--fov`, `--target`, `--distance`), and the view
+/// `--orbit`, `--zoom` and `--pan` ask for, which `render` applies to the
+/// camera and `spin` starts from.
+fn with_view(mut scene: Scene, view: &ViewArgs) -> rastty::Result<(Scene, View)> {
     match view.background {
         Some(cli::Background::Terminal) => scene.background = None,
         Some(cli::Background::Color(c)) => scene.background = Some(c),
         None => {}
     }
-    scene
+    let cam = &mut scene.camera;
+    if let Some(fov) = view.fov {
+        match &mut cam.projection {
+            Projection::Perspective { fov_y, .. } => *fov_y = fov,
+            _ => {
+                return Err(rastty::Error::Invalid(
+                    "--fov: the scene's camera is not a perspective one".into(),
+                ));
+            }
+        }
+    }
+    if let Some(t) = view.target {
+        let offset = cam.eye - cam.target;
+        cam.target = glam::Vec3::from(t);
+        cam.eye = cam.target + offset;
+    }
+    if let Some(d) = view.distance {
+        // A distance of its own: the model is no longer placed to fit.
+        let back = (cam.eye - cam.target).normalize_or(glam::Vec3::Z);
+        cam.eye = cam.target + back * d;
+        cam.fit = None;
+        // The far plane well behind the target, however far the eye is.
+        if let Projection::Perspective { far, .. } | Projection::Orthographic { far, .. } =
+            &mut cam.projection
+        {
+            *far = far.max(d * 4.0);
+        }
+    }
+    cam.check()
+        .map_err(|e| rastty::Error::Invalid(format!("camera: {e}")))?;
+    let [yaw, pitch] = view.orbit.unwrap_or([0.0; 2]);
+    let mut v = View::AS_GIVEN;
+    v.orbit(yaw, pitch);
+    if let Some(z) = view.zoom {
+        v.distance = 1.0 / z;
+    }
+    v.shift = glam::Vec2::from(view.pan.unwrap_or([0.0; 2]));
+    Ok((scene, v))
 }
 
 /// The frame budget `--max-samples` sets.
@@ -382,10 +465,13 @@ fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let opts = options(&args.view, &args.knobs, 0);
     opts.check_samples(max_samples(&args.budgets))?;
-    let scene = with_background(scene(&args.input, &args.budgets)?, &args.view);
+    let (scene, view) = with_view(scene(&args.input, &args.budgets)?, &args.view)?;
     let spin = Spin {
         axis: args.axis,
-        step: args.step,
+        step: args
+            .turn
+            .map_or(args.step, |per_second| per_second / args.fps as f32),
+        view,
         play: match &args.input.clip {
             Some(named) => clip(&scene, Some(named))?,
             // The scene's own clip (a scene file's), else the first.

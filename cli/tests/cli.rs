@@ -186,24 +186,6 @@ fn a_model_named_where_a_command_belongs_gets_the_command_that_shows_it() {
     assert!(fails(&["bogus"]).starts_with("error: unrecognized subcommand 'bogus'"));
 }
 
-#[test]
-fn spin_help_lists_the_keys() {
-    let help = stdout(&["spin", "--help"]);
-    let keys = help.split("Keys:").nth(1).expect("a Keys section");
-    for key in [
-        "q, Esc, Ctrl-C",
-        "space",
-        "arrows",
-        "m ",
-        "c ",
-        "s ",
-        "Ctrl-L",
-        "Ctrl-Z",
-    ] {
-        assert!(keys.contains(key), "{key}: {keys}");
-    }
-}
-
 /// Every setting's name, as the status line and notices write it, is one
 /// the command line accepts.
 #[test]
@@ -278,12 +260,13 @@ fn spin_help_shows_everyday_options_first_in_groups() {
         [
             "Options:",
             "View:",
+            "Camera:",
             "Spin:",
             "Model:",
             "Output:",
             "Accuracy and speed knobs:",
             "Budgets:",
-            "Keys:"
+            "Keys and mouse:"
         ]
     );
     let after = |heading: &str, option: &str| {
@@ -528,4 +511,65 @@ fn explain_says_which_colour_depth_and_why() {
         colour_line(&[&base[..], &["--color", "16", "--dither", "none"]].concat()),
         "colour: 16 (--color says so), matched in oklch, dithering none"
     );
+}
+
+/// The README's and the usage page's tables of keys, `spin --help` and
+/// the help box (`?`) are one list: `rastty::animate::KEYS`.
+#[test]
+fn the_keys_tables_and_help_list_every_key_the_help_box_lists() {
+    let table: String = std::iter::once("| key in `spin` | does |\n|---|---|\n".to_string())
+        .chain(
+            rastty::animate::KEYS
+                .iter()
+                .map(|(k, what)| format!("| {k} | {what} |\n")),
+        )
+        .collect();
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for page in ["README.md", "docs/usage.md"] {
+        let text = std::fs::read_to_string(format!("{root}/{page}")).unwrap();
+        assert!(
+            text.contains(&table),
+            "{page} lacks the keys table:\n{table}"
+        );
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
+        .args(["spin", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(out.stdout).unwrap();
+    assert!(help.contains(&rastty::animate::keys_text()), "{help}");
+    assert!(
+        help.contains("  ?                      show or hide these keys"),
+        "{help}"
+    );
+}
+
+/// A file manager's preview (`render FILE --cols W --rows H --preview`)
+/// of a file that cannot be read gets one line within its width: the
+/// file's name and what is wrong, cut with `…`.
+#[test]
+fn a_preview_that_cannot_be_read_gets_one_line_within_its_width() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for (file, cols, want) in [
+        (
+            "/nonexistent/dir/model.obj",
+            "40",
+            "error: model.obj: No such file or direc…\n",
+        ),
+        ("README.md", "30", "error: README.md: rastty does…\n"),
+        (
+            "tests/data/short-face.obj",
+            "200",
+            "error: tests/data/short-face.obj:4:1: a face needs at least 3 vertices, found 2\n",
+        ),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_rastty"))
+            .args(["render", file, "--cols", cols, "--rows", "10", "--preview"])
+            .current_dir(root)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        assert!(out.stdout.is_empty());
+        assert_eq!(String::from_utf8(out.stderr).unwrap(), want);
+    }
 }

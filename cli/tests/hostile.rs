@@ -175,6 +175,7 @@ fn a_notice_in_the_status_line_is_drawn_escaped() {
         rastty::scene::default_scene(),
         opts,
         Spin {
+            view: Default::default(),
             axis: rastty::transform::Axis::Y,
             step: 3.0,
             play: None,

@@ -151,6 +151,11 @@ fn assert_restored(output: &[u8]) {
     vt.process(output);
     assert!(!vt.screen().alternate_screen(), "left the alternate screen");
     assert!(!vt.screen().hide_cursor(), "the cursor is shown");
+    assert_eq!(
+        vt.screen().mouse_protocol_mode(),
+        vt100::MouseProtocolMode::None,
+        "mouse reports are off"
+    );
     let text = String::from_utf8_lossy(output);
     assert!(
         text.contains("\x1b[?1049h"),
@@ -330,7 +335,15 @@ fn a_suspended_spin_ends_on_kill_without_taking_the_terminal_back() {
         .unwrap();
     s.expect("\x1b[?2026l").expect("a first frame");
     s.send("\x1a").unwrap();
-    s.expect("Stopped").expect("spin stopped");
+    let stopped = s.expect("Stopped").expect("spin stopped");
+    // Suspended, it gave the terminal back: main screen, no mouse reports.
+    let mut vt = terminal(24, 80);
+    vt.process(stopped.before());
+    assert!(!vt.screen().alternate_screen());
+    assert_eq!(
+        vt.screen().mouse_protocol_mode(),
+        vt100::MouseProtocolMode::None
+    );
     let bash = s.get_process().pid().as_raw() as u32;
     let spin = children(bash)[0];
     assert_eq!(process_state(spin), Some('T'), "stopped");
@@ -1032,4 +1045,164 @@ fn the_status_line_shows_the_clip_and_t_stops_the_turn_while_it_plays() {
     t.send(b"q");
     assert!(t.wait_exit(long));
     assert_restored(&t.seen);
+}
+
+/// The frame `render ARGS` draws in the mouse tests' view (40×16 cells of
+/// half blocks, cells half as wide as high), as a terminal shows it.
+fn rendered(args: &[&str]) -> Vec<(String, vt100::Color, vt100::Color)> {
+    let lines = run(&[&["render"][..], args, &MOUSE_VIEW].concat());
+    let mut vt = terminal(16, 40);
+    vt.process(&as_displayed(&lines));
+    cells(vt.screen())
+}
+
+const MOUSE_VIEW: [&str; 10] = [
+    "--cols",
+    "40",
+    "--rows",
+    "16",
+    "--cell-aspect",
+    "0.5",
+    "--color",
+    "truecolor",
+    "--glyphs",
+    "half",
+];
+
+/// Spawns a still `spin` in the mouse tests' view, in a terminal played by
+/// the test, and waits for its first frame.
+fn still_spin(extra: &[&str]) -> Fake {
+    let mut t = Fake::spawn(
+        &[&["--turn", "0", "--no-probe"][..], &MOUSE_VIEW, extra].concat(),
+        true,
+        &[],
+        None,
+    );
+    t.rgb = Some(true);
+    t.wait_for(FRAME_END, 0, Duration::from_secs(20))
+        .expect("a first frame");
+    t
+}
+
+/// Pumps until the screen (an 80×24 terminal's top left 40×16 cells) is
+/// as `want` says, or 20 s pass; whether it came to be.
+fn until(t: &mut Fake, want: impl Fn(&vt100::Screen) -> bool) -> bool {
+    let end = t.elapsed() + Duration::from_secs(20);
+    loop {
+        let mut vt = terminal(16, 40);
+        vt.process(&t.seen);
+        if want(vt.screen()) {
+            return true;
+        }
+        if t.eof || t.elapsed() > end {
+            return false;
+        }
+        t.pump();
+    }
+}
+
+/// Pumps until the screen shows `want`, or 20 s pass; whether it did.
+fn shows(t: &mut Fake, want: &[(String, vt100::Color, vt100::Color)]) -> bool {
+    until(t, |s| cells(s) == want)
+}
+
+/// Pumps until the screen has `text`, or 20 s pass; whether it did.
+fn says(t: &mut Fake, text: &str) -> bool {
+    until(t, |s| s.contents().contains(text))
+}
+
+/// A drag of 8 cells to the right over a view 16 rows high of cells half
+/// as wide as high (8 × 0.5 / 16: a quarter of the view's height) turns
+/// the eye a quarter of 180° the other way: the frame is
+/// `render --orbit -45,0`. Sent in the SGR encoding, a cell a report.
+/// `r` puts the first frame back, and the wheel zooms as `+` does.
+#[test]
+fn a_drag_turns_the_view_by_its_cells_and_r_resets_it() {
+    let start = rendered(&[]);
+    let turned = rendered(&["--orbit", "-45,0"]);
+    assert_ne!(start, turned);
+    let mut t = still_spin(&[]);
+    assert!(shows(&mut t, &start), "the first frame is render's");
+    let mut drag = b"\x1b[<0;11;6M".to_vec();
+    for col in 12..=19 {
+        drag.extend_from_slice(format!("\x1b[<32;{col};6M").as_bytes());
+    }
+    drag.extend_from_slice(b"\x1b[<0;19;6m");
+    t.send(&drag);
+    assert!(
+        shows(&mut t, &turned),
+        "dragged 8 cells: render --orbit -45,0"
+    );
+    t.send(b"r");
+    assert!(shows(&mut t, &start), "r: the first frame again");
+    // Down and to the left, in the legacy encoding (a terminal without
+    // SGR reports): 4 cells left is +22.5°, 2 down is a pitch of
+    // 2 / 16 · 180 = 22.5°.
+    t.send(b"\x1b[M +&\x1b[M@'(\x1b[M#'(");
+    assert!(
+        shows(&mut t, &rendered(&["--orbit", "22.5,22.5"])),
+        "render --orbit 22.5,22.5"
+    );
+    // A double click resets too.
+    t.send(b"\x1b[<0;5;5M\x1b[<0;5;5m\x1b[<0;5;5M\x1b[<0;5;5m");
+    assert!(
+        shows(&mut t, &start),
+        "a double click: the first frame again"
+    );
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    assert_restored(&t.seen);
+}
+
+/// The wheel zooms by the `+` and `-` keys' factor (the status line says
+/// how much), and a right-drag moves the picture with the pointer: the
+/// frame is `render --pan`.
+#[test]
+fn the_wheel_zooms_and_a_right_drag_pans() {
+    let mut t = still_spin(&["--hud"]);
+    t.send(b"\x1b[<64;3;3M\x1b[<64;3;3M");
+    assert!(
+        says(&mut t, "zoom 1.23×"),
+        "two notches in: 1/0.9² = 1.23 times larger"
+    );
+    t.send(b"\x1b[<65;3;3M");
+    assert!(says(&mut t, "zoom 1.11×"), "one notch out");
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+    assert_restored(&t.seen);
+
+    // 4 columns right (4 × 0.5 / 16 = 0.125 view heights), 2 rows up
+    // (0.125).
+    let mut t = still_spin(&[]);
+    t.send(b"\x1b[<2;11;6M\x1b[<34;15;4M\x1b[<2;15;4m");
+    assert!(
+        shows(&mut t, &rendered(&["--pan", "0.125,0.125"])),
+        "render --pan 0.125,0.125"
+    );
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+}
+
+/// `?` shows the keys over the frame and hides them again.
+#[test]
+fn the_help_box_lists_the_keys() {
+    let start = rendered(&[]);
+    let mut t = still_spin(&[]);
+    let from = t.seen.len();
+    t.send(b"?");
+    t.wait_for(b"keys (? hides)", from, Duration::from_secs(20))
+        .expect("the help box");
+    let end = t
+        .wait_for(FRAME_END, from, Duration::from_secs(20))
+        .unwrap();
+    let mut vt = terminal(16, 40);
+    vt.process(&t.seen[..end]);
+    let text = vt.screen().contents();
+    for (key, _) in rastty::animate::KEYS.iter().take(3) {
+        assert!(text.contains(key), "{key} in\n{text}");
+    }
+    t.send(b"?");
+    assert!(shows(&mut t, &start), "hidden: the frame as it was");
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
 }

@@ -2,6 +2,7 @@
 //! camera that frames a model, placed for the view's aspect when drawn.
 
 use super::*;
+use glam::Vec2;
 
 /// Where the viewer stands and how the view is projected.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,6 +19,10 @@ pub struct Camera {
     /// (length 1: the model just fits), and the eye's distance is chosen
     /// for each view's aspect ([`Camera::resolved`]).
     pub fit: Option<Fit>,
+    /// The picture moved across the view, in view heights (x right, y
+    /// up), as a lens is shifted: what dragging with the right button
+    /// does in `spin`. The eye does not move, so nothing turns.
+    pub shift: Vec2,
 }
 
 /// What a camera frames: a model's outline, as the points of the model
@@ -125,6 +130,92 @@ pub enum Projection {
     None,
 }
 
+/// How a viewer has moved the view from where the scene put it: the eye
+/// turned around the target, brought nearer or taken farther, the picture
+/// shifted. What `spin`'s mouse and keys change and `--orbit`, `--zoom`
+/// and `--shift` set, the same in both, so that a frame of `spin` after a
+/// drag is the frame `render` draws with the angles the drag came to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Degrees the eye is turned about the camera's up axis.
+    pub yaw: f32,
+    /// Degrees the eye is turned towards the up axis (within ±85).
+    pub pitch: f32,
+    /// The eye's distance from the target as a multiple of the scene's
+    /// (below 1 nearer: the model drawn larger), within 0.05 to 20.
+    pub distance: f32,
+    /// The picture moved across the view, in view heights (x right, y up).
+    pub shift: Vec2,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View::AS_GIVEN
+    }
+}
+
+impl View {
+    /// The view as the scene gives it: not turned, moved or shifted.
+    pub const AS_GIVEN: View = View {
+        yaw: 0.0,
+        pitch: 0.0,
+        distance: 1.0,
+        shift: Vec2::ZERO,
+    };
+
+    /// The steepest pitch, in degrees: short of straight down or up, where
+    /// the camera's up axis would no longer tell which way is up.
+    pub const MAX_PITCH: f32 = 85.0;
+    /// The nearest and farthest distances, as multiples of the scene's.
+    pub const DISTANCE: (f32, f32) = (0.05, 20.0);
+    /// Degrees a drag across the view's height turns the eye: a model
+    /// framed by its height turns half round when dragged from top to
+    /// bottom, on any terminal.
+    pub const DRAG_DEGREES: f32 = 180.0;
+
+    /// `camera` seen from this view.
+    #[must_use]
+    pub fn apply(&self, camera: &Camera) -> Camera {
+        let c = camera.orbited(self.yaw, self.pitch, self.distance);
+        Camera {
+            shift: camera.shift + self.shift,
+            ..c
+        }
+    }
+
+    /// Turns the eye by `yaw` and `pitch` degrees (the pitch kept within
+    /// [`View::MAX_PITCH`]).
+    pub fn orbit(&mut self, yaw: f32, pitch: f32) {
+        self.yaw += yaw;
+        self.pitch = (self.pitch + pitch).clamp(-Self::MAX_PITCH, Self::MAX_PITCH);
+    }
+
+    /// Multiplies the eye's distance by `factor` (kept within
+    /// [`View::DISTANCE`]).
+    pub fn zoom(&mut self, factor: f32) {
+        let (lo, hi) = Self::DISTANCE;
+        self.distance = (self.distance * factor).clamp(lo, hi);
+    }
+
+    /// A drag of the mouse by `cells` (columns right, rows down) over a
+    /// view `rows` cells high whose cells are `cell_aspect` as wide as
+    /// high: the eye turned (the model following the pointer: a drag
+    /// across the view's height turns it [`View::DRAG_DEGREES`]) or, with
+    /// `pan`, the picture moved with the pointer. Cells are measured by
+    /// their shape, so a drag turns a model the same on any terminal.
+    pub fn drag(&mut self, cells: Vec2, rows: u16, cell_aspect: f32, pan: bool) {
+        let heights = Vec2::new(cells.x * cell_aspect, cells.y) / f32::from(rows.max(1));
+        if pan {
+            self.shift += Vec2::new(heights.x, -heights.y);
+        } else {
+            self.orbit(
+                -heights.x * Self::DRAG_DEGREES,
+                heights.y * Self::DRAG_DEGREES,
+            );
+        }
+    }
+}
+
 impl Default for Camera {
     fn default() -> Self {
         Camera {
@@ -137,6 +228,7 @@ impl Default for Camera {
             target: Vec3::ZERO,
             up: Vec3::Y,
             fit: None,
+            shift: Vec2::ZERO,
         }
     }
 }
@@ -174,6 +266,7 @@ impl Camera {
         let fit = |f: Option<Fit>| f.map(|f| f.points.map(v));
         p(self.projection) == p(o.projection)
             && [self.eye, self.target, self.up].map(v) == [o.eye, o.target, o.up].map(v)
+            && self.shift.to_array().map(f32::to_bits) == o.shift.to_array().map(f32::to_bits)
             && fit(self.fit) == fit(o.fit)
     }
 
@@ -265,15 +358,23 @@ impl Camera {
             self.up.as_dvec3(),
         );
         let aspect = aspect as f64;
-        match self.projection {
+        let projection = match self.projection {
             Projection::Perspective { fov_y, near, far } => {
-                transform::perspective64(fov_y as f64, aspect, near as f64, far as f64) * view
+                transform::perspective64(fov_y as f64, aspect, near as f64, far as f64)
             }
             Projection::Orthographic { height, near, far } => {
-                transform::orthographic64(height as f64, aspect, near as f64, far as f64) * view
+                transform::orthographic64(height as f64, aspect, near as f64, far as f64)
             }
-            Projection::None => glam::DMat4::IDENTITY,
+            Projection::None => return glam::DMat4::IDENTITY,
+        };
+        if self.shift == Vec2::ZERO {
+            return projection * view;
         }
+        // Moved in normalised device coordinates, where the view is 2 high
+        // and 2 wide: x' = x + t·w, so the same move at every depth.
+        let shift = self.shift.as_dvec2() * 2.0;
+        let t = glam::DVec3::new(shift.x / aspect.max(1e-6), shift.y, 0.0);
+        glam::DMat4::from_translation(t) * projection * view
     }
 
     /// Why this camera cannot be used, if it cannot. Judged by direction and
@@ -347,5 +448,65 @@ impl Camera {
             );
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_drag_turns_by_the_view_heights_it_crosses() {
+        // 8 columns of cells half as wide as high, on 16 rows: a quarter
+        // of the height, a quarter of 180°, the eye going the other way.
+        let mut v = View::AS_GIVEN;
+        v.drag(Vec2::new(8.0, 0.0), 16, 0.5, false);
+        assert_eq!((v.yaw, v.pitch), (-45.0, 0.0));
+        // 4 rows down: the eye rises 45°; far more stops short of overhead.
+        v.drag(Vec2::new(0.0, 4.0), 16, 0.5, false);
+        assert_eq!((v.yaw, v.pitch), (-45.0, 45.0));
+        v.drag(Vec2::new(0.0, 40.0), 16, 0.5, false);
+        assert_eq!(v.pitch, View::MAX_PITCH);
+        // Panning moves the picture with the pointer: right and up.
+        let mut p = View::AS_GIVEN;
+        p.drag(Vec2::new(4.0, -2.0), 16, 0.5, true);
+        assert_eq!(p.shift, Vec2::new(0.125, 0.125));
+        assert_eq!((p.yaw, p.pitch), (0.0, 0.0));
+    }
+
+    #[test]
+    fn zoom_stays_within_its_range_and_apply_orbits_and_shifts() {
+        let mut v = View::AS_GIVEN;
+        for _ in 0..100 {
+            v.zoom(0.5);
+        }
+        assert_eq!(v.distance, View::DISTANCE.0);
+        let cam = Camera::default();
+        let v = View {
+            yaw: 90.0,
+            pitch: 0.0,
+            distance: 2.0,
+            shift: Vec2::new(0.25, 0.0),
+        };
+        let seen = v.apply(&cam);
+        // The eye a quarter turn about y, twice as far: +x (from +z).
+        assert!(
+            (seen.eye - Vec3::new(10.0, 0.0, 0.0)).length() < 1e-5,
+            "{seen:?}"
+        );
+        assert_eq!(seen.shift, Vec2::new(0.25, 0.0));
+        // The shift moves the target's image a quarter of the height right
+        // (half a unit of normalised device coordinates over the aspect).
+        let aspect = 2.0;
+        let at = |c: &Camera| c.view_projection(aspect).project_point3(c.target);
+        let moved = at(&seen)
+            - at(&Camera {
+                shift: Vec2::ZERO,
+                ..seen
+            });
+        assert!(
+            (moved - Vec3::new(0.25, 0.0, 0.0)).length() < 1e-6,
+            "{moved}"
+        );
     }
 }

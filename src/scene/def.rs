@@ -205,6 +205,7 @@ impl CameraDef {
             ProjectionDef::None => Projection::None,
         };
         Camera {
+            shift: glam::Vec2::ZERO,
             projection,
             eye: self.eye.into(),
             target: self.target.into(),

@@ -93,7 +93,7 @@ use toml::Spanned;
 
 pub use builder::SceneBuilder;
 pub(crate) use camera::Fit;
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, Projection, View};
 use def::*;
 pub use finish::{Alpha, AlphaMode, Finish, Maps, Specular};
 pub use load::load_geometry;

@@ -11,6 +11,7 @@ pub fn interpolation_error(interpolation: Interpolation) -> (f64, f64) {
     let near = Vec3::new(0.0, -1.0, -1.0);
     let far = Vec3::new(0.0, -1.0, -8.0);
     let camera = Camera {
+        shift: rastty::glam::Vec2::ZERO,
         projection: Projection::Perspective {
             fov_y: 90.0,
             near: 0.5,
@@ -142,6 +143,7 @@ pub fn textured_floor() -> Scene {
     }];
     Scene {
         camera: Camera {
+            shift: rastty::glam::Vec2::ZERO,
             projection: Projection::Perspective {
                 fov_y: 60.0,
                 near: 0.5,
@@ -238,6 +240,7 @@ pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
     let direction = Vec3::new(0.5, -0.4, -1.0);
     let scene = Scene::builder()
         .camera(Camera {
+            shift: rastty::glam::Vec2::ZERO,
             projection: Projection::Orthographic {
                 height: 2.4,
                 near: 0.1,

@@ -26,8 +26,74 @@ pub enum Key {
     Down,
     Left,
     Right,
-    /// Anything else (function keys, mouse reports, Alt combinations…).
+    /// Anything else (function keys, Alt combinations…).
     Other,
+}
+
+/// A mouse button.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Button {
+    Left,
+    Middle,
+    Right,
+}
+
+/// What the mouse did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MouseKind {
+    /// A button went down.
+    Press(Button),
+    /// A button came up (the legacy encoding does not say which).
+    Release,
+    /// The pointer moved with a button held.
+    Drag(Button),
+    /// The wheel turned away from the user (`true`) or towards.
+    Wheel(bool),
+    /// The pointer moved with no button held (any-event tracking only).
+    Move,
+}
+
+/// A mouse report: what happened, where (0-based cell), and whether Shift
+/// was held.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mouse {
+    pub kind: MouseKind,
+    pub col: u16,
+    pub row: u16,
+    pub shift: bool,
+}
+
+impl Mouse {
+    /// A report from its button byte (xterm's: the button in the low two
+    /// bits, Shift 4, Meta 8, Control 16, motion 32, wheel 64), 1-based
+    /// cell, and whether the SGR encoding said it was a release.
+    fn decode(cb: u32, col: u32, row: u32, released: bool) -> Mouse {
+        let button = match cb & 3 {
+            0 => Some(Button::Left),
+            1 => Some(Button::Middle),
+            2 => Some(Button::Right),
+            _ => None,
+        };
+        let kind = if cb & 64 != 0 {
+            MouseKind::Wheel(cb & 1 == 0)
+        } else if released {
+            MouseKind::Release
+        } else {
+            match (button, cb & 32 != 0) {
+                (Some(b), false) => MouseKind::Press(b),
+                (Some(b), true) => MouseKind::Drag(b),
+                (None, false) => MouseKind::Release,
+                (None, true) => MouseKind::Move,
+            }
+        };
+        let cell = |v: u32| v.saturating_sub(1).min(u32::from(u16::MAX)) as u16;
+        Mouse {
+            kind,
+            col: cell(col),
+            row: cell(row),
+            shift: cb & 4 != 0,
+        }
+    }
 }
 
 /// One thing read from the terminal.
@@ -44,6 +110,10 @@ pub enum Input {
         mode: u16,
         value: u8,
     },
+    /// A mouse report: SGR (`CSI < b ; x ; y M` or `m`, mode 1006) or, from
+    /// a terminal without it, the legacy `CSI M b x y` (each byte 32 more
+    /// than its value).
+    Mouse(Mouse),
     /// The answer to a device status report (`CSI 0 n`): everything sent
     /// before the query has been processed.
     StatusOk,
@@ -104,6 +174,16 @@ impl Parser {
         let p = self.pending.as_slice();
         let done = match p {
             [0x1b] => return,
+            // The legacy mouse report: three raw bytes after `CSI M`.
+            [0x1b, b'[', b'M', rest @ ..] => match rest {
+                [b, x, y] => Input::Mouse(Mouse::decode(
+                    u32::from(b.wrapping_sub(32)),
+                    u32::from(x.wrapping_sub(32)),
+                    u32::from(y.wrapping_sub(32)),
+                    false,
+                )),
+                _ => return,
+            },
             [0x1b, b'[', rest @ ..] => match rest.last() {
                 Some(&f) if (0x40..=0x7e).contains(&f) => csi(&rest[..rest.len() - 1], f),
                 _ => return,
@@ -179,6 +259,9 @@ fn dcs(body: &[u8]) -> Input {
 
 /// A CSI sequence: parameter and intermediate bytes, and the final byte.
 fn csi(body: &[u8], f: u8) -> Input {
+    if let [b'<', params @ ..] = body {
+        return sgr_mouse(params, f);
+    }
     let private = body.first() == Some(&b'?');
     let (params, inter) = {
         let digits = if private { &body[1..] } else { body };
@@ -211,6 +294,28 @@ fn csi(body: &[u8], f: u8) -> Input {
             mode: clamp(nums[0]),
             value: nums[1].min(255) as u8,
         },
+        _ => Input::Key(Key::Other),
+    }
+}
+
+/// An SGR mouse report's parameters (`b;x;y`) and final byte (`M` press
+/// or motion, `m` release).
+fn sgr_mouse(params: &[u8], f: u8) -> Input {
+    let mut nums = [0u32; 3];
+    let mut parts = params.split(|&b| b == b';');
+    for n in &mut nums {
+        let Some(part) = parts.next() else {
+            return Input::Key(Key::Other);
+        };
+        if part.is_empty() || !part.iter().all(u8::is_ascii_digit) {
+            return Input::Key(Key::Other);
+        }
+        *n = part.iter().fold(0u32, |v, d| {
+            v.saturating_mul(10).saturating_add(u32::from(d - b'0'))
+        });
+    }
+    match (f, parts.next()) {
+        (b'M' | b'm', None) => Input::Mouse(Mouse::decode(nums[0], nums[1], nums[2], f == b'm')),
         _ => Input::Key(Key::Other),
     }
 }
@@ -308,11 +413,64 @@ mod tests {
                 Input::Key(Key::Char('q')),
             ]
         );
-        // Mouse reports, function keys and bracketed paste markers are read
-        // whole and never become keys that do something.
+        // Function keys and bracketed paste markers are read whole and
+        // never become keys that do something.
         assert_eq!(
-            parse(&[b"\x1b[<0;3;4M\x1b[15~\x1b[200~"]),
-            keys(&[Key::Other, Key::Other, Key::Other])
+            parse(&[b"\x1b[15~\x1b[200~"]),
+            keys(&[Key::Other, Key::Other])
+        );
+    }
+
+    fn mouse(kind: MouseKind, col: u16, row: u16, shift: bool) -> Input {
+        Input::Mouse(Mouse {
+            kind,
+            col,
+            row,
+            shift,
+        })
+    }
+
+    #[test]
+    fn sgr_mouse_reports_in_any_split() {
+        use MouseKind::*;
+        let bytes =
+            b"\x1b[<0;3;4M\x1b[<32;5;4M\x1b[<0;5;4m\x1b[<6;1;1M\x1b[<64;10;2M\x1b[<65;10;2Mq";
+        let want = vec![
+            mouse(Press(Button::Left), 2, 3, false),
+            mouse(Drag(Button::Left), 4, 3, false),
+            mouse(Release, 4, 3, false),
+            mouse(Press(Button::Right), 0, 0, true),
+            mouse(Wheel(true), 9, 1, false),
+            mouse(Wheel(false), 9, 1, false),
+            Input::Key(Key::Char('q')),
+        ];
+        assert_eq!(parse(&[bytes]), want);
+        for cut in 1..bytes.len() {
+            assert_eq!(parse(&[&bytes[..cut], &bytes[cut..]]), want, "cut at {cut}");
+        }
+        // Malformed ones are not keys and do not eat what follows.
+        assert_eq!(
+            parse(&[b"\x1b[<0;3M\x1b[<0;3;4;5M\x1b[<;1;1Mq"]),
+            keys(&[Key::Other, Key::Other, Key::Other, Key::Char('q')])
+        );
+    }
+
+    #[test]
+    fn legacy_mouse_reports_are_read_where_sgr_is_not_given() {
+        use MouseKind::*;
+        // Press left at column 3, row 4; drag right to 5; release; shift
+        // and right button; wheel up.
+        let bytes = b"\x1b[M #$\x1b[M@%$\x1b[M#%$\x1b[M&!!\x1b[M`**q";
+        assert_eq!(
+            parse(&[bytes]),
+            vec![
+                mouse(Press(Button::Left), 2, 3, false),
+                mouse(Drag(Button::Left), 4, 3, false),
+                mouse(Release, 4, 3, false),
+                mouse(Press(Button::Right), 0, 0, true),
+                mouse(Wheel(true), 9, 9, false),
+                Input::Key(Key::Char('q')),
+            ]
         );
     }
 

@@ -425,12 +425,17 @@ pub fn poll(fds: &[(BorrowedFd<'_>, Interest)], timeout: Duration) -> io::Result
     Ok(ready)
 }
 
-/// Enters the alternate screen and hides the cursor.
-pub const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l";
+/// Enters the alternate screen, hides the cursor and asks for mouse
+/// reports: presses, releases and drags (1000, 1002; no motion without a
+/// button, which would flood a slow link), in the SGR encoding (1006),
+/// which has no limit on the column and says which button came up; a
+/// terminal without 1006 sends the legacy encoding, which is read too.
+pub const ENTER: &[u8] = b"\x1b[?1049h\x1b[?25l\x1b[?1000h\x1b[?1002h\x1b[?1006h";
 /// Undoes [`ENTER`] and whatever a cut-short frame left: CAN ends an open
-/// escape sequence, then attributes reset, synchronized output ended, the
-/// cursor shown, the main screen back.
-pub const LEAVE: &[u8] = b"\x18\x1b[m\x1b[?2026l\x1b[?25h\x1b[?1049l";
+/// escape sequence, then attributes reset, synchronized output ended,
+/// mouse reports off, the cursor shown, the main screen back.
+pub const LEAVE: &[u8] =
+    b"\x18\x1b[m\x1b[?2026l\x1b[?1006l\x1b[?1002l\x1b[?1000l\x1b[?25h\x1b[?1049l";
 
 /// How long restoring may wait for a terminal that has stopped reading.
 const RESTORE_TIMEOUT: Duration = Duration::from_millis(500);

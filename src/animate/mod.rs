@@ -15,15 +15,16 @@ use std::io::{self, Write};
 use glam::Vec3;
 
 use crate::blit::GlyphMode;
-use crate::color::{ColorDepth, Rgb};
+use crate::color::ColorDepth;
 use crate::encode::Encoder;
-use crate::frame::{Cell, Frame};
 use crate::options::RenderOptions;
 use crate::render::Renderer;
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, Scene, View};
 use crate::shade::Shading;
 
 use crate::transform::Axis;
+
+mod hud;
 
 /// A turn of `step` degrees per frame about `axis`, and a clip played
 /// meanwhile.
@@ -35,6 +36,8 @@ pub struct Spin {
     pub step: f32,
     /// The clip the scene's moving models play, if any.
     pub play: Option<Playback>,
+    /// Where the viewer starts (and `r` goes back to): orbit, zoom, pan.
+    pub view: View,
 }
 
 /// A clip played frame by frame: frame `k` shows the clip at
@@ -64,6 +67,51 @@ impl Spin {
         let angle = (k as f64 * self.step as f64).rem_euclid(360.0) as f32;
         base + self.axis.unit() * angle
     }
+}
+
+/// The keys and mouse gestures `spin` knows, and what each does: one list
+/// for the help box (`?`), `rastty spin --help` and the README's table
+/// (a test holds the README to it).
+pub const KEYS: &[(&str, &str)] = &[
+    ("q, Esc, Ctrl-C", "quit"),
+    ("space", "pause (the turn and the clip)"),
+    ("t", "stop turning, or turn again (the clip plays on)"),
+    ("drag", "orbit: the model follows the pointer"),
+    (
+        "right- or shift-drag",
+        "pan: the picture follows the pointer",
+    ),
+    ("wheel", "zoom in / out"),
+    ("arrows", "orbit the camera around its target"),
+    ("+ / -", "zoom in / out"),
+    (
+        "r, double-click",
+        "reset the view (orbit, zoom, pan and turn)",
+    ),
+    ("[ / ]", "previous / next clip of a model that moves"),
+    (
+        "m",
+        "next glyph mode (skipping those the terminal cannot draw)",
+    ),
+    ("c", "next colour depth (truecolor included)"),
+    ("s", "next shading"),
+    ("?", "show or hide these keys"),
+    ("Ctrl-L", "redraw"),
+    ("Ctrl-Z", "suspend (fg resumes)"),
+];
+
+/// [`KEYS`] as lines of text, the keys in a column: `spin --help`'s list.
+pub fn keys_text() -> String {
+    let width = KEYS
+        .iter()
+        .map(|(k, _)| k.chars().count())
+        .max()
+        .unwrap_or(0);
+    let mut out = String::from("Keys and mouse:");
+    for (k, what) in KEYS {
+        out.push_str(&format!("\n  {k:width$}   {what}"));
+    }
+    out
 }
 
 /// What a key (or the terminal) asks of a running animation.
@@ -101,6 +149,19 @@ pub enum Command {
     },
     /// Send the next frame in full.
     Redraw,
+    /// A drag of the mouse by `cells` (columns right, rows down): the eye
+    /// turned around the target, or with `pan` the picture moved (see
+    /// [`View::drag`]).
+    Drag {
+        /// How far, in cells.
+        cells: glam::Vec2,
+        /// Move the picture instead of turning the eye.
+        pan: bool,
+    },
+    /// Put the view back where it started (orbit, zoom, pan and the turn).
+    Reset,
+    /// Show the keys over the frame, or stop showing them.
+    ToggleHelp,
 }
 
 /// What the live loop knows that the player does not: the measured frame
@@ -130,9 +191,12 @@ pub struct Player {
     turning: bool,
     /// The status line's parts, highest priority first (reused buffers).
     hud_parts: [String; 10],
-    orbit: (f32, f32),
-    zoom: f32,
+    /// How the viewer has moved the view, and where `r` puts it back.
+    view: View,
+    start: View,
     hud: bool,
+    /// Whether the help box is shown over the frame.
+    help: bool,
     renderer: Renderer,
     encoder: Encoder,
     last_bytes: usize,
@@ -165,9 +229,10 @@ impl Player {
             paused: false,
             turning: true,
             hud_parts: Default::default(),
-            orbit: (0.0, 0.0),
-            zoom: 1.0,
+            view: spin.view,
+            start: spin.view,
             hud: false,
+            help: false,
             renderer: Renderer::new(),
             encoder,
             last_bytes: 0,
@@ -184,6 +249,16 @@ impl Player {
     pub fn with_hud(mut self, on: bool) -> Player {
         self.hud = on;
         self
+    }
+
+    /// How the viewer has moved the view.
+    pub fn view(&self) -> &View {
+        &self.view
+    }
+
+    /// Whether the help box is shown.
+    pub fn shows_help(&self) -> bool {
+        self.help
     }
 
     /// Limits the modes `m` cycles through to those for which `usable` is
@@ -290,11 +365,22 @@ impl Player {
                     self.set_notice(format!("clip {clip}{name}"));
                 }
             }
-            Command::Orbit { yaw, pitch } => {
-                self.orbit.0 += yaw;
-                self.orbit.1 = (self.orbit.1 + pitch).clamp(-85.0, 85.0);
+            Command::Orbit { yaw, pitch } => self.view.orbit(yaw, pitch),
+            Command::Zoom(f) => self.view.zoom(f),
+            Command::Drag { cells, pan } => {
+                let rows = self.opts.rows - u16::from(self.hud && self.opts.rows > 1);
+                self.view.drag(cells, rows, self.opts.cell_aspect, pan);
             }
-            Command::Zoom(f) => self.zoom = (self.zoom * f).clamp(0.05, 20.0),
+            Command::Reset => {
+                self.view = self.start;
+                self.turned = 0;
+                self.set_notice("view reset");
+            }
+            Command::ToggleHelp => {
+                self.help = !self.help;
+                // The box covers part of the picture: sent whole when it
+                // goes (the encoder's diff sends only what changed).
+            }
             Command::NextGlyphs => {
                 let usable = self.usable;
                 self.opts.glyphs = next_where(GlyphMode::ALL, self.opts.glyphs, |i, _| usable[i]);
@@ -331,9 +417,9 @@ impl Player {
         }
     }
 
-    /// The camera after orbiting and zooming.
+    /// The camera after orbiting, zooming and panning.
     fn camera(&self) -> Camera {
-        self.base.orbited(self.orbit.0, self.orbit.1, self.zoom)
+        self.view.apply(&self.base)
     }
 
     /// Renders the current frame and encodes it; returns the bytes to send
@@ -380,8 +466,8 @@ impl Player {
                 p[2],
                 "{} {angle:.1}° pitch {:.0}° zoom {:.2}×",
                 self.spin.axis.angle_name(),
-                self.orbit.1,
-                1.0 / self.zoom
+                self.view.pitch,
+                1.0 / self.view.distance
             );
             let _ = write!(
                 p[3],
@@ -421,14 +507,17 @@ impl Player {
                 "sync {}",
                 if self.encoder.sync() { "on" } else { "off" }
             );
-            fit_status(&mut self.status, &self.hud_parts, usize::from(opts.cols));
-            overlay(self.renderer.frame_mut(), &self.status, true);
+            hud::fit_status(&mut self.status, &self.hud_parts, usize::from(opts.cols));
+            hud::overlay(self.renderer.frame_mut(), &self.status, true);
         } else if let Some(n) = &self.notice {
             self.status.clear();
             self.status.push(' ');
             self.status.push_str(n);
             self.status.push(' ');
-            overlay(self.renderer.frame_mut(), &self.status, false);
+            hud::overlay(self.renderer.frame_mut(), &self.status, false);
+        }
+        if self.help {
+            hud::help_box(self.renderer.frame_mut(), KEYS);
         }
         self.encoder.prepare(self.renderer.frame());
         self.last_bytes = self.encoder.last_bytes().len();
@@ -452,49 +541,6 @@ fn clip_name(name: &str) -> String {
         String::new()
     } else {
         format!(" {}", crate::text::name(name, 24))
-    }
-}
-
-/// Joins the first non-empty `parts` (highest priority first) with ` · `
-/// into `out`: as many as fit `width` cells, a part never cut (the first
-/// is cut only where it alone is wider, by [`overlay`]).
-fn fit_status(out: &mut String, parts: &[String], width: usize) {
-    out.clear();
-    let mut len = 1;
-    for text in parts.iter().filter(|t| !t.is_empty()) {
-        let add = text.chars().count() + if out.is_empty() { 1 } else { 3 };
-        if !out.is_empty() && len + add > width {
-            break;
-        }
-        out.push_str(if out.is_empty() { " " } else { " · " });
-        out.push_str(text);
-        len += add;
-    }
-    out.push(' ');
-}
-
-/// Writes `text` over the last row of `frame`, white on black; across the
-/// whole row with `full_row`, else over as many cells as the text needs.
-/// A notice may name what came from a file: it is escaped, never drawn raw.
-fn overlay(frame: &mut Frame, text: &str, full_row: bool) {
-    let row = frame.rows().saturating_sub(1);
-    let text = crate::text::escape(text);
-    let mut chars = text.chars();
-    for col in 0..frame.cols() {
-        let ch = match chars.next() {
-            Some(c) => c,
-            None if full_row => ' ',
-            None => break,
-        };
-        frame.set(
-            col,
-            row,
-            Cell {
-                ch,
-                fg: Some(Rgb::WHITE),
-                bg: Some(Rgb::BLACK),
-            },
-        );
     }
 }
 
@@ -530,11 +576,13 @@ pub fn play(
 
 #[cfg(test)]
 mod tests {
+    use super::hud::fit_status;
     use super::*;
 
     #[test]
     fn frame_k_is_turned_by_k_steps() {
         let spin = Spin {
+            view: Default::default(),
             axis: Axis::Z,
             step: 6.0,
             play: None,
@@ -546,6 +594,7 @@ mod tests {
             Vec3::new(1.0, 2.0, 9.0)
         );
         let y = Spin {
+            view: Default::default(),
             axis: Axis::Y,
             step: -1.5,
             play: None,
@@ -592,6 +641,7 @@ mod tests {
             ..RenderOptions::default()
         };
         let spin = Spin {
+            view: Default::default(),
             axis: Axis::Y,
             step: 3.0,
             play: None,
@@ -630,6 +680,7 @@ mod tests {
     #[test]
     fn a_paused_or_unturning_player_does_not_move() {
         let spin = |step| Spin {
+            view: Default::default(),
             axis: Axis::Y,
             step,
             play: None,
@@ -656,6 +707,7 @@ mod tests {
             scene,
             RenderOptions::default(),
             Spin {
+                view: Default::default(),
                 axis: Axis::Y,
                 step: 3.0,
                 play: None,
@@ -695,6 +747,7 @@ mod tests {
                 ..RenderOptions::default()
             },
             Spin {
+                view: Default::default(),
                 axis: Axis::Y,
                 step: 3.0,
                 play: None,
