@@ -369,8 +369,6 @@ impl Clipper {
             }
         }
         let rows = [0, 1, 2, 3].map(|k| mvp.row(k).to_array());
-        let (half_w, half_h) = viewport.half();
-        let (dx, dy) = viewport.offset();
         for v in &a[..n] {
             let sv = match v.snapped {
                 Some(s) => ScreenVertex {
@@ -383,26 +381,14 @@ impl Clipper {
                     weights: v.weights,
                 },
                 None => {
-                    // Clip space, at the point's own homogeneous scale.
-                    let c = rows.map(|r| dot(&r, &v.pos));
-                    if !(c[3] > 0.0 && v.pos[3] > 0.0) {
-                        return Clipped::Rejected;
-                    }
-                    let xy = [
-                        c[0] / c[3] * half_w + half_w + dx,
-                        c[1] / c[3] * half_h + half_h + dy,
-                    ];
-                    let Some(fixed) = FixedPoint::snap64(xy) else {
+                    let Some(p) = on_screen(&rows, &v.pos, viewport) else {
                         return Clipped::Rejected;
                     };
                     ScreenVertex {
-                        fixed,
-                        xy,
-                        z: (c[2] / c[3]) as f32,
-                        inv_w: (v.pos[3] / c[3]) as f32,
                         color: v.color,
                         uv: v.uv,
                         weights: v.weights,
+                        ..p
                     }
                 }
             };
@@ -415,6 +401,75 @@ impl Clipper {
             Clipped::Inside
         }
     }
+}
+
+impl Clipper {
+    /// Clips the segment from `a` to `b` (model space), drawn with `mvp`
+    /// through `viewport`, to every plane (Liang–Barsky, in f64): its ends
+    /// on screen, or `None` where nothing of it remains. What a wireframe's
+    /// edges go through.
+    pub fn clip_segment(
+        &self,
+        [a, b]: [DVec4; 2],
+        mvp: &DMat4,
+        viewport: &Viewport,
+    ) -> Option<[ScreenVertex; 2]> {
+        if !(a.is_finite() && b.is_finite() && mvp.is_finite()) {
+            return None;
+        }
+        let (pa, pb) = (a.to_array(), b.to_array());
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for plane in self.planes(mvp) {
+            let (da, db) = (dot(&plane, &pa), dot(&plane, &pb));
+            match (da < 0.0, db < 0.0) {
+                (true, true) => return None,
+                (true, false) => t0 = t0.max(da / (da - db)),
+                (false, true) => t1 = t1.min(da / (da - db)),
+                (false, false) => {}
+            }
+        }
+        // NaN (a degenerate plane) fails too.
+        if t0.partial_cmp(&t1).is_none_or(|o| o.is_gt()) {
+            return None;
+        }
+        let rows = [0, 1, 2, 3].map(|k| mvp.row(k).to_array());
+        let at = |t: f64| {
+            let p = if t == 0.0 {
+                pa
+            } else if t == 1.0 {
+                pb
+            } else {
+                std::array::from_fn(|k| pa[k] + (pb[k] - pa[k]) * t)
+            };
+            on_screen(&rows, &p, viewport)
+        };
+        Some([at(t0)?, at(t1)?])
+    }
+}
+
+/// A point in model space (`pos`, homogeneous), through the rows of the
+/// model-view-projection matrix and the viewport, on screen: snapped, its
+/// depth and `1/w` (colour and texture coordinates zero); `None` behind
+/// the eye or where it cannot be snapped.
+fn on_screen(rows: &[[f64; 4]; 4], pos: &[f64; 4], viewport: &Viewport) -> Option<ScreenVertex> {
+    let (half_w, half_h) = viewport.half();
+    let (dx, dy) = viewport.offset();
+    // Clip space, at the point's own homogeneous scale.
+    let c = rows.map(|r| dot(&r, pos));
+    if !(c[3] > 0.0 && pos[3] > 0.0) {
+        return None;
+    }
+    let xy = [
+        c[0] / c[3] * half_w + half_w + dx,
+        c[1] / c[3] * half_h + half_h + dy,
+    ];
+    Some(ScreenVertex {
+        fixed: FixedPoint::snap64(xy)?,
+        xy,
+        z: (c[2] / c[3]) as f32,
+        inv_w: (pos[3] / c[3]) as f32,
+        ..ScreenVertex::default()
+    })
 }
 
 /// `a + b` as an unevaluated sum `(s, e)`, exactly (Knuth's two-sum).

@@ -130,7 +130,7 @@ pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
 pub use options::{
     Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS,
-    Pipeline, RenderOptions, Threads,
+    Pipeline, RenderOptions, Threads, Wire,
 };
 pub use plan::{Bands, Decision, Plan};
 pub use render::{FrameStats, FrameTimes, Renderer, render};

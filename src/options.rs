@@ -66,6 +66,8 @@ pub struct RenderOptions {
     /// from the eye, so that a dark model's silhouette shows against a dark
     /// background (see `shade.rs`; `--rim COLOR`).
     pub rim: Option<Rgb>,
+    /// Faces, their edges as lines, or both (`--wire`, `w` in `spin`).
+    pub wire: Wire,
 }
 
 /// How many threads draw a frame. Each draws one band of the sample rows;
@@ -114,6 +116,31 @@ impl std::str::FromStr for Threads {
         }
     }
 }
+
+/// What of a mesh is drawn: its faces, its edges as lines one sample wide,
+/// or both. Each edge is drawn once however many faces share it (edges
+/// between vertices at the same positions are one), as two triangles
+/// through the same exact rasterizer, so a line's samples follow the
+/// top-left rule as a face's do.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wire {
+    /// The faces alone.
+    #[default]
+    Solid,
+    /// The edges alone, in each mesh's colour, unlit: every edge shows,
+    /// the nearest where they cross.
+    Lines,
+    /// The faces, then their edges in black over them: an edge behind a
+    /// face is hidden by the depth test (edges are drawn as if 1 % of
+    /// their distance nearer, so that a face does not hide its own).
+    Edges,
+}
+
+crate::choice::choice!(Wire {
+    Solid => "solid": "The faces alone",
+    Lines => "lines": "The edges alone, one sample wide, in each mesh's colour: every edge shows",
+    Edges => "edges": "The faces, and their edges in black over them; edges behind a face are hidden",
+});
 
 /// Where a shining material's specular highlight is found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -226,6 +253,7 @@ impl Default for RenderOptions {
             filter: None,
             threads: Threads::Auto,
             rim: None,
+            wire: Wire::Solid,
         }
     }
 }

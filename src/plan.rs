@@ -60,7 +60,7 @@ use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
 use crate::options::{
-    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads,
+    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads, Wire,
 };
 use crate::raster::{Precision, Traversal};
 use crate::scene::{Projection, Scene, TriangleColor};
@@ -143,6 +143,14 @@ pub struct Plan {
     /// materials have maps, and the decision is skipped only where there
     /// are none.
     pub maps: Decision,
+    /// Whether meshes' faces are drawn (skipped for a wireframe of lines
+    /// alone: [`crate::Wire::Lines`]).
+    pub faces: Decision,
+    /// Whether meshes' edges are drawn as lines one sample wide
+    /// ([`crate::Wire`]): a picture asked for, not a stage the full
+    /// pipeline forces on. The edges of each mesh are found once (welded
+    /// by position, each drawn once however many faces share it).
+    pub edges: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
@@ -260,6 +268,8 @@ impl Plan {
             specular: Decision::run(FORCED),
             alpha: Decision::run(FORCED),
             maps: Decision::run(FORCED),
+            faces: Decision::run(FORCED),
+            edges: Decision::skip(FORCED),
             filter: opts.filter,
             shading: opts.shading,
             full: true,
@@ -440,7 +450,10 @@ impl Plan {
         } else {
             Decision::skip("every bounding box is inside the clip volume")
         };
+        let (faces, edges) = wire(scene, opts);
         *self = Plan {
+            faces,
+            edges,
             depth,
             clip,
             interpolation,
@@ -526,6 +539,33 @@ impl Plan {
             "the plan skipped interpolation, yet a triangle has several colours"
         );
         self.full || !one
+    }
+}
+
+/// Whether faces and edges are drawn (see [`Plan::faces`], [`Plan::edges`]).
+fn wire(scene: &Scene, opts: &RenderOptions) -> (Decision, Decision) {
+    let meshes = !scene.meshes.is_empty();
+    match opts.wire {
+        Wire::Solid => (
+            Decision::run("faces are drawn (no wireframe asked for)"),
+            Decision::skip("no wireframe asked for"),
+        ),
+        _ if opts.aa == Aa::Exact => (
+            Decision::run("exact coverage adds up faces' areas: no lines"),
+            Decision::skip("exact coverage adds up faces' areas: no lines"),
+        ),
+        _ if !meshes => (
+            Decision::run("loose triangles are drawn as they are"),
+            Decision::skip("the scene has no mesh: loose triangles have no edges drawn"),
+        ),
+        Wire::Lines => (
+            Decision::skip("a wireframe draws meshes' edges alone"),
+            Decision::run("a wireframe: each mesh's edges, once each, one sample wide"),
+        ),
+        Wire::Edges => (
+            Decision::run("faces, with their edges over them"),
+            Decision::run("edges over the faces, hidden where a face is nearer"),
+        ),
     }
 }
 

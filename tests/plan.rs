@@ -388,9 +388,15 @@ fn options() -> impl Strategy<Value = RenderOptions> {
         prop::sample::select(Aa::ALL.to_vec()),
         // A rim light, a third of the time.
         prop::option::weighted(0.33, (0u8..=255, 0u8..=255, 0u8..=255)),
+        // A wireframe, a quarter of the time.
+        prop_oneof![
+            6 => Just(rastty::Wire::Solid),
+            1 => Just(rastty::Wire::Lines),
+            1 => Just(rastty::Wire::Edges),
+        ],
     )
         .prop_map(
-            |(glyphs, shading, cull, (p, y, r), (cols, rows), aa, rim)| RenderOptions {
+            |(glyphs, shading, cull, (p, y, r), (cols, rows), aa, rim, wire)| RenderOptions {
                 cols,
                 rows,
                 glyphs,
@@ -400,6 +406,7 @@ fn options() -> impl Strategy<Value = RenderOptions> {
                 turn: Vec3::new(p, y, r),
                 aa,
                 rim: rim.map(|(r, g, b)| Rgb::new(r, g, b)),
+                wire,
                 ..RenderOptions::default()
             },
         )
@@ -421,7 +428,7 @@ proptest! {
     /// `triangles_in` (anti-aliasing draws the scene once per sub-sample):
     /// every mesh's faces and the loose triangles, whatever the path each
     /// takes (lean, general, clipped), the pipeline and the number of
-    /// bands.
+    /// bands; none of a mesh's when it is drawn as lines alone.
     #[test]
     fn every_triangle_handed_in_is_counted_once(
         scene in scene(),
@@ -433,8 +440,14 @@ proptest! {
         let opts = RenderOptions { pipeline, threads: Threads::Exactly(threads), ..opts };
         let mut r = Renderer::new();
         r.render(&scene, &opts);
-        let handed_in = scene.meshes.iter().map(|m| m.faces.len()).sum::<usize>()
-            + scene.triangles.len();
+        // A wireframe of lines alone hands in no mesh's face (the plan
+        // says so).
+        let faces = if r.plan().unwrap().faces.run {
+            scene.meshes.iter().map(|m| m.faces.len()).sum::<usize>()
+        } else {
+            0
+        };
+        let handed_in = faces + scene.triangles.len();
         prop_assert_eq!(r.stats().triangles_in, handed_in as u64 * opts.aa.passes());
     }
 

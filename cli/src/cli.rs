@@ -17,7 +17,7 @@ use rastty::color::{ColorSpace, Dither};
 use rastty::encode::Rep;
 use rastty::picture::CellPx;
 use rastty::transform::Axis;
-use rastty::{Aa, Highlights, Interpolation};
+use rastty::{Aa, Highlights, Interpolation, Wire};
 use rastty::{GlyphMode, color::ColorDepth, raster::Traversal};
 use rastty::{raster::Precision, scene::Cull};
 
@@ -282,6 +282,10 @@ pub struct ViewArgs {
     /// triangles]
     #[arg(long, value_parser = named::<Cull>())]
     pub cull: Option<Cull>,
+    /// Draw the faces, their edges as lines one sample wide (every edge),
+    /// or the faces with their edges in black (edges behind a face hidden)
+    #[arg(long, value_parser = named::<Wire>(), default_value = Wire::Solid.name())]
+    pub wire: Wire,
     /// Turn the scene about the world's y axis, in degrees
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_angle)]
     pub yaw: f32,

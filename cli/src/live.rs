@@ -136,6 +136,7 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Char('c') => Command::NextColor,
         Key::Char('s') => Command::NextShading,
         Key::Char('r') => Command::Reset,
+        Key::Char('w') => Command::NextWire,
         Key::Char('?') => Command::ToggleHelp,
         _ => return None,
     };

@@ -664,6 +664,7 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         } else {
             Pipeline::Planned
         },
+        wire: view.wire,
         aa: view.aa,
         interpolation: knobs.interpolation,
         highlights: knobs.highlights,

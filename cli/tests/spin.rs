@@ -1206,3 +1206,18 @@ fn the_help_box_lists_the_keys() {
     t.send(b"q");
     assert!(t.wait_exit(Duration::from_secs(20)));
 }
+
+/// `w` cycles solid, lines and edges: each frame is `render --wire`'s.
+#[test]
+fn w_cycles_the_wireframe_as_render_draws_it() {
+    let mut t = still_spin(&[]);
+    for wire in ["lines", "edges", "solid"] {
+        t.send(b"w");
+        assert!(
+            shows(&mut t, &rendered(&["--wire", wire])),
+            "render --wire {wire}"
+        );
+    }
+    t.send(b"q");
+    assert!(t.wait_exit(Duration::from_secs(20)));
+}

@@ -17,7 +17,7 @@ use glam::Vec3;
 use crate::blit::GlyphMode;
 use crate::color::ColorDepth;
 use crate::encode::Encoder;
-use crate::options::RenderOptions;
+use crate::options::{RenderOptions, Wire};
 use crate::render::Renderer;
 use crate::scene::{Camera, Scene, View};
 use crate::shade::Shading;
@@ -95,6 +95,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ),
     ("c", "next colour depth (truecolor included)"),
     ("s", "next shading"),
+    ("w", "next of solid, wireframe lines, solid with edges"),
     ("?", "show or hide these keys"),
     ("Ctrl-L", "redraw"),
     ("Ctrl-Z", "suspend (fg resumes)"),
@@ -140,6 +141,8 @@ pub enum Command {
     NextColor,
     /// Shade with the next shading.
     NextShading,
+    /// Draw the next of faces, lines, faces with edges ([`crate::Wire`]).
+    NextWire,
     /// The terminal's new size in cells.
     Resize {
         /// Columns.
@@ -395,6 +398,10 @@ impl Player {
             Command::NextShading => {
                 self.opts.shading = next_where(Shading::ALL, self.opts.shading, |_, _| true);
                 self.set_notice(format!("shading {}", self.opts.shading.name()));
+            }
+            Command::NextWire => {
+                self.opts.wire = next_where(Wire::ALL, self.opts.wire, |_, _| true);
+                self.set_notice(format!("wire {}", self.opts.wire.name()));
             }
             Command::Resize { cols, rows } => {
                 self.opts.cols = cols.clamp(1, crate::options::MAX_CELLS);

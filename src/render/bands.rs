@@ -139,10 +139,15 @@ impl Renderer {
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Opaque);
+                if p.faces.run {
+                    painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Opaque);
+                }
+                if p.edges.run {
+                    painter.edges(stage, mesh, faces.positions, transforms, opts.wire);
+                }
             }
             painter.loose(scene, opts, stage, vp, turn);
-            for &i in &blended {
+            for &i in blended.iter().filter(|_| p.faces.run) {
                 let mesh = &scene.meshes[i];
                 let (range, transforms) = &meshes[i];
                 let faces = Faces {

@@ -179,6 +179,16 @@ impl Renderer {
                 plan.maps,
                 format!("{} samples shaded from their maps", s.mapped_samples),
             ),
+            ("faces", plan.faces, format!("wire {}", opts.wire.name())),
+            (
+                "edges",
+                plan.edges,
+                format!(
+                    "{} edges drawn, each once, as a line {} sample wide",
+                    s.edges,
+                    super::wire::LINE_WIDTH
+                ),
+            ),
             (
                 "lean path",
                 plan.lean,

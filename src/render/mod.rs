@@ -27,6 +27,7 @@ mod stats;
 mod triangle;
 mod vertex;
 mod vertex_lanes;
+mod wire;
 
 pub use stats::{FrameStats, FrameTimes};
 
@@ -74,6 +75,8 @@ struct Stage<'a> {
     /// What a blended sample with nothing under it is composited over: the
     /// scene's background, or black.
     behind: crate::color::Lin,
+    /// How much nearer edges over faces are drawn ([`crate::Wire::Edges`]).
+    edge_bias: wire::EdgeBias,
 }
 
 /// Which runs a pass over the meshes draws: blended runs are drawn after
@@ -408,6 +411,7 @@ impl Renderer {
             behind: scene
                 .background
                 .map_or(crate::color::Lin::BLACK, crate::color::Lin::from_srgb),
+            edge_bias: wire::EdgeBias::of(&cam.projection),
         };
 
         self.pose(scene, p);
@@ -547,14 +551,22 @@ impl Renderer {
             };
             // Borrowed out of the painter for the loop, and put back.
             let verts = std::mem::take(painter.verts);
-            painter.faces(stage, &faces, &verts, Pass::Opaque);
+            if p.faces.run {
+                painter.faces(stage, &faces, &verts, Pass::Opaque);
+            }
+            if p.edges.run {
+                painter.edges(stage, mesh, positions, &transforms, opts.wire);
+            }
             *painter.verts = verts;
             times.triangles += lap();
         }
         painter.loose(scene, opts, stage, vp, turn);
         // Blended runs last, the farthest mesh first, each mesh's vertices
         // found again (one mesh's are kept at a time).
-        for i in blended_meshes(scene, p, vp, turn) {
+        for i in blended_meshes(scene, p, vp, turn)
+            .into_iter()
+            .filter(|_| p.faces.run)
+        {
             let mesh = &scene.meshes[i];
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();

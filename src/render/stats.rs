@@ -22,6 +22,9 @@ pub struct FrameStats {
     pub clipped: u64,
     /// Triangles the clip stage removed entirely (outside, or not finite).
     pub clip_rejected: u64,
+    /// Edges drawn as lines (each once, whatever shares it), the part of
+    /// each inside the clip planes ([`crate::Wire`]).
+    pub edges: u64,
     /// Lambert evaluations (per vertex or per face).
     pub lighting_evaluations: u64,
     /// Triangles whose colours had their material's emitted light added
@@ -65,6 +68,7 @@ impl FrameStats {
             self.triangles_in += band.triangles_in;
             self.clipped += band.clipped;
             self.clip_rejected += band.clip_rejected;
+            self.edges += band.edges;
             self.dropped_non_finite_normals += band.dropped_non_finite_normals;
             // The loose triangles' vertices, transformed by every band.
             self.vertices += band.vertices;

@@ -283,6 +283,7 @@ mod tests {
             precision: opts.precision,
             eye: Eye::Towards(Vec3::Z),
             behind: crate::color::Lin::BLACK,
+            edge_bias: Default::default(),
         };
         f(&stage, &Transforms::new(vp, turn * scene.meshes[0].model));
     }

@@ -124,6 +124,8 @@ pub struct Geometry {
     /// Closed, in one piece with a sphere's topology.
     sphere_like: bool,
     convex: OnceLock<bool>,
+    /// Its edges, found when first drawn (see [`Geometry::edges`]).
+    edges: OnceLock<Vec<[u32; 2]>>,
     /// How its vertices move, for a model that animates (the positions and
     /// normals above are its rest pose).
     pub rig: Option<Arc<Rig>>,
@@ -154,6 +156,8 @@ impl Clone for Geometry {
             closed: self.closed,
             sphere_like: self.sphere_like,
             convex: self.convex.clone(),
+            // Found again when asked: a copy is made to be changed.
+            edges: OnceLock::new(),
             rig: self.rig.clone(),
             lights: self.lights.clone(),
             tangents: self.tangents.clone(),
@@ -205,6 +209,7 @@ impl Geometry {
             closed: false,
             sphere_like: false,
             convex: OnceLock::new(),
+            edges: OnceLock::new(),
             rig: None,
             lights: Vec::new(),
             tangents: None,
@@ -224,6 +229,7 @@ impl Geometry {
         self.closed = self.bounds.is_some() && topo.closed(&self.faces);
         self.sphere_like = self.closed && topo.sphere_like(&self.faces);
         self.convex = OnceLock::new();
+        self.edges = OnceLock::new();
     }
 
     /// The faces in runs of one material, in order, for a mesh coloured
@@ -326,6 +332,36 @@ impl Geometry {
             .get_or_init(|| self.sphere_like && self.bounds.is_some() && convex(self))
     }
 
+    /// Its edges, each once: a pair of vertex indices for each pair of
+    /// welded positions that a face joins (vertices at the same position,
+    /// split for their normals or texture coordinates, are one; edges of
+    /// no length are left out), in order of their welded positions. Found
+    /// once (8 bytes an edge, about 12 a face), when a wireframe first
+    /// asks.
+    pub fn edges(&self) -> &[[u32; 2]] {
+        self.edges.get_or_init(|| {
+            let (ids, _) = super::normals::weld(&self.positions);
+            let id = |i: u32| ids.get(i as usize).copied().unwrap_or(u32::MAX);
+            let mut keyed: Vec<([u32; 2], [u32; 2])> = self
+                .faces
+                .iter()
+                .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+                .filter_map(|[a, b]| {
+                    let (p, q) = (id(a), id(b));
+                    let keyed = if p < q {
+                        ([p, q], [a, b])
+                    } else {
+                        ([q, p], [b, a])
+                    };
+                    (p != q && p != u32::MAX && q != u32::MAX).then_some(keyed)
+                })
+                .collect();
+            keyed.sort_unstable_by_key(|&(k, _)| k);
+            keyed.dedup_by_key(|&mut (k, _)| k);
+            keyed.into_iter().map(|(_, e)| e).collect()
+        })
+    }
+
     /// Computes the normals per position, splitting at creases sharper
     /// than `crease` degrees (see the module doc); vertex indices shared
     /// across a crease are split, which appends vertices. Also finds the
@@ -401,6 +437,7 @@ impl Geometry {
         // and any convexity found are redone.
         self.bounds = bounds(&self.positions);
         self.convex = OnceLock::new();
+        self.edges = OnceLock::new();
     }
 }
 
