@@ -469,13 +469,20 @@ impl Player {
             if self.paused {
                 p[1].push_str("paused");
             }
+            // The view's angles as `render --orbit` and `--pan` take them
+            // (shortest exact decimals: the frame can be drawn again).
+            let v = &self.view;
             let _ = write!(
                 p[2],
-                "{} {angle:.1}° pitch {:.0}° zoom {:.2}×",
+                "{} {angle:.1}° orbit {},{} ×{:.2}",
                 self.spin.axis.angle_name(),
-                self.view.pitch,
-                1.0 / self.view.distance
+                v.yaw,
+                v.pitch,
+                1.0 / v.distance
             );
+            if v.shift != glam::Vec2::ZERO {
+                let _ = write!(p[2], " pan {},{}", v.shift.x, v.shift.y);
+            }
             let _ = write!(
                 p[3],
                 "{} · {} · {}",
@@ -679,7 +686,7 @@ mod tests {
         }
         let status = with.screen().contents_between(11, 0, 11, 40);
         assert!(
-            status.starts_with(" yaw 0.0° pitch 0° zoom 1.00×"),
+            status.starts_with(" yaw 0.0° orbit 0,0 ×1.00"),
             "{status:?}"
         );
     }
