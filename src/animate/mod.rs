@@ -4,10 +4,13 @@
 //!
 //! A [`Player`] holds everything that changes while a scene spins (the
 //! frame number, the view, the settings the keys cycle through) and reacts
-//! to [`Command`]s; it knows nothing of clocks or keys. `rastty spin` drives
-//! it from the terminal (`live::run`, feature `cli`: a clock, keys, signals and
-//! resizes); tests and the byte-count table drive it headless ([`play`]),
-//! so that what they measure is exactly what a terminal receives.
+//! to [`Command`]s; it knows nothing of clocks, keys or mice (a drag comes
+//! as cells moved, turned into angles by [`crate::scene::View::drag`]).
+//! `rastty spin` drives it from the terminal (the CLI's `live` loop: a
+//! clock, keys, mouse reports, signals and resizes); tests and the
+//! byte-count table drive it headless ([`play`]), so that what they
+//! measure is exactly what a terminal receives. What it writes over the
+//! frame (the status line, a notice, the help box) is `hud.rs`'s.
 
 use crate::choice::Choice;
 use std::io::{self, Write};

@@ -9,7 +9,9 @@
 //! The stages, each in a file: the vertex stage (`vertex.rs`, and its
 //! lane twin `vertex_lanes.rs`), the triangle stage (`triangle.rs`: clip,
 //! cull, set-up, light, then [`crate::fill`]; its out-of-line paths for
-//! mapped, masked and blended runs in `mapped.rs`), anti-aliasing (`aa.rs`),
+//! mapped, masked and blended runs in `mapped.rs`), the edge stage of
+//! wireframes (`wire.rs`: edges as lines one sample wide through the same
+//! set-up), anti-aliasing (`aa.rs`),
 //! bands (`bands.rs`) and what a frame cost (`stats.rs`). This file holds
 //! the renderer and the frame: the plan made (or remade) first, then the
 //! stages as it says. Fragments are the fill stage's ([`crate::fill`]):
