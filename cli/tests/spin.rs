@@ -1183,9 +1183,10 @@ fn the_wheel_zooms_and_a_right_drag_pans() {
     assert!(t.wait_exit(Duration::from_secs(20)));
 }
 
-/// `?` shows the keys over the frame and hides them again.
+/// `?` shows the keys over the frame (the first of them: a 40×16 frame
+/// cuts the box) and hides them again.
 #[test]
-fn the_help_box_lists_the_keys() {
+fn question_mark_shows_the_help_box_and_hides_it_again() {
     let start = rendered(&[]);
     let mut t = still_spin(&[]);
     let from = t.seen.len();
