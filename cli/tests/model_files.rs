@@ -368,6 +368,44 @@ fn a_bowtie_covers_its_two_lobes_and_nothing_between() {
 }
 
 #[test]
+fn a_folded_quad_is_cut_along_a_diagonal_so_a_closed_surface_stays_closed() {
+    // A regular tetrahedron whose faces ABC and ACD are written as one quad
+    // A B C D, folded 109.5° along AC. Projected onto one plane its edges
+    // cross (its halves face apart by both diagonals), but in space they do
+    // not meet: the file means the two faces. Cut along A–C, the quad's
+    // four edges are each shared with a triangle, and the mesh is closed.
+    let g = load(
+        "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n\
+         f 1 2 3 4\nf 1 4 2\nf 2 4 3\n",
+    )
+    .geometry;
+    // Two triangles for the quad. The even-odd cut also made two, its
+    // lobes, but around a new corner where two edges seem to cross, which
+    // no neighbour shares: the surface was open.
+    assert_eq!(g.faces.len(), 4);
+    assert!(g.closed);
+}
+
+#[test]
+fn tux_is_closed_so_its_back_faces_are_culled() {
+    // Its one folded quad (`f 8751 19047 14039 3159`, line 70190) was cut
+    // by the even-odd rule, which opened the surface and drew both sides.
+    let tux = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/models/linux-mascot-tux.obj"
+    );
+    let out = rastty(&["render", tux, "--explain"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stderr).unwrap();
+    let raster = text.lines().find(|l| l.starts_with("raster:")).unwrap();
+    assert_eq!(
+        raster,
+        "raster: 21196 triangles set up, 19973 culled, 15 degenerate, 0 not finite; \
+         2652 samples tested, 918 covered"
+    );
+}
+
+#[test]
 fn a_face_of_100k_corners_is_cut_in_n_minus_2_triangles() {
     let n = 100_000;
     let circle: Vec<[f64; 2]> = (0..n)

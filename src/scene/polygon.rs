@@ -5,7 +5,11 @@
 //!   two triangles face the same way (either, for a convex quad; the one
 //!   through the reflex corner, for a dart): a few cross products, no
 //!   projection.
-//! * **Everything else** (larger polygons, and a quad that crosses itself)
+//!   A quad that is not flat and whose triangles face apart by both
+//!   diagonals is folded (only its projection crosses itself) and is cut
+//!   along the diagonal from its first corner, as common loaders do, so a
+//!   closed surface stays closed: see [`quad`].
+//! * **Everything else** (larger polygons, and a flat quad that crosses itself)
 //!   is projected onto the plane that fits it best (Newell's normal) and
 //!   triangulated with its edges as constraints by the `spade` crate
 //!   (a constrained Delaunay triangulation, bulk-loaded in `O(n log n)`,
@@ -53,16 +57,44 @@ pub enum Point {
     Between { a: u32, b: u32, t: f32 },
 }
 
-/// Where to cut a quad `p`: `Some(d)` when the diagonal from corner `d`
-/// (0 or 1) to corner `d + 2` leaves two triangles facing the same way;
-/// `None` for a quad that crosses itself (or has no area).
+/// How far from flat (as the sine of the angle between its two halves'
+/// normals) a quad whose halves face apart by either diagonal must be to
+/// count as folded rather than a bowtie: 1°. A bowtie written to a file
+/// with six decimals is flat to far less; Tux's one such quad is folded by
+/// 38°.
+const FOLDED_SIN: f64 = 0.017_452_406_437_283_51;
+
+/// Whether normals `n` and `m` are more than 1° from parallel (either
+/// way), in f64 so that a tiny quad's squared areas do not underflow.
+fn folded(n: DVec3, m: DVec3) -> bool {
+    n.cross(m).length_squared() > FOLDED_SIN * FOLDED_SIN * n.length_squared() * m.length_squared()
+}
+
+/// Where to cut a quad `p`: `Some(d)` for the diagonal from corner `d`
+/// (0 or 1) to corner `d + 2`; `None` for a flat quad that crosses itself
+/// (a bowtie, filled by the even-odd rule) or that has no area.
+///
+/// * A quad whose two triangles face the same way by some diagonal is cut
+///   along it (either, for a convex quad; the one through the reflex
+///   corner, for a dart).
+/// * A quad whose triangles face apart by both diagonals but which is not
+///   flat is **folded**, not crossed: out of its plane its edges do not
+///   meet, and only the projection onto one plane makes it look like a
+///   bowtie. The file means the surface spanned by its four edges, so it
+///   is cut along the diagonal from corner 0, as tinyobjloader and tobj
+///   cut every quad. Either diagonal keeps its four edges, so a closed
+///   surface stays closed; the even-odd cut would add a vertex on two of
+///   them and open it.
 #[inline]
 pub fn quad(p: [Vec3; 4]) -> Option<usize> {
     let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
-    if facing(0, 1, 2).dot(facing(0, 2, 3)) > 0.0 {
+    let (n, m) = (facing(0, 1, 2), facing(0, 2, 3));
+    if n.dot(m) > 0.0 {
         Some(0)
     } else if facing(1, 2, 3).dot(facing(1, 3, 0)) > 0.0 {
         Some(1)
+    } else if folded(n.as_dvec3(), m.as_dvec3()) {
+        Some(0)
     } else {
         None
     }
