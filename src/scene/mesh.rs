@@ -797,6 +797,53 @@ mod tests {
     }
 
     #[test]
+    fn a_fold_is_smooth_below_the_crease_and_split_above_it() {
+        // Two triangles on the edge (0,0,0)–(0,0,1), folded by `fold`
+        // degrees: near 60° (the crease), where the bound on the fan's sum
+        // proves nothing and each face is tested against the mean.
+        let shared = |fold: f32| {
+            let a = (fold / 2.0).to_radians();
+            let positions = vec![
+                Vec3::ZERO,
+                Vec3::Z,
+                Vec3::new(a.cos(), a.sin(), 0.5),
+                Vec3::new(-a.cos(), a.sin(), 0.5),
+            ];
+            let g = Geometry::new("fold", positions, vec![[0, 1, 2], [1, 0, 3]]);
+            g.positions.len()
+        };
+        assert_eq!(shared(50.0), 4, "one normal along the edge");
+        assert_eq!(shared(59.0), 4);
+        assert_eq!(shared(61.0), 6, "the edge's two vertices split");
+        assert_eq!(shared(70.0), 6);
+    }
+
+    #[test]
+    fn closedness_holds_at_positions_of_many_faces() {
+        // A double cone of 40 sides: each apex has 40 faces around it, more
+        // than the fans checked on the stack.
+        let n = 40u32;
+        let mut positions: Vec<Vec3> = (0..n)
+            .map(|i| {
+                let a = i as f32 * std::f32::consts::TAU / n as f32;
+                Vec3::new(a.cos(), 0.0, a.sin())
+            })
+            .collect();
+        positions.extend([Vec3::Y, -Vec3::Y]);
+        let faces: Vec<[u32; 3]> = (0..n)
+            .flat_map(|i| [[i, n, (i + 1) % n], [(i + 1) % n, n + 1, i]])
+            .collect();
+        let cone = Geometry::new("cone", positions.clone(), faces.clone());
+        assert!(cone.closed && cone.sphere_like);
+        let mut open = faces.clone();
+        open.pop();
+        assert!(!Geometry::new("open", positions.clone(), open).closed);
+        let mut flipped = faces;
+        flipped[3].swap(1, 2);
+        assert!(!Geometry::new("flipped", positions, flipped).closed);
+    }
+
+    #[test]
     fn normals_of_a_flat_square_point_up_and_fit_is_unit() {
         let p = vec![
             Vec3::new(0.0, 0.0, 0.0),
@@ -880,11 +927,14 @@ mod tests {
             let (sin, cos) = t.sin_cos();
             let sin = sin.abs();
             let want = sin.atan2(cos);
-            assert!(
-                (angle(sin, cos) - want).abs() <= 1e-6,
-                "{t}: {} vs {want}",
-                angle(sin, cos)
+            // Each lane alone, and up to a common factor (a power of two
+            // here, as the loader's edges are scaled).
+            let got = angles(
+                glam::Vec3A::new(sin, sin * 4.0, sin / 8.0),
+                glam::Vec3A::new(cos, cos * 4.0, cos / 8.0),
             );
+            assert!((got.x - want).abs() <= 1e-6, "{t}: {} vs {want}", got.x);
+            assert_eq!(got, glam::Vec3A::splat(got.x), "{t}");
         }
     }
 
