@@ -9,9 +9,10 @@
 #   scripts/load-cost.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q
+# RASTTY=path measures another build of rastty (an older commit's).
+bin=${RASTTY:-target/release/rastty}
+[ -n "${RASTTY:-}" ] || cargo build --release -q
 cargo build --release -q --example torus_obj
-bin=target/release/rastty
 dir=target/load-cost
 mkdir -p "$dir"
 for n in 10000 100000 1000000 4000000; do

@@ -483,6 +483,28 @@ impl Plan {
         self.clip_tests.get(group).copied().unwrap_or(true)
     }
 
+    /// Whether the vertex stage keeps each vertex's world position, normal
+    /// and unsnapped screen position for the faces of a mesh culled as
+    /// `cull`: where some face may read them (flat shading, lights that
+    /// fall off, a rim, highlights, textures, alpha, maps, the general
+    /// path, the full pipeline, and back faces, which smooth shading
+    /// lights from the other side of their normals). A lit, culled, matte
+    /// mesh on the lean path needs none of them. Memory alone: the frame
+    /// is the same either way (and a mesh with a vertex off the lean path,
+    /// outside a clip plane, keeps them too; see the vertex stage).
+    pub fn vertex_extras(&self, cull: crate::scene::Cull) -> bool {
+        self.full
+            || self.shading == Shading::Flat
+            || self.falloff.run
+            || self.rim.run
+            || self.specular.run
+            || self.texturing.run
+            || self.alpha.run
+            || self.maps.run
+            || !self.lean.run
+            || cull != crate::scene::Cull::Back
+    }
+
     /// Whether mesh `i` is posed (see [`Plan::posing`]).
     pub fn poses(&self, mesh: usize) -> bool {
         self.poses.get(mesh).copied().unwrap_or(false)

@@ -20,7 +20,7 @@ use glam::Mat4;
 
 use super::stats::FrameStats;
 use super::triangle::Faces;
-use super::vertex::{Transforms, Vert};
+use super::vertex::{More, Transforms, Vert, Verts};
 use super::{Painter, Renderer, Sorted, Stage};
 use crate::blit;
 use crate::clip::Polygon;
@@ -42,6 +42,7 @@ pub(super) struct BandWork {
     mapping: super::mapped::Mapping,
     /// The loose triangles' vertices, one triangle at a time.
     verts: Vec<Vert>,
+    more: Vec<More>,
     /// Unused: bands are not anti-aliased.
     acc: Vec<[f32; 4]>,
     /// Where the band drew this frame.
@@ -58,6 +59,7 @@ impl Default for BandWork {
             sorted: Sorted::default(),
             mapping: Default::default(),
             verts: Vec::new(),
+            more: Vec::new(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
             known: Known::default(),
@@ -92,6 +94,7 @@ impl Renderer {
         self.fb.reset(grid, depth);
         // The vertex stage, every mesh's vertices one after another.
         self.verts.clear();
+        self.more.clear();
         self.meshes.clear();
         let super::Drawing {
             mut painter,
@@ -101,16 +104,27 @@ impl Renderer {
         } = self.drawing();
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
-            let start = painter.verts.len();
+            let start = (painter.verts.len(), painter.more.len());
             let (positions, normals) = super::vertices_of(posed, p, i, mesh);
-            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
-            meshes.push((start..painter.verts.len(), transforms));
+            let keep = p.vertex_extras(opts.cull.unwrap_or(mesh.cull));
+            painter.vertex_stage(
+                stage,
+                &transforms,
+                (positions, normals),
+                p.clip_tests(i),
+                keep,
+            );
+            meshes.push(super::MeshVerts {
+                core: start.0..painter.verts.len(),
+                more: start.1..painter.more.len(),
+                transforms,
+            });
         }
         times.vertices += lap();
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);
-        let (verts, meshes, posed) = (&self.verts, &self.meshes, &self.posed);
+        let (verts, more, meshes, posed) = (&self.verts, &self.more, &self.meshes, &self.posed);
         let blended = super::blended_meshes(scene, p, vp, turn);
         let job = |k: usize,
                    band: &mut BandWork,
@@ -129,10 +143,15 @@ impl Renderer {
                 sorted: &mut band.sorted,
                 mapping: &mut band.mapping,
                 verts: &mut band.verts,
+                more: &mut band.more,
                 acc: &mut band.acc,
             };
+            let of = |m: &super::MeshVerts| Verts {
+                core: &verts[m.core.clone()],
+                more: &more[m.more.clone()],
+            };
             for (i, mesh) in scene.meshes.iter().enumerate() {
-                let (range, transforms) = &meshes[i];
+                let (m, transforms) = (&meshes[i], &meshes[i].transforms);
                 let faces = Faces {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
@@ -140,7 +159,7 @@ impl Renderer {
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
                 if p.faces.run {
-                    painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Opaque);
+                    painter.faces(stage, &faces, of(m), super::Pass::Opaque);
                 }
                 if p.edges.run {
                     painter.edges(stage, mesh, faces.positions, transforms, opts.wire);
@@ -149,14 +168,14 @@ impl Renderer {
             painter.loose(scene, opts, stage, vp, turn);
             for &i in blended.iter().filter(|_| p.faces.run) {
                 let mesh = &scene.meshes[i];
-                let (range, transforms) = &meshes[i];
+                let (m, transforms) = (&meshes[i], &meshes[i].transforms);
                 let faces = Faces {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                painter.faces(stage, &faces, &verts[range.clone()], super::Pass::Blend);
+                painter.faces(stage, &faces, of(m), super::Pass::Blend);
             }
             band.known = blit::blit_band(
                 painter.fb.view(),

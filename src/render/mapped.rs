@@ -11,7 +11,7 @@
 use glam::{Vec3, Vec3A, Vec4};
 
 use super::triangle::{Corners, Faces, Model, Tex};
-use super::vertex::Vert;
+use super::vertex::Verts;
 use super::{Painter, Stage};
 use crate::fill::{self, AlphaFill, Attributes, Mapped, MappedCorners, ScreenTriangle, Shine};
 use crate::options::Highlights;
@@ -55,7 +55,7 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         f: &Faces<'_>,
-        verts: &[Vert],
+        verts: Verts<'_>,
         ids: Ids<'_>,
         (texture, run_color): (Option<(&Texture, Sampler)>, Vec3A),
     ) {
@@ -66,7 +66,7 @@ impl Painter<'_> {
         let uvs = mesh.uvs.as_deref().unwrap_or(&[]);
         let draw = |me: &mut Self, id: usize| {
             let face = mesh.faces[id];
-            let v = face.map(|i| &verts[i as usize]);
+            let v = verts.of(face);
             let base = match &mesh.colors {
                 Some(c) => face.map(|i| c[i as usize].to_lanes()),
                 None => [run_color; 3],

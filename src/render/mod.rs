@@ -53,7 +53,7 @@ use crate::shade::Lights;
 use crate::transform::{self, Grid};
 use mapped::Ids;
 use triangle::Faces;
-use vertex::{Transforms, Vert};
+use vertex::{More, Transforms, Vert, Verts};
 
 /// Per-frame constants of the vertex and triangle stages.
 #[derive(Clone, Copy)]
@@ -168,6 +168,8 @@ pub struct Renderer {
     fb: Framebuffer,
     frame: Frame,
     verts: Vec<Vert>,
+    /// The extras of the vertices whose mesh keeps them.
+    more: Vec<More>,
     poly: Polygon,
     /// A blended run's faces, back to front (scratch).
     sorted: Sorted,
@@ -186,9 +188,9 @@ pub struct Renderer {
     /// The last camera resolved, the aspect it was resolved for, and the
     /// result ([`Camera::resolved`]).
     camera: Option<(Camera, u32, Camera)>,
-    /// Where each mesh's vertices are in `verts`, and its matrices, for a
-    /// frame drawn in bands.
-    meshes: Vec<(std::ops::Range<usize>, Transforms)>,
+    /// Where each mesh's vertices are in `verts` and `more`, and its
+    /// matrices, for a frame drawn in bands.
+    meshes: Vec<MeshVerts>,
     /// Each mesh's vertices at its pose, where the plan poses it.
     posed: Vec<PosedMesh>,
 }
@@ -198,7 +200,7 @@ struct Drawing<'a> {
     painter: Painter<'a>,
     times: &'a mut FrameTimes,
     posed: &'a [PosedMesh],
-    meshes: &'a mut Vec<(std::ops::Range<usize>, Transforms)>,
+    meshes: &'a mut Vec<MeshVerts>,
 }
 
 /// A mesh's positions and normals at a pose, kept from frame to frame: a
@@ -297,7 +299,18 @@ struct Painter<'a> {
     /// The mapped run being drawn's maps and face (none for other runs).
     mapping: &'a mut mapped::Mapping,
     verts: &'a mut Vec<Vert>,
+    more: &'a mut Vec<More>,
     acc: &'a mut Vec<[f32; 4]>,
+}
+
+/// Where one mesh's vertices are in a frame's vertex buffers, and its
+/// matrices (for a frame drawn in bands, which keeps every mesh's).
+#[derive(Debug)]
+struct MeshVerts {
+    core: std::ops::Range<usize>,
+    /// Empty where the mesh keeps no extras.
+    more: std::ops::Range<usize>,
+    transforms: Transforms,
 }
 
 impl Default for Renderer {
@@ -313,6 +326,7 @@ impl Renderer {
             fb: Framebuffer::new(Grid::new(0, 0)),
             frame: Frame::default(),
             verts: Vec::new(),
+            more: Vec::new(),
             poly: Polygon::default(),
             sorted: Sorted::default(),
             mapping: mapped::Mapping::default(),
@@ -461,6 +475,7 @@ impl Renderer {
                 sorted: &mut self.sorted,
                 mapping: &mut self.mapping,
                 verts: &mut self.verts,
+                more: &mut self.more,
                 acc: &mut self.acc,
             },
             times: &mut self.times,
@@ -542,24 +557,37 @@ impl Renderer {
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
+            painter.more.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
-            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
+            let cull = opts.cull.unwrap_or(mesh.cull);
+            let keep = p.vertex_extras(cull);
+            painter.vertex_stage(
+                stage,
+                &transforms,
+                (positions, normals),
+                p.clip_tests(i),
+                keep,
+            );
             times.vertices += lap();
             let faces = Faces {
                 mesh,
                 positions,
                 transforms: &transforms,
-                cull: opts.cull.unwrap_or(mesh.cull),
+                cull,
             };
             // Borrowed out of the painter for the loop, and put back.
-            let verts = std::mem::take(painter.verts);
+            let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
             if p.faces.run {
-                painter.faces(stage, &faces, &verts, Pass::Opaque);
+                let v = Verts {
+                    core: &verts,
+                    more: &more,
+                };
+                painter.faces(stage, &faces, v, Pass::Opaque);
             }
             if p.edges.run {
                 painter.edges(stage, mesh, positions, &transforms, opts.wire);
             }
-            *painter.verts = verts;
+            (*painter.verts, *painter.more) = (verts, more);
             times.triangles += lap();
         }
         painter.loose(scene, opts, stage, vp, turn);
@@ -572,21 +600,34 @@ impl Renderer {
             let mesh = &scene.meshes[i];
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
+            painter.more.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
+            let cull = opts.cull.unwrap_or(mesh.cull);
             // Counted once, in the first pass (as bands, which keep every
             // mesh's vertices, count them).
             let counted = *painter.stats;
-            painter.vertex_stage(stage, &transforms, positions, normals, p.clip_tests(i));
+            let keep = p.vertex_extras(cull);
+            painter.vertex_stage(
+                stage,
+                &transforms,
+                (positions, normals),
+                p.clip_tests(i),
+                keep,
+            );
             *painter.stats = counted;
             let faces = Faces {
                 mesh,
                 positions,
                 transforms: &transforms,
-                cull: opts.cull.unwrap_or(mesh.cull),
+                cull,
             };
-            let verts = std::mem::take(painter.verts);
-            painter.faces(stage, &faces, &verts, Pass::Blend);
-            *painter.verts = verts;
+            let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
+            let v = Verts {
+                core: &verts,
+                more: &more,
+            };
+            painter.faces(stage, &faces, v, Pass::Blend);
+            (*painter.verts, *painter.more) = (verts, more);
         }
         times.triangles += lap();
     }
@@ -627,4 +668,45 @@ impl Renderer {
 #[must_use]
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
     Renderer::new().render(scene, opts).clone()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::scene::Shape;
+
+    /// The vertices' extras are kept exactly where the plan says a face
+    /// may read them, and the frame is the same either way.
+    #[test]
+    fn vertex_extras_are_kept_only_where_read() {
+        let scene = Scene::of_mesh(Shape::Torus.mesh(Rgb::WHITE));
+        let n = scene.meshes[0].positions.len();
+        let draw = |opts: &RenderOptions| {
+            let mut r = Renderer::new();
+            let frame = r.render(&scene, opts).clone();
+            (r.verts.len(), r.more.len(), frame)
+        };
+        // Lit, culled at the back, matte, inside the view: none.
+        let lean = RenderOptions::default();
+        let (verts, more, plain) = draw(&lean);
+        assert_eq!((verts, more), (n, 0));
+        // A rim reads each corner's normal; both sides drawn, the back's.
+        let rim = RenderOptions {
+            rim: Some(Rgb::BLACK),
+            ..lean
+        };
+        assert_eq!(draw(&rim), (n, n, plain.clone()));
+        let both = RenderOptions {
+            cull: Some(crate::scene::Cull::None),
+            ..lean
+        };
+        assert_eq!(draw(&both), (n, n, plain.clone()));
+        // The full pipeline keeps them, and draws the same.
+        let full = RenderOptions {
+            pipeline: crate::options::Pipeline::Full,
+            ..lean
+        };
+        assert_eq!(draw(&full), (n, n, plain));
+    }
 }

@@ -23,7 +23,7 @@
 
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
-use super::vertex::{BAD_NORMAL, PLANES, Transforms, Vert};
+use super::vertex::{BAD_NORMAL, PLANES, Transforms, V, Verts};
 use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
@@ -76,7 +76,7 @@ pub(super) struct Faces<'a> {
 impl Painter<'_> {
     /// Draws one mesh's faces, whose vertices went through the vertex stage
     /// into `verts`.
-    pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: &[Vert], pass: Pass) {
+    pub(super) fn faces(&mut self, stage: &Stage<'_>, f: &Faces<'_>, verts: Verts<'_>, pass: Pass) {
         let p = stage.plan;
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
@@ -156,13 +156,13 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         f: &Faces<'_>,
-        verts: &[Vert],
+        verts: Verts<'_>,
         faces: &[[u32; 3]],
         (lean, texture, run_color, diffuse): (bool, Option<(&Texture, Sampler)>, Vec3A, f32),
     ) {
         let mesh = f.mesh;
         for face in faces {
-            let v = face.map(|i| &verts[i as usize]);
+            let v = face.map(|i| &verts.core[i as usize]);
             let inside = v[0].code | v[1].code | v[2].code == 0;
             let base = || match &mesh.colors {
                 Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
@@ -185,6 +185,7 @@ impl Painter<'_> {
                 // keys: nothing more to count. The colours are read
                 // only if it covers a sample.
                 if !CentreKey::box_is_empty(v.map(|v| v.key)) {
+                    let v = verts.of(*face);
                     // A shining run's normals and positions, found only
                     // for a triangle that covers a sample.
                     let shine = || {
@@ -215,7 +216,7 @@ impl Painter<'_> {
                 mvp: &f.transforms.mvp64,
                 world: &f.transforms.model,
             };
-            self.triangle::<SHINY, false>(stage, v, base, f.cull, model, tex);
+            self.triangle::<SHINY, false>(stage, verts.of(*face), base, f.cull, model, tex);
         }
     }
 
@@ -240,11 +241,17 @@ impl Painter<'_> {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
             self.verts.clear();
-            self.vertex_stage(stage, &loose, &tri.vertices, &[normal; 3], loose_tests);
-            let verts = std::mem::take(self.verts);
+            self.more.clear();
+            let vertices = (&tri.vertices[..], &[normal; 3][..]);
+            self.vertex_stage(stage, &loose, vertices, loose_tests, true);
+            let (verts, more) = (std::mem::take(self.verts), std::mem::take(self.more));
+            let v = Verts {
+                core: &verts,
+                more: &more,
+            };
             self.triangle::<false, false>(
                 stage,
-                [&verts[0], &verts[1], &verts[2]],
+                v.of([0, 1, 2]),
                 tri.color
                     .at_vertices()
                     .map(|c| Lin::from_srgb(c).to_lanes()),
@@ -261,7 +268,7 @@ impl Painter<'_> {
                     uv: [Vec2::ZERO; 3],
                 }),
             );
-            *self.verts = verts;
+            (*self.verts, *self.more) = (verts, more);
         }
     }
 
@@ -275,7 +282,7 @@ impl Painter<'_> {
     pub(super) fn triangle<const SHINY: bool, const MAPPED: bool>(
         &mut self,
         stage: &Stage<'_>,
-        v: [&Vert; 3],
+        v: [V<'_>; 3],
         base: [Vec3A; 3],
         cull: Cull,
         model: Model<'_>,
@@ -303,7 +310,7 @@ impl Painter<'_> {
                 .full
                 .then(|| self.shade(stage, v, base, !front_facing(v)));
             let fixed = v.map(|v| v.fixed);
-            let xy = v.map(|v| v.xy.map(f64::from));
+            let xy = v.map(|v| v.xy().map(f64::from));
             let screen = |color| ScreenTriangle {
                 xy,
                 z: v.map(|v| v.z),
@@ -373,7 +380,7 @@ impl Painter<'_> {
             weights: Vec3::AXES[i],
             snapped: (v[i].code == 0).then_some(Snapped {
                 fixed: v[i].fixed,
-                xy: v[i].xy,
+                xy: v[i].xy(),
                 z: v[i].z,
                 inv_w: v[i].inv_w,
             }),
@@ -435,7 +442,7 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         setup: &Result<C, Rejected>,
-        (v, base): ([&Vert; 3], [Vec3A; 3]),
+        (v, base): ([V<'_>; 3], [Vec3A; 3]),
         early: Option<[Vec3; 3]>,
         screen: impl Fn([Vec3; 3]) -> ScreenTriangle,
         texture: Option<(&Texture, Sampler)>,
@@ -473,7 +480,7 @@ impl Painter<'_> {
     pub(super) fn inside_triangle(
         &mut self,
         stage: &Stage<'_>,
-        v: [&Vert; 3],
+        v: [V<'_>; 3],
         (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn() -> Shining),
         t: &SnappedTriangle,
     ) {
@@ -493,7 +500,7 @@ impl Painter<'_> {
     pub(super) fn inside_fill<C: Coverage>(
         &mut self,
         stage: &Stage<'_>,
-        v: [&Vert; 3],
+        v: [V<'_>; 3],
         (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn() -> Shining),
         s: &C,
     ) {
@@ -526,7 +533,7 @@ impl Painter<'_> {
     pub(super) fn shade(
         &mut self,
         stage: &Stage<'_>,
-        v: [&Vert; 3],
+        v: [V<'_>; 3],
         base: [Vec3A; 3],
         back: bool,
     ) -> [Vec3; 3] {
@@ -553,7 +560,7 @@ impl Painter<'_> {
     pub(super) fn light(
         &mut self,
         stage: &Stage<'_>,
-        v: [&Vert; 3],
+        v: [V<'_>; 3],
         base: [Vec3A; 3],
         back: bool,
     ) -> [Vec3A; 3] {
@@ -563,7 +570,7 @@ impl Painter<'_> {
             Shading::Flat => {
                 self.stats.lighting_evaluations += 1;
                 let side = if back { -1.0 } else { 1.0 };
-                let face = transform::face_normal(v[0].world, v[1].world, v[2].world);
+                let face = transform::face_normal(v[0].world(), v[1].world(), v[2].world());
                 let light = if stage.plan.falloff.run {
                     lit_at_centre(stage, v, face * side)
                 } else {
@@ -584,9 +591,9 @@ impl Painter<'_> {
                 self.stats.lighting_evaluations += 3;
                 let rim = stage.plan.rim.run;
                 let l = |i: usize| {
-                    let lit = b(i) * stage.lights.lambert_a(-v[i].normal);
+                    let lit = b(i) * stage.lights.lambert_a(-v[i].normal());
                     if rim {
-                        lit + stage.lights.rim_a(-v[i].normal)
+                        lit + stage.lights.rim_a(-v[i].normal())
                     } else {
                         lit
                     }
@@ -597,7 +604,8 @@ impl Painter<'_> {
                 // The rim from each corner's normal, here rather than in the
                 // vertex stage: a frame without a rim keeps its vertices as
                 // small and its vertex loop as short as before.
-                let l = |i: usize| b(i) * Vec3A::from(v[i].light) + stage.lights.rim_a(v[i].normal);
+                let l =
+                    |i: usize| b(i) * Vec3A::from(v[i].light) + stage.lights.rim_a(v[i].normal());
                 [l(0), l(1), l(2)]
             }
             Shading::Smooth => {
@@ -733,7 +741,7 @@ impl Painter<'_> {
 
 /// Whether the snapped screen triangle is counter-clockwise (the same
 /// signed area every set-up finds).
-fn front_facing(v: [&Vert; 3]) -> bool {
+fn front_facing(v: [V<'_>; 3]) -> bool {
     raster::signed_area2(&v.map(|v| v.fixed)) > 0
 }
 
@@ -741,7 +749,7 @@ fn front_facing(v: [&Vert; 3]) -> bool {
 /// unit normals (smooth shading's, or the face's) and positions in the
 /// turned world; `None` for other runs.
 #[inline(always)]
-pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Model<'_>) -> Shining {
+pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [V<'_>; 3], model: &Model<'_>) -> Shining {
     if !shiny {
         return None;
     }
@@ -749,7 +757,7 @@ pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Mod
         .face
         .map(|i| model.world.transform_point3(model.positions[i as usize]));
     let normal = match stage.plan.shading {
-        Shading::Smooth => v.map(|v| v.normal),
+        Shading::Smooth => v.map(|v| v.normal()),
         _ => [transform::face_normal(world[0], world[1], world[2]); 3],
     };
     Some((normal, world))
@@ -759,8 +767,8 @@ pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [&Vert; 3], model: &Mod
 /// whose light depends on where the surface is (out of line, as
 /// [`back_lit_at`], for the same reason).
 #[inline(never)]
-fn lit_at_centre(stage: &Stage<'_>, v: [&Vert; 3], n: Vec3) -> Vec3A {
-    let centre = (v[0].world + v[1].world + v[2].world) / 3.0;
+fn lit_at_centre(stage: &Stage<'_>, v: [V<'_>; 3], n: Vec3) -> Vec3A {
+    let centre = (v[0].world() + v[1].world() + v[2].world()) / 3.0;
     stage.lights.lambert_at(n, centre)
 }
 
@@ -768,11 +776,11 @@ fn lit_at_centre(stage: &Stage<'_>, v: [&Vert; 3], n: Vec3) -> Vec3A {
 /// depends on where a corner is ([`Painter::light`]'s rare arm, out of
 /// line so that the common arms stay as short as they were).
 #[inline(never)]
-fn back_lit_at(stage: &Stage<'_>, v: [&Vert; 3], base: [Vec3A; 3]) -> [Vec3A; 3] {
+fn back_lit_at(stage: &Stage<'_>, v: [V<'_>; 3], base: [Vec3A; 3]) -> [Vec3A; 3] {
     let l = |i: usize| {
-        let lit = base[i] * stage.lights.lambert_at(-v[i].normal, v[i].world);
+        let lit = base[i] * stage.lights.lambert_at(-v[i].normal(), v[i].world());
         if stage.plan.rim.run {
-            lit + stage.lights.rim_a(-v[i].normal)
+            lit + stage.lights.rim_a(-v[i].normal())
         } else {
             lit
         }

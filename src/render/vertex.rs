@@ -6,6 +6,15 @@
 //! ([`crate::shade`]) is evaluated per vertex for smooth shading. Its
 //! twin, four vertices at a time in SIMD lanes, is `vertex_lanes.rs`, with
 //! the same arithmetic per lane and so the same bits.
+//!
+//! **What is kept.** Every face reads a vertex's outcode and snapped
+//! position, and a face that covers a sample its depth, `1/w` and light:
+//! [`Vert`], 48 bytes. World position, normal and unsnapped position
+//! ([`More`], 32 bytes) are read only by flat shading, falling-off lights,
+//! rims, highlights, textures, alpha, maps, the general and clip paths and
+//! back faces; they go to a second buffer only for a mesh the plan says
+//! may need them, or one with a vertex off the common path, so a large
+//! lit, culled, matte model keeps 48 bytes a vertex rather than 80.
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 
@@ -41,28 +50,109 @@ impl Transforms {
     }
 }
 
-/// A vertex after the vertex stage.
+/// A vertex after the vertex stage: what every face reads of it (its clip
+/// outcode and, inside every plane, its snapped position and centre key)
+/// and what a face that covers a sample reads (depth, `1/w`, and under
+/// smooth shading the light reaching it). 48 bytes; what only some
+/// scenes' faces read is in [`More`], kept only where the plan reads it.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
-    /// Position in the turned world, where lights live (flat shading, and
-    /// point and spot lights, only: zero otherwise).
-    pub(super) world: Vec3,
-    /// Unit normal in the turned world (smooth shading only: zero
-    /// otherwise).
-    pub(super) normal: Vec3,
     /// The light reaching the front of the vertex (smooth shading only).
     pub(super) light: Vec3,
     /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
     /// every plane with a finite normal (then the fields below are valid).
     pub(super) code: u16,
-    pub(super) xy: [f32; 2],
-    /// `xy` snapped, once per vertex rather than once per triangle.
+    /// The screen position snapped, once per vertex rather than once per
+    /// triangle.
     pub(super) fixed: FixedPoint,
     /// Where `fixed` lies among sample centres, for the face loop's first
     /// test.
     pub(super) key: CentreKey,
     pub(super) z: f32,
     pub(super) inv_w: f32,
+}
+
+/// What some scenes' faces read of a vertex beyond [`Vert`]: world
+/// position, normal and unsnapped screen position (32 bytes). Kept, in a
+/// buffer beside the vertices, for a mesh whose faces may read it
+/// ([`crate::Plan::vertex_extras`], or a vertex off the common path), and
+/// not otherwise: a lit, culled, matte mesh inside the view (the common
+/// large model) keeps 48 bytes a vertex rather than 80.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct More {
+    /// Position in the turned world, where lights live (flat shading, and
+    /// point and spot lights, only: zero otherwise).
+    pub(super) world: Vec3,
+    /// Unit normal in the turned world (smooth shading only: zero
+    /// otherwise).
+    pub(super) normal: Vec3,
+    /// The screen position in samples, before snapping (inside every
+    /// plane only).
+    pub(super) xy: [f32; 2],
+}
+
+/// A vertex as the triangle stage reads it: its [`Vert`] (its fields read
+/// through `Deref`) and its [`More`], where kept.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct V<'a> {
+    at: &'a Vert,
+    more: Option<&'a More>,
+}
+
+impl std::ops::Deref for V<'_> {
+    type Target = Vert;
+    #[inline(always)]
+    fn deref(&self) -> &Vert {
+        self.at
+    }
+}
+
+impl V<'_> {
+    #[inline(always)]
+    fn more(&self) -> &More {
+        // The plan keeps a mesh's extras wherever its faces read them
+        // (`Plan::vertex_extras`), and the vertex stage keeps them for a
+        // mesh with any vertex off the common path.
+        self.more
+            .expect("vertex extras are kept wherever they are read")
+    }
+
+    /// [`More::world`].
+    #[inline(always)]
+    pub(super) fn world(&self) -> Vec3 {
+        self.more().world
+    }
+
+    /// [`More::normal`].
+    #[inline(always)]
+    pub(super) fn normal(&self) -> Vec3 {
+        self.more().normal
+    }
+
+    /// [`More::xy`].
+    #[inline(always)]
+    pub(super) fn xy(&self) -> [f32; 2] {
+        self.more().xy
+    }
+}
+
+/// One mesh's vertices after the vertex stage: every vertex's [`Vert`],
+/// and every vertex's [`More`] or none.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Verts<'a> {
+    pub(super) core: &'a [Vert],
+    pub(super) more: &'a [More],
+}
+
+impl<'a> Verts<'a> {
+    /// The corners of `face`.
+    #[inline(always)]
+    pub(super) fn of(&self, face: [u32; 3]) -> [V<'a>; 3] {
+        face.map(|i| V {
+            at: &self.core[i as usize],
+            more: self.more.get(i as usize),
+        })
+    }
 }
 
 /// An outcode bit of no clip plane: the vertex's f32 clip position is not
@@ -79,16 +169,35 @@ pub(super) const BAD_NORMAL: u16 = 1 << 8;
 
 impl Painter<'_> {
     /// Transforms `positions` (with `normals`), appending them to
-    /// `self.verts`.
+    /// `self.verts`, and their extras to `self.more` where `keep` says or
+    /// where a vertex is off the common path (outside a clip plane, or
+    /// taking the f64 path), whose faces take paths that read them.
     pub(super) fn vertex_stage(
         &mut self,
         stage: &Stage<'_>,
         t: &Transforms,
-        positions: &[Vec3],
-        normals: &[Vec3],
+        (positions, normals): (&[Vec3], &[Vec3]),
         clip_tests: bool,
+        keep: bool,
     ) {
-        let done = vertex_lanes::vertices(stage, t, positions, normals, clip_tests, self.verts);
+        let start = (self.verts.len(), self.more.len());
+        let more = keep.then_some(&mut *self.more);
+        let mut done =
+            vertex_lanes::vertices(stage, t, (positions, normals), clip_tests, self.verts, more);
+        if !keep && done.off_path > 0 {
+            self.verts.truncate(start.0);
+            done = vertex_lanes::vertices(
+                stage,
+                t,
+                (positions, normals),
+                clip_tests,
+                self.verts,
+                Some(self.more),
+            );
+        }
+        debug_assert!(
+            self.more.len() == start.1 || self.more.len() - start.1 == self.verts.len() - start.0
+        );
         self.stats.vertices += done.vertices;
         self.stats.lighting_evaluations += done.lit;
         self.stats.clip_tests += done.clip_tested;
@@ -105,6 +214,9 @@ pub(super) struct VertexWork {
     pub(super) lit: u64,
     /// Of those, tested against the clip planes.
     pub(super) clip_tested: u64,
+    /// Of those, off the common path: outside a clip plane, or taking the
+    /// f64 path (not counted in [`super::FrameStats`]).
+    pub(super) off_path: u64,
 }
 
 /// One vertex through the vertex stage: its clip position and outcode
@@ -117,7 +229,7 @@ pub(super) fn vertex(
     p: Vec3,
     n: Vec3,
     clip_tests: bool,
-) -> Vert {
+) -> (Vert, More) {
     let smooth = stage.plan.shading == Shading::Smooth;
     // World positions serve flat shading and point and spot lights (the
     // clip path finds its own from the model).
@@ -138,28 +250,31 @@ pub(super) fn vertex(
     } else {
         Vec3::ZERO
     };
-    let mut v = Vert {
+    let mut more = More {
         world: if flat || falloff {
             t.model.transform_point3(p)
         } else {
             Vec3::ZERO
         },
         normal,
+        xy: [0.0; 2],
+    };
+    let mut v = Vert {
         code,
         ..Vert::default()
     };
     if smooth {
         v.light = if falloff {
-            Vec3::from(stage.lights.lambert_at(normal, v.world))
+            Vec3::from(stage.lights.lambert_at(normal, more.world))
         } else {
             stage.lights.lambert(normal)
         };
     }
     if code == 0 {
         v.inv_w = 1.0 / clip.w;
-        v.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
+        more.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
         v.z = clip.z * v.inv_w;
-        match FixedPoint::snap(v.xy) {
+        match FixedPoint::snap(more.xy) {
             Some(f) => (v.fixed, v.key) = (f, CentreKey::of(f)),
             // Cannot happen inside the guard band; if it did, the clip path
             // deals with it.
@@ -169,5 +284,5 @@ pub(super) fn vertex(
     if !n.is_finite() {
         v.code |= BAD_NORMAL;
     }
-    v
+    (v, more)
 }

@@ -35,31 +35,31 @@
 use glam::{Vec3, Vec4};
 
 use super::Stage;
-use super::vertex::{Transforms, Vert, VertexWork, vertex};
+use super::vertex::{More, Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
 
 /// Appends the vertex stage's result for each of `positions` with its
-/// normal, in order, to `out`: what `vertex` gives for each; returns what
-/// it did, counted from the paths it took.
+/// normal, in order, to `out` (and their extras to `more`, if given): what
+/// `vertex` gives for each; returns what it did, counted from the paths it
+/// took.
 #[inline(always)]
 pub(super) fn vertices(
     stage: &Stage<'_>,
     t: &Transforms,
-    positions: &[Vec3],
-    normals: &[Vec3],
+    (positions, normals): (&[Vec3], &[Vec3]),
     clip_tests: bool,
     out: &mut Vec<Vert>,
+    mut more: Option<&mut Vec<More>>,
 ) -> VertexWork {
     let n = positions.len().min(normals.len());
     let (positions, normals) = (&positions[..n], &normals[..n]);
-    let one = |(&p, &n): (&Vec3, &Vec3)| vertex(stage, t, p, n, clip_tests);
     let shading = stage.plan.shading;
     // `vertex` and the lanes light a vertex exactly when shading is smooth,
     // and test it exactly when `clip_tests` says.
-    let work = VertexWork {
+    let mut work = VertexWork {
         vertices: n as u64,
         lit: if shading == Shading::Smooth {
             n as u64
@@ -67,24 +67,52 @@ pub(super) fn vertices(
             0
         },
         clip_tested: if clip_tests { n as u64 } else { 0 },
+        off_path: 0,
+    };
+    if let Some(m) = more.as_deref_mut() {
+        m.reserve(n);
+    }
+    out.reserve(n);
+    let mut off_path = 0;
+    let mut one = |out: &mut Vec<Vert>, more: Option<&mut Vec<More>>, p: Vec3, n: Vec3| {
+        let (v, m) = vertex(stage, t, p, n, clip_tests);
+        off_path += (v.code != 0) as u64;
+        out.push(v);
+        if let Some(more) = more {
+            more.push(m);
+        }
     };
     if n < 4 || shading == Shading::Flat || stage.plan.falloff.run {
         // A loose triangle's three vertices, flat shading, or lights whose
         // light depends on where a vertex is.
-        out.extend(positions.iter().zip(normals).map(one));
+        for (&p, &n) in positions.iter().zip(normals) {
+            one(out, more.as_deref_mut(), p, n);
+        }
+        work.off_path = off_path;
         return work;
     }
     let smooth = shading == Shading::Smooth;
-    out.reserve(n);
     for (p, nn) in positions.chunks_exact(4).zip(normals.chunks_exact(4)) {
         let (p, nn) = (as_four(p), as_four(nn));
         match four(stage, t, p, nn, clip_tests, smooth) {
-            Some(v) => out.extend_from_slice(&v),
-            None => out.extend(p.iter().zip(nn).map(one)),
+            Some((v, m)) => {
+                out.extend_from_slice(&v);
+                if let Some(more) = more.as_deref_mut() {
+                    more.extend_from_slice(&m);
+                }
+            }
+            None => {
+                for (&p, &n) in p.iter().zip(nn) {
+                    one(out, more.as_deref_mut(), p, n);
+                }
+            }
         }
     }
     let start = n - n % 4;
-    out.extend(positions[start..].iter().zip(&normals[start..]).map(one));
+    for (&p, &n) in positions[start..].iter().zip(&normals[start..]) {
+        one(out, more.as_deref_mut(), p, n);
+    }
+    work.off_path = off_path;
     work
 }
 
@@ -110,7 +138,7 @@ fn four(
     n: &[Vec3; 4],
     clip_tests: bool,
     smooth: bool,
-) -> Option<[Vert; 4]> {
+) -> Option<([Vert; 4], [More; 4])> {
     let (px, py, pz) = (lanes(p, 0), lanes(p, 1), lanes(p, 2));
     // `mvp * p.extend(1.0)`: the last column times 1, which is itself.
     let m = &t.mvp;
@@ -146,17 +174,22 @@ fn four(
     let (n0, n1, n2) = (n0.to_array(), n1.to_array(), n2.to_array());
     let (l0, l1, l2) = (l0.to_array(), l1.to_array(), l2.to_array());
     let vert = |i: usize| Vert {
-        world: Vec3::ZERO,
-        normal: Vec3::new(n0[i], n1[i], n2[i]),
         light: Vec3::new(l0[i], l1[i], l2[i]),
         code: 0,
-        xy: [xs[i], ys[i]],
         fixed: fixed[i],
         key: keys[i],
         z: zs[i],
         inv_w: ws[i],
     };
-    Some([vert(0), vert(1), vert(2), vert(3)])
+    let more = |i: usize| More {
+        world: Vec3::ZERO,
+        normal: Vec3::new(n0[i], n1[i], n2[i]),
+        xy: [xs[i], ys[i]],
+    };
+    Some((
+        [vert(0), vert(1), vert(2), vert(3)],
+        [more(0), more(1), more(2), more(3)],
+    ))
 }
 
 /// `transform::direction(k * n)` for four normals in lanes, or `None` when
@@ -237,15 +270,15 @@ mod tests {
     }
 
     /// A vertex's fields as bits, so that equal means the same bits.
-    fn bits(v: &Vert) -> Vec<u64> {
+    fn bits((v, m): (&Vert, &More)) -> Vec<u64> {
         let f = |x: f32| x.to_bits() as u64;
         let mut b = vec![v.code as u64, v.fixed.x.0 as u64, v.fixed.y.0 as u64];
         b.extend(
-            [v.world, v.normal, v.light]
+            [m.world, m.normal, v.light]
                 .iter()
                 .flat_map(|v| v.to_array().map(f)),
         );
-        b.extend([v.xy[0], v.xy[1], v.z, v.inv_w].map(f));
+        b.extend([m.xy[0], m.xy[1], v.z, v.inv_w].map(f));
         b
     }
 
@@ -312,10 +345,15 @@ mod tests {
             with_stage(shading, 80, 24, Vec3::new(10.0, 20.0, 0.0), |stage, t| {
                 for clip_tests in [false, true] {
                     let smooth = shading == Shading::Smooth;
-                    let four = four(stage, t, &p, &n, clip_tests, smooth).expect("the lanes");
+                    let (four, more) =
+                        four(stage, t, &p, &n, clip_tests, smooth).expect("the lanes");
                     for i in 0..4 {
-                        let one = vertex(stage, t, p[i], n[i], clip_tests);
-                        assert_eq!(bits(&four[i]), bits(&one), "vertex {i}");
+                        let (one, one_more) = vertex(stage, t, p[i], n[i], clip_tests);
+                        assert_eq!(
+                            bits((&four[i], &more[i])),
+                            bits((&one, &one_more)),
+                            "vertex {i}"
+                        );
                     }
                 }
             });
@@ -337,16 +375,25 @@ mod tests {
             (cols, rows) in (1u16..300, 1u16..100),
         ) {
             let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices_in.into_iter().unzip();
-            let (mut four, mut one) = (Vec::new(), Vec::new());
+            let (mut four, mut more, mut one) = (Vec::new(), Vec::new(), Vec::new());
             with_stage(shading, cols, rows, turn, |stage, t| {
-                vertices(stage, t, &positions, &normals, clip_tests, &mut four);
+                let vs = (&positions[..], &normals[..]);
+                vertices(stage, t, vs, clip_tests, &mut four, Some(&mut more));
                 one.extend(
                     positions.iter().zip(&normals).map(|(&p, &n)| vertex(stage, t, p, n, clip_tests)),
                 );
+                // Without extras kept, the same vertices.
+                let mut alone = Vec::new();
+                vertices(stage, t, vs, clip_tests, &mut alone, None);
+                assert_eq!(
+                    alone.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>(),
+                    four.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>()
+                );
             });
             prop_assert_eq!(four.len(), one.len());
-            for (i, (a, b)) in four.iter().zip(&one).enumerate() {
-                prop_assert_eq!(bits(a), bits(b), "vertex {}: {:?} {:?}", i, a, b);
+            prop_assert_eq!(more.len(), one.len());
+            for (i, ((a, m), (b, n))) in four.iter().zip(&more).zip(&one).enumerate() {
+                prop_assert_eq!(bits((a, m)), bits((b, n)), "vertex {}: {:?} {:?}", i, a, b);
             }
         }
     }

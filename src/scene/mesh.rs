@@ -43,10 +43,12 @@
 //! and then exactly (see [`Geometry::is_convex`]), from the same corner
 //! lists built again.
 //!
-//! While a frame is drawn the renderer keeps one transformed vertex (72
-//! bytes: clip outcode, screen position exact and snapped, depth, 1/w,
-//! world position, normal and light) per vertex of the mesh being drawn;
-//! the framebuffer holds a colour and a depth per sample (8 bytes).
+//! While a frame is drawn the renderer keeps one transformed vertex per
+//! vertex of the mesh being drawn: 48 bytes (clip outcode, snapped screen
+//! position and its centre key, depth, 1/w, light), and 32 more (world
+//! position, normal, unsnapped screen position) only for a mesh whose
+//! faces may read them (see `Plan::vertex_extras`). The framebuffer holds a
+//! colour and a depth per sample (8 bytes).
 
 use std::sync::{Arc, OnceLock};
 
@@ -193,9 +195,14 @@ impl Geometry {
     /// loaders, which set the normals and then call [`Geometry::analyze`].
     pub fn new_raw(
         name: impl Into<String>,
-        positions: Vec<Vec3>,
-        faces: Vec<[u32; 3]>,
+        mut positions: Vec<Vec3>,
+        mut faces: Vec<[u32; 3]>,
     ) -> Geometry {
+        // A loader's vectors grew by doubling: up to half of each is spare,
+        // given back here (in place, for a block this large) before the
+        // normals add theirs.
+        positions.shrink_to_fit();
+        faces.shrink_to_fit();
         Geometry {
             name: name.into(),
             positions,
@@ -375,6 +382,10 @@ impl Geometry {
         self.normals = normals;
         // One new vertex for each vertex and normal it must also have.
         let mut copies: FxHashMap<(u32, [u32; 3]), u32> = FxHashMap::default();
+        // At most one new vertex a split: room for them at once, not by
+        // doubling.
+        self.positions.reserve_exact(splits.len());
+        self.normals.reserve_exact(splits.len());
         for (face, corner, normal) in splits {
             let v = self.faces[face as usize][corner as usize];
             let key = (v, normal.to_array().map(f32::to_bits));
