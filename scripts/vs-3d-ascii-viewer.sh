@@ -24,8 +24,10 @@ gcc -O2 -o "$peer" "$peer_src"/src/*.c -lm -lncurses
 for n in 1000000 4000000; do
   [ -s "target/load-cost/torus-$n.obj" ] || target/release/examples/torus_obj "$n" > "target/load-cost/torus-$n.obj"
 done
+# The peer starts curses even for one snap: it needs a terminal type.
+export TERM=xterm
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
-peak() { { /usr/bin/time -f '%M' "$@" >/dev/null 2>/dev/null; } 2>&1 | tail -1; }
+peak() { /usr/bin/time -o target/vs-peer/time -f '%M' "$@" >/dev/null 2>&1; cat target/vs-peer/time; }
 mib() { echo "scale=1; $1 / 1024" | bc; }
 printf '| model | triangles | rastty instructions | peer instructions | ratio | rastty peak memory | peer peak memory |\n'
 printf '|---|---:|---:|---:|---:|---:|---:|\n'
@@ -33,7 +35,7 @@ for model in tests/models/linux-mascot-tux.obj tests/models/teapot.obj tests/mod
     target/load-cost/torus-1000000.obj target/load-cost/torus-4000000.obj; do
   tris=$(awk '/^f /{t += NF - 3} END {print t}' "$model")
   ours=("$bin" render "$model" --cols 200 --rows 60 --glyphs ascii --color none)
-  theirs=(env TERM=xterm "$peer" --snap 0 0 -w 200 -h 60 "$model")
+  theirs=("$peer" --snap 0 0 -w 200 -h 60 "$model")
   a=$(count "${ours[@]}")
   b=$(count "${theirs[@]}")
   printf '| %s | %d | %.1fM | %.1fM | %.2f× | %s MiB | %s MiB |\n' "$(basename "$model")" "$tris" \
