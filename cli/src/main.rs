@@ -28,7 +28,27 @@ use rastty::picture::{self, Format, Theme};
 use rastty::scene::{Projection, Scene, View};
 use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, encode};
 
+/// glibc's malloc raises its mmap threshold to the size of each large
+/// block freed (up to 32 MiB): after the loader frees its connectivity
+/// tables, blocks that large come from the heap, and stay resident when
+/// freed. A fixed threshold (its default, 128 KiB) keeps every large block
+/// mapped and given back when freed: the frame's vertex buffers then
+/// reuse memory the loader returned rather than lying beside it (the
+/// peak memory of docs/figures.md's loading rows).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn keep_large_blocks_mapped() {
+    // SAFETY: mallopt only sets a parameter of the allocator; called
+    // first thing in main, before any other thread exists.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024);
+    }
+}
+
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn keep_large_blocks_mapped() {}
+
 fn main() -> ExitCode {
+    keep_large_blocks_mapped();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),

@@ -294,14 +294,15 @@ impl Camera {
         let (kx, ky) = (t * aspect.max(1e-6), t);
         // The outline turned every way about y (as `spin` turns it), 16
         // steps a turn: the framing holds for every frame.
-        let target = self.target;
-        let outline = &fit.points;
-        let swept = || {
-            (0..16).flat_map(move |k| {
-                let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
-                outline.iter().map(move |&p| turn * p - target)
-            })
-        };
+        // Turned once here, and read by every pass below.
+        let mut points = [Vec3::ZERO; 16 * Fit::POINTS];
+        for (k, turned) in points.chunks_exact_mut(Fit::POINTS).enumerate() {
+            let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
+            for (t, &p) in turned.iter_mut().zip(&fit.points) {
+                *t = turn * p - self.target;
+            }
+        }
+        let swept = || points.iter().copied();
         // A point p at distance d projects to x / (d − z), which must stay
         // within kx (and y within ky): d ≥ z + |x| / kx. Seen from above
         // (or below) the projection is lopsided, so the view is also moved
