@@ -2,9 +2,12 @@
 # docs/figures.md, regenerated: every performance figure the documentation
 # quotes, from the repository's measuring scripts, run here and written
 # verbatim with the commit they measured. Needs valgrind and GNU time; takes
-# about ten minutes (the 4M-triangle load under callgrind is most of it).
+# about half an hour (the 4M-triangle loads under callgrind, and building
+# the commit the memory rows are compared with). With PEER set to a
+# checkout of github.com/autopawn/3d-ascii-viewer (and gcc and ncurses'
+# headers) it also measures rastty against it.
 #
-#   scripts/figures.sh            # rewrites docs/figures.md
+#   PEER=/tmp/3d-ascii-viewer scripts/figures.sh    # rewrites docs/figures.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=docs/figures.md
@@ -12,7 +15,8 @@ commit=$(git rev-parse --short HEAD)
 dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (with uncommitted changes)" || true)
 section() { # title, what it shows, script
   printf '\n## %s\n\n%s\n\n```\n$ %s\n' "$1" "$2" "$3"
-  bash "$3"
+  # shellcheck disable=SC2086 # a script and its arguments
+  bash $3
   printf '```\n'
 }
 {
@@ -35,6 +39,10 @@ HEAD
   section "What the planner saves" "Instructions a frame, planned and full pipeline, for the planner's four scenes (docs/planner.md)." scripts/plan-cost.sh
   section "Against euc" "Instructions a frame, rastty against the euc crate, the bunny at 200×120 samples (docs/accuracy.md)." scripts/vs-euc.sh
   section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." scripts/load-cost.sh
+  section "Memory, loading and start-up" "Issue 37's rows, for the commit before it (3544dc4, built beside this one) and this one: peak memory of one frame of Tux and of the 4M-triangle torus; instructions of normals at load (\`Geometry::compute_normals\`, with welding and closedness) a triangle and of OBJ parsing a byte, on the 1M-triangle torus; a steady Tux frame (render only, 200×60 half blocks); whole-process \`render cube\` and teapot; the binary with line tables and stripped." "scripts/memory-and-loading.sh 3544dc4"
+  if [ -n "${PEER:-}" ]; then
+    section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." "scripts/vs-3d-ascii-viewer.sh $PEER"
+  fi
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 echo "wrote $out"

@@ -484,16 +484,19 @@ impl Plan {
     }
 
     /// Whether the vertex stage keeps each vertex's world position, normal
-    /// and unsnapped screen position for the faces of a mesh culled as
+    /// and unsnapped screen position for the faces of mesh `i`, culled as
     /// `cull`: where some face may read them (flat shading, lights that
     /// fall off, a rim, highlights, textures, alpha, maps, the general
-    /// path, the full pipeline, and back faces, which smooth shading
-    /// lights from the other side of their normals). A lit, culled, matte
-    /// mesh on the lean path needs none of them. Memory alone: the frame
-    /// is the same either way (and a mesh with a vertex off the lean path,
-    /// outside a clip plane, keeps them too; see the vertex stage).
-    pub fn vertex_extras(&self, cull: crate::scene::Cull) -> bool {
-        self.full
+    /// path, the full pipeline, back faces, which smooth shading lights
+    /// from the other side of their normals, and a mesh whose vertices are
+    /// tested against the clip planes, whose faces may take the clip
+    /// path). A lit, culled, matte mesh inside the view on the lean path
+    /// needs none of them. Memory alone: the frame is the same either way
+    /// (and a mesh with a vertex that takes the f64 path all the same
+    /// keeps them too; see the vertex stage).
+    pub fn vertex_extras(&self, i: usize, cull: crate::scene::Cull) -> bool {
+        self.clip_tests(i)
+            || self.full
             || self.shading == Shading::Flat
             || self.falloff.run
             || self.rim.run

@@ -106,7 +106,7 @@ impl Renderer {
             let transforms = Transforms::new(vp, turn * mesh.model);
             let start = (painter.verts.len(), painter.more.len());
             let (positions, normals) = super::vertices_of(posed, p, i, mesh);
-            let keep = p.vertex_extras(opts.cull.unwrap_or(mesh.cull));
+            let keep = p.vertex_extras(i, opts.cull.unwrap_or(mesh.cull));
             painter.vertex_stage(
                 stage,
                 &transforms,

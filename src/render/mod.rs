@@ -560,7 +560,7 @@ impl Renderer {
             painter.more.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
             let cull = opts.cull.unwrap_or(mesh.cull);
-            let keep = p.vertex_extras(cull);
+            let keep = p.vertex_extras(i, cull);
             painter.vertex_stage(
                 stage,
                 &transforms,
@@ -606,7 +606,7 @@ impl Renderer {
             // Counted once, in the first pass (as bands, which keep every
             // mesh's vertices, count them).
             let counted = *painter.stats;
-            let keep = p.vertex_extras(cull);
+            let keep = p.vertex_extras(i, cull);
             painter.vertex_stage(
                 stage,
                 &transforms,

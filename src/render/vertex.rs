@@ -169,9 +169,11 @@ pub(super) const BAD_NORMAL: u16 = 1 << 8;
 
 impl Painter<'_> {
     /// Transforms `positions` (with `normals`), appending them to
-    /// `self.verts`, and their extras to `self.more` where `keep` says or
-    /// where a vertex is off the common path (outside a clip plane, or
-    /// taking the f64 path), whose faces take paths that read them.
+    /// `self.verts`, and their extras to `self.more` where `keep` says, or
+    /// where a vertex is off the common path all the same (outside a clip
+    /// plane, or taking the f64 path: its faces take the clip path, which
+    /// reads them); then the stage runs again, keeping them (rare: `keep`
+    /// holds wherever clip tests run).
     pub(super) fn vertex_stage(
         &mut self,
         stage: &Stage<'_>,

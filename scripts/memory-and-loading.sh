@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# What loading, memory and start-up cost, for this checkout and (given a
+# commit) for that commit built beside it, one row each (docs/figures.md):
+#
+#   * peak memory (GNU time's maximum resident set), one frame of Tux and
+#     of a generated torus of 4M triangles (`rastty render --cols 200
+#     --rows 60 --color truecolor`), and per triangle;
+#   * normals at load: callgrind's inclusive count of
+#     `Geometry::compute_normals` (normals, welding, closedness) on the
+#     torus of 1M triangles, per triangle;
+#   * OBJ parsing: the inclusive counts of `obj::Reader::statement` and
+#     `Lines::next_line` on the same file, per byte;
+#   * a steady Tux frame at 200×60 half blocks, render only
+#     (examples/profile_scene, (40 frames − 10) / 30);
+#   * whole-process instructions of `render cube` and of the teapot;
+#   * the release binary's size, and stripped of symbols and line tables.
+#
+#   scripts/memory-and-loading.sh [COMMIT]     (needs valgrind, GNU time)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tux=tests/models/linux-mascot-tux.obj
+m1=target/load-cost/torus-1000000.obj
+m4=target/load-cost/torus-4000000.obj
+cargo build --release -q
+cargo build --release -q --example torus_obj --example profile_scene
+mkdir -p target/load-cost
+for n in 1000000 4000000; do
+  [ -s "target/load-cost/torus-$n.obj" ] || target/release/examples/torus_obj "$n" > "target/load-cost/torus-$n.obj"
+done
+# The binaries of a commit, built in a worktree with a target of its own.
+build() {
+  local rev=$1 dir=target/rev/$1
+  [ -d "$dir" ] || git worktree add -q --detach "$dir" "$rev"
+  CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty-cli >&2
+  CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty --example profile_scene >&2
+  echo target/rev/target/release
+}
+count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
+peak() { /usr/bin/time -o target/load-cost/time -f '%M' "$@" >/dev/null 2>&1; cat target/load-cost/time; }
+# Inclusive instructions of the functions matching $1 in a callgrind run of the rest.
+inclusive() {
+  local pattern=$1; shift
+  valgrind --tool=callgrind --callgrind-out-file=target/load-cost/cg.out "$@" >/dev/null 2>&1
+  callgrind_annotate --inclusive=yes --threshold=100 target/load-cost/cg.out 2>/dev/null |
+    grep -E "$pattern" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
+}
+row() { # label, directory of binaries
+  local bin=$2/rastty frame tris1 bytes1 normals parse lines a b
+  local args=(--cols 200 --rows 60 --color truecolor)
+  tris1=1000000
+  bytes1=$(stat -c %s "$m1")
+  normals=$(inclusive 'Geometry::compute_normals \[' "$bin" render "$m1" "${args[@]}")
+  parse=$(inclusive 'obj::Reader::statement \[' "$bin" render "$m1" "${args[@]}")
+  lines=$(inclusive 'Lines<R>::next_line \[' "$bin" render "$m1" "${args[@]}")
+  a=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 10)
+  b=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 40)
+  frame=$(( (b - a) / 30 ))
+  local tux_kb m4_kb
+  tux_kb=$(peak "$bin" render "$tux" "${args[@]}")
+  m4_kb=$(peak "$bin" render "$m4" "${args[@]}")
+  strip -o target/load-cost/stripped "$bin"
+  printf '| %s | %.1f MiB | %.1f MiB (%d B) | %d | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
+    "$(echo "$tux_kb / 1024" | bc -l)" "$(echo "$m4_kb / 1024" | bc -l)" $(( m4_kb * 1024 / 4000000 )) \
+    $(( normals / tris1 )) "$(echo "($parse + $lines) / $bytes1" | bc -l)" \
+    "$(echo "$frame / 1000000" | bc -l)" \
+    "$(echo "$(count "$bin" render cube) / 1000000" | bc -l)" \
+    "$(echo "$(count "$bin" render tests/models/teapot.obj "${args[@]}") / 1000000" | bc -l)" \
+    "$(echo "$(stat -c %s "$bin") / 1000000" | bc -l)" "$(echo "$(stat -c %s target/load-cost/stripped) / 1000000" | bc -l)"
+}
+printf '| build | peak memory, Tux | peak memory, torus 4M (a triangle) | normals at load, a triangle | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
+printf '|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
+if [ $# -gt 0 ]; then
+  row "$1" "$(build "$1")"
+fi
+row "$(git rev-parse --short HEAD)" target/release
