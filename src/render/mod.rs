@@ -687,6 +687,11 @@ mod tests {
             let frame = r.render(&scene, opts).clone();
             (r.verts.len(), r.more.len(), frame)
         };
+        assert_eq!(
+            (size_of::<Vert>(), size_of::<More>()),
+            (40, 32),
+            "the sizes the docs say"
+        );
         // Lit, culled at the back, matte, inside the view: none.
         let lean = RenderOptions::default();
         let (verts, more, plain) = draw(&lean);

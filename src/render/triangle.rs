@@ -173,7 +173,7 @@ impl Painter<'_> {
                 // Culled or without area: rejected before anything
                 // else, as its set-up would reject it (snapped, so in
                 // range).
-                let t = match SnappedTriangle::in_range(v.map(|v| v.fixed), f.cull) {
+                let t = match SnappedTriangle::in_range(v.map(|v| v.fixed()), f.cull) {
                     Ok(t) => t,
                     Err(r) => {
                         self.stats.raster.count_rejected(r);
@@ -309,7 +309,7 @@ impl Painter<'_> {
                 .plan
                 .full
                 .then(|| self.shade(stage, v, base, !front_facing(v)));
-            let fixed = v.map(|v| v.fixed);
+            let fixed = v.map(|v| v.fixed());
             let xy = v.map(|v| v.xy().map(f64::from));
             let screen = |color| ScreenTriangle {
                 xy,
@@ -379,7 +379,7 @@ impl Painter<'_> {
             uv: uv[i],
             weights: Vec3::AXES[i],
             snapped: (v[i].code == 0).then_some(Snapped {
-                fixed: v[i].fixed,
+                fixed: v[i].fixed(),
                 xy: v[i].xy(),
                 z: v[i].z,
                 inv_w: v[i].inv_w,
@@ -742,7 +742,7 @@ impl Painter<'_> {
 /// Whether the snapped screen triangle is counter-clockwise (the same
 /// signed area every set-up finds).
 fn front_facing(v: [V<'_>; 3]) -> bool {
-    raster::signed_area2(&v.map(|v| v.fixed)) > 0
+    raster::signed_area2(&v.map(|v| v.fixed())) > 0
 }
 
 /// What the specular fill reads of a triangle of a shiny run: its corners'

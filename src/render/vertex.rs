@@ -9,17 +9,17 @@
 //!
 //! **What is kept.** Every face reads a vertex's outcode and snapped
 //! position, and a face that covers a sample its depth, `1/w` and light:
-//! [`Vert`], 48 bytes. World position, normal and unsnapped position
+//! [`Vert`], 40 bytes. World position, normal and unsnapped position
 //! ([`More`], 32 bytes) are read only by flat shading, falling-off lights,
 //! rims, highlights, textures, alpha, maps, the general and clip paths and
 //! back faces; they go to a second buffer only for a mesh the plan says
 //! may need them, or one with a vertex off the common path, so a large
-//! lit, culled, matte model keeps 48 bytes a vertex rather than 80.
+//! lit, culled, matte model keeps 40 bytes a vertex rather than 72.
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 
 use super::{Painter, Stage, vertex_lanes};
-use crate::fixed::FixedPoint;
+use crate::fixed::{Fixed, FixedPoint};
 use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
@@ -53,7 +53,7 @@ impl Transforms {
 /// A vertex after the vertex stage: what every face reads of it (its clip
 /// outcode and, inside every plane, its snapped position and centre key)
 /// and what a face that covers a sample reads (depth, `1/w`, and under
-/// smooth shading the light reaching it). 48 bytes; what only some
+/// smooth shading the light reaching it). 40 bytes; what only some
 /// scenes' faces read is in [`More`], kept only where the plan reads it.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
@@ -63,8 +63,10 @@ pub(super) struct Vert {
     /// every plane with a finite normal (then the fields below are valid).
     pub(super) code: u16,
     /// The screen position snapped, once per vertex rather than once per
-    /// triangle.
-    pub(super) fixed: FixedPoint,
+    /// triangle; kept in `i32` (a snapped coordinate is at most
+    /// `MAX_COORD · 256` = 2^29 in magnitude) and widened where read
+    /// ([`Vert::fixed`]).
+    pub(super) fixed32: [i32; 2],
     /// Where `fixed` lies among sample centres, for the face loop's first
     /// test.
     pub(super) key: CentreKey,
@@ -72,12 +74,29 @@ pub(super) struct Vert {
     pub(super) inv_w: f32,
 }
 
+impl Vert {
+    /// The snapped screen position.
+    #[inline(always)]
+    pub(super) fn fixed(&self) -> FixedPoint {
+        FixedPoint {
+            x: Fixed(i64::from(self.fixed32[0])),
+            y: Fixed(i64::from(self.fixed32[1])),
+        }
+    }
+
+    /// Keeps `f`, a snapped position (in range: see [`Vert::fixed32`]).
+    #[inline(always)]
+    pub(super) fn set_fixed(&mut self, f: FixedPoint) {
+        self.fixed32 = [f.x.0 as i32, f.y.0 as i32];
+    }
+}
+
 /// What some scenes' faces read of a vertex beyond [`Vert`]: world
 /// position, normal and unsnapped screen position (32 bytes). Kept, in a
 /// buffer beside the vertices, for a mesh whose faces may read it
 /// ([`crate::Plan::vertex_extras`], or a vertex off the common path), and
 /// not otherwise: a lit, culled, matte mesh inside the view (the common
-/// large model) keeps 48 bytes a vertex rather than 80.
+/// large model) keeps 40 bytes a vertex rather than 72.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct More {
     /// Position in the turned world, where lights live (flat shading, and
@@ -277,7 +296,10 @@ pub(super) fn vertex(
         more.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
         v.z = clip.z * v.inv_w;
         match FixedPoint::snap(more.xy) {
-            Some(f) => (v.fixed, v.key) = (f, CentreKey::of(f)),
+            Some(f) => {
+                v.set_fixed(f);
+                v.key = CentreKey::of(f);
+            }
             // Cannot happen inside the guard band; if it did, the clip path
             // deals with it.
             None => v.code = F64_PATH,

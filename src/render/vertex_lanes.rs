@@ -176,7 +176,7 @@ fn four(
     let vert = |i: usize| Vert {
         light: Vec3::new(l0[i], l1[i], l2[i]),
         code: 0,
-        fixed: fixed[i],
+        fixed32: [fixed[i].x.0 as i32, fixed[i].y.0 as i32],
         key: keys[i],
         z: zs[i],
         inv_w: ws[i],
@@ -272,7 +272,7 @@ mod tests {
     /// A vertex's fields as bits, so that equal means the same bits.
     fn bits((v, m): (&Vert, &More)) -> Vec<u64> {
         let f = |x: f32| x.to_bits() as u64;
-        let mut b = vec![v.code as u64, v.fixed.x.0 as u64, v.fixed.y.0 as u64];
+        let mut b = vec![v.code as u64, v.fixed().x.0 as u64, v.fixed().y.0 as u64];
         b.extend(
             [m.world, m.normal, v.light]
                 .iter()

@@ -31,8 +31,10 @@
 //! **Connectivity** is found once at load, in linear time and without an
 //! edge table: positions are welded by a compact hash set
 //! ([`PositionSet`]), then the corners around each welded position are
-//! listed by a counting sort (4 bytes a corner, dropped after use). The
-//! normals read the faces around each position from it; **closed** (every
+//! listed by a counting sort (4 bytes a corner, dropped once closedness is
+//! found, before the normals' tables are made; the normals read only the
+//! welded positions, and list again the corners of the few positions with
+//! a crease). **Closed** (every
 //! edge walked once each way) is that each position's corners lead to and
 //! come from the same positions, each once; a closed mesh's Euler
 //! characteristic (V − F/2) says at once whether it has a sphere's
@@ -44,7 +46,7 @@
 //! lists built again.
 //!
 //! While a frame is drawn the renderer keeps one transformed vertex per
-//! vertex of the mesh being drawn: 48 bytes (clip outcode, snapped screen
+//! vertex of the mesh being drawn: 40 bytes (clip outcode, snapped screen
 //! position and its centre key, depth, 1/w, light), and 32 more (world
 //! position, normal, unsnapped screen position) only for a mesh whose
 //! faces may read them (see `Plan::vertex_extras`). The framebuffer holds a
@@ -374,10 +376,13 @@ impl Geometry {
     /// across a crease are split, which appends vertices. Also finds the
     /// facts [`Geometry::analyze`] finds, from the same connectivity.
     pub fn compute_normals(&mut self, crease: f32) {
-        let topo = Topology::new(&self.positions, &self.faces);
-        let (normals, splits) = smooth_normals(&topo, &self.positions, &self.faces, crease);
-        // Splitting vertices moves no position: the facts stand after it.
+        let mut topo = Topology::new(&self.positions, &self.faces);
+        // Splitting vertices moves no position: the facts found now stand
+        // after it. Then the corners lists go before the normals' tables
+        // come.
         self.facts(&topo);
+        topo.forget_corners();
+        let (normals, splits) = smooth_normals(&topo, &self.positions, &self.faces, crease);
         drop(topo);
         self.normals = normals;
         // One new vertex for each vertex and normal it must also have.

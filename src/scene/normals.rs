@@ -194,6 +194,19 @@ impl Topology {
         self.start.len() - 1
     }
 
+    /// How many corners there are around welded position `p` (also once
+    /// the corners are forgotten).
+    pub(super) fn fan(&self, p: usize) -> usize {
+        (self.start[p + 1] - self.start[p]) as usize
+    }
+
+    /// Frees the corners around each position (12 bytes a triangle), once
+    /// what reads them (closedness) is done: the normals need only the
+    /// welded positions and each fan's size.
+    pub(super) fn forget_corners(&mut self) {
+        self.corners = Vec::new();
+    }
+
     /// The corners around welded position `p`.
     pub(super) fn around(&self, p: usize) -> &[u32] {
         &self.corners[self.start[p] as usize..self.start[p + 1] as usize]
@@ -460,25 +473,21 @@ pub(super) fn smooth_normals(
     // the crease, and only the positions it does not prove are tested face
     // by face, with the very test the per-position pass made.
     let mut test = false;
-    let mean: Vec<Vec3> = sums
-        .iter()
-        .zip(&least)
-        .zip(&mut state)
-        .enumerate()
-        .map(|(p, ((sum, &least), state))| {
-            let length = sum.truncate().length();
-            let total = sum.w;
-            if *state == SMOOTH
-                && topo.around(p).len() <= MAX_CREASE_FAN
-                && length <= total - least * (1.0 - cos_half) + 1e-4 * total
-            {
-                *state = TEST;
-                test = true;
-            }
-            direction(sum.truncate())
-        })
-        .collect();
-    drop((sums, least));
+    // The sums become the means, in place (x, y, z; w no longer read).
+    for (p, ((sum, &least), state)) in sums.iter_mut().zip(&least).zip(&mut state).enumerate() {
+        let length = sum.truncate().length();
+        let total = sum.w;
+        if *state == SMOOTH
+            && topo.fan(p) <= MAX_CREASE_FAN
+            && length <= total - least * (1.0 - cos_half) + 1e-4 * total
+        {
+            *state = TEST;
+            test = true;
+        }
+        *sum = direction(sum.truncate()).extend(0.0);
+    }
+    drop(least);
+    let mean = |p: usize| sums[p].truncate();
     if test {
         for f in faces {
             let p = f.map(|v| ids[v as usize] as usize);
@@ -487,15 +496,14 @@ pub(super) fn smooth_normals(
             }
             if let Some((n, ..)) = face_frame_of(corners(f)) {
                 for p in p {
-                    if state[p] == TEST && Vec3::from(n).dot(mean[p]) < cos_half {
+                    if state[p] == TEST && Vec3::from(n).dot(mean(p)) < cos_half {
                         state[p] = CREASED;
                     }
                 }
             }
         }
     }
-    let creased: Vec<bool> = state.iter().map(|&s| s == CREASED).collect();
-    drop(state);
+    let creased = |p: usize| state[p] == CREASED;
     let fix = |n: Vec3| {
         if n == Vec3::ZERO || !n.is_finite() {
             Vec3::Z
@@ -508,16 +516,29 @@ pub(super) fn smooth_normals(
     for f in faces {
         for &v in f {
             let p = ids[v as usize] as usize;
-            if !creased[p] {
-                normals[v as usize] = fix(mean[p]);
+            if !creased(p) {
+                normals[v as usize] = fix(mean(p));
             }
         }
+    }
+    // The corners at creased positions, by position and in order at each
+    // (the order the corners around a position are listed in): the
+    // per-position pass's, without keeping every position's corners.
+    let at = |c: u32| ids[faces[(c / 3) as usize][(c % 3) as usize] as usize];
+    let mut creased_corners: Vec<u32> = Vec::new();
+    if state.contains(&CREASED) {
+        for (c, &v) in faces.iter().flatten().enumerate() {
+            if creased(ids[v as usize] as usize) {
+                creased_corners.push(c as u32);
+            }
+        }
+        creased_corners.sort_by_key(|&c| at(c));
     }
     let mut splits = Vec::new();
     // The faces around one creased position: unit normal and the angle there.
     let mut fan: Vec<(Vec3, f32)> = Vec::new();
-    for p in (0..topo.welded()).filter(|&p| creased[p]) {
-        let around = topo.around(p);
+    for around in creased_corners.chunk_by(|&a, &b| at(a) == at(b)) {
+        let p = at(around[0]) as usize;
         fan.clear();
         fan.extend(around.iter().map(|&c| {
             let f = &faces[(c / 3) as usize];
@@ -527,7 +548,7 @@ pub(super) fn smooth_normals(
         let one_fan = around.len() > MAX_CREASE_FAN;
         for (&c, &(nf, _)) in around.iter().zip(&fan) {
             let n = if one_fan && nf != Vec3::ZERO {
-                mean[p]
+                mean(p)
             } else {
                 direction(
                     fan.iter()
