@@ -30,6 +30,7 @@ done
 # The binaries of a commit, built in a worktree with a target of its own.
 build() {
   local rev=$1 dir=target/rev/$1
+  git worktree prune
   [ -d "$dir" ] || git worktree add -q --detach "$dir" "$rev"
   CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty-cli >&2
   CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty --example profile_scene >&2
