@@ -106,14 +106,8 @@ impl Renderer {
             let transforms = Transforms::new(vp, turn * mesh.model);
             let start = (painter.verts.len(), painter.more.len());
             let (positions, normals) = super::vertices_of(posed, p, i, mesh);
-            let keep = p.vertex_extras(i, opts.cull.unwrap_or(mesh.cull));
-            painter.vertex_stage(
-                stage,
-                &transforms,
-                (positions, normals),
-                p.clip_tests(i),
-                keep,
-            );
+            let cull = opts.cull.unwrap_or(mesh.cull);
+            painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             meshes.push(super::MeshVerts {
                 core: start.0..painter.verts.len(),
                 more: start.1..painter.more.len(),

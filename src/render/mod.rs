@@ -560,14 +560,7 @@ impl Renderer {
             painter.more.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
             let cull = opts.cull.unwrap_or(mesh.cull);
-            let keep = p.vertex_extras(i, cull);
-            painter.vertex_stage(
-                stage,
-                &transforms,
-                (positions, normals),
-                p.clip_tests(i),
-                keep,
-            );
+            painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             times.vertices += lap();
             let faces = Faces {
                 mesh,
@@ -606,14 +599,7 @@ impl Renderer {
             // Counted once, in the first pass (as bands, which keep every
             // mesh's vertices, count them).
             let counted = *painter.stats;
-            let keep = p.vertex_extras(i, cull);
-            painter.vertex_stage(
-                stage,
-                &transforms,
-                (positions, normals),
-                p.clip_tests(i),
-                keep,
-            );
+            painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             *painter.stats = counted;
             let faces = Faces {
                 mesh,

@@ -187,6 +187,26 @@ pub(super) const PLANES: u16 = F64_PATH - 1;
 pub(super) const BAD_NORMAL: u16 = 1 << 8;
 
 impl Painter<'_> {
+    /// [`Painter::vertex_stage`] for mesh `i`, culled as `cull`: tested
+    /// against the clip planes and keeping its extras as the plan says.
+    pub(super) fn mesh_vertices(
+        &mut self,
+        stage: &Stage<'_>,
+        t: &Transforms,
+        vertices: (&[Vec3], &[Vec3]),
+        i: usize,
+        cull: crate::scene::Cull,
+    ) {
+        let p = stage.plan;
+        self.vertex_stage(
+            stage,
+            t,
+            vertices,
+            p.clip_tests(i),
+            p.vertex_extras(i, cull),
+        );
+    }
+
     /// Transforms `positions` (with `normals`), appending them to
     /// `self.verts`, and their extras to `self.more` where `keep` says, or
     /// where a vertex is off the common path all the same (outside a clip
