@@ -405,6 +405,43 @@ mod tests {
     }
 
     #[test]
+    fn a_folded_quad_is_cut_from_its_first_corner_and_a_flat_bowtie_is_not() {
+        // Tux's quad of line 70190, as its file gives it: its halves face
+        // apart by either diagonal, and it is folded by 38°.
+        let tux = [
+            Vec3::new(-0.027591, 0.097889, -0.006308),
+            Vec3::new(-0.027654, 0.097883, -0.006316),
+            Vec3::new(-0.026971, 0.099459, -0.004736),
+            Vec3::new(-0.027139, 0.099196, -0.004921),
+        ];
+        assert_eq!(quad(tux), Some(0));
+        // A flat bowtie, and the same tilted out of the xy plane: flat
+        // still, the even-odd rule's.
+        let flat =
+            [(0.0, 0.0), (2.0, 2.0), (2.0, 0.0), (0.0, 2.0)].map(|(x, y)| Vec3::new(x, y, 0.0));
+        assert_eq!(quad(flat), None);
+        assert_eq!(quad(flat.map(|p| Vec3::new(p.x, p.y, p.x * 0.5))), None);
+        // Lifting one corner by a hair (under 1°) leaves it a bowtie; by a
+        // tenth of its size, a fold.
+        let lift = |h: f32| {
+            let mut q = flat;
+            q[1].z = h;
+            quad(q)
+        };
+        assert_eq!(lift(0.001), None);
+        assert_eq!(lift(0.2), Some(0));
+        // A convex quad and a dart keep their diagonals.
+        let square =
+            [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Vec3::new(x, y, 0.0));
+        assert_eq!(quad(square), Some(0));
+        // A dart is cut through its reflex corner, (1, 1), wherever it is.
+        let dart =
+            [(0.0, 0.0), (4.0, 0.0), (1.0, 1.0), (0.0, 4.0)].map(|(x, y)| Vec3::new(x, y, 0.0));
+        assert_eq!(quad(dart), Some(0));
+        assert_eq!(quad([dart[1], dart[2], dart[3], dart[0]]), Some(1));
+    }
+
+    #[test]
     fn a_bowtie_is_filled_even_odd_inside_its_outline() {
         // Lobes (0,0)-(1,1)-(0,2) and (1,1)-(2,2)-(2,0), area 1 each; the
         // gaps above and below the crossing stay empty.
