@@ -8,8 +8,8 @@
 #   * normals at load: callgrind's inclusive count of
 #     `Geometry::compute_normals` (normals, welding, closedness) on the
 #     torus of 1M triangles, per triangle;
-#   * OBJ parsing: the inclusive counts of `obj::Reader::statement` and
-#     `Lines::next_line` on the same file, per byte;
+#   * OBJ parsing: everything `obj::load` does but `Reader::finish` (which
+#     computes the normals), inclusive counts on the same file, per byte;
 #   * a steady Tux frame at 200×60 half blocks, render only
 #     (examples/profile_scene, (40 frames − 10) / 30);
 #   * whole-process instructions of `render cube` and of the teapot;
@@ -46,13 +46,13 @@ inclusive() {
     grep -E "$pattern" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
 }
 row() { # label, directory of binaries
-  local bin=$2/rastty frame tris1 bytes1 normals parse lines a b
+  local bin=$2/rastty frame tris1 bytes1 normals load finish a b
   local args=(--cols 200 --rows 60 --color truecolor)
   tris1=1000000
   bytes1=$(stat -c %s "$m1")
   normals=$(inclusive 'Geometry::compute_normals \[' "$bin" render "$m1" "${args[@]}")
-  parse=$(inclusive 'obj::Reader::statement \[' "$bin" render "$m1" "${args[@]}")
-  lines=$(inclusive 'Lines<R>::next_line \[' "$bin" render "$m1" "${args[@]}")
+  load=$(inclusive 'scene::obj::load \[' "$bin" render "$m1" "${args[@]}")
+  finish=$(inclusive 'obj::Reader::finish \[' "$bin" render "$m1" "${args[@]}")
   a=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 10)
   b=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 40)
   frame=$(( (b - a) / 30 ))
@@ -62,7 +62,7 @@ row() { # label, directory of binaries
   strip -o target/load-cost/stripped "$bin"
   printf '| %s | %.1f MiB | %.1f MiB (%d B) | %d | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
     "$(echo "$tux_kb / 1024" | bc -l)" "$(echo "$m4_kb / 1024" | bc -l)" $(( m4_kb * 1024 / 4000000 )) \
-    $(( normals / tris1 )) "$(echo "($parse + $lines) / $bytes1" | bc -l)" \
+    $(( normals / tris1 )) "$(echo "($load - $finish) / $bytes1" | bc -l)" \
     "$(echo "$frame / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render cube) / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render tests/models/teapot.obj "${args[@]}") / 1000000" | bc -l)" \

@@ -162,10 +162,13 @@ pub fn human(n: u64) -> String {
 /// UTF-8 byte order mark at the start is skipped. A line is handed out
 /// straight from a 64 KiB buffer (its end found with SIMD `memchr`); the
 /// buffer grows only for a line longer than itself, up to [`MAX_LINE`].
+/// A reader with a faster way to read a line may take it straight from
+/// [`Lines::window`] and say so with [`Lines::skip`].
 pub struct Lines<R> {
     reader: R,
     buf: Vec<u8>,
-    /// The bytes read and not yet handed out: `buf[start..end]`.
+    /// The bytes read and not yet handed out: `buf[start..end]`, followed
+    /// by [`SLACK`] NUL bytes.
     start: usize,
     end: usize,
     /// Where the search for the next line ending resumes.
@@ -179,7 +182,7 @@ impl<R: Read> Lines<R> {
     pub fn new(reader: R) -> Lines<R> {
         Lines {
             reader,
-            buf: vec![0; 64 << 10],
+            buf: vec![0; (64 << 10) + SLACK],
             start: 0,
             end: 0,
             scanned: 0,
@@ -224,33 +227,59 @@ impl<R: Read> Lines<R> {
         Ok(Some((number, line)))
     }
 
+    /// The bytes not yet handed out, then [`SLACK`] NUL bytes: a line
+    /// there that ends in `\n` is whole. Empty of lines until
+    /// [`Lines::next_line`] has read the first.
+    pub fn window(&self) -> &[u8] {
+        &self.buf[self.start..self.end + SLACK]
+    }
+
+    /// Hands out the next `len` bytes of [`Lines::window`], a line and its
+    /// `\n`, as read by the caller.
+    pub fn skip(&mut self, len: usize) {
+        debug_assert!(self.start + len <= self.end && self.buf[self.start + len - 1] == b'\n');
+        self.start += len;
+        self.scanned = self.start;
+        self.number += 1;
+    }
+
     /// Reads more: the unread bytes moved to the front, the buffer doubled
-    /// if they fill it.
+    /// if they fill it, the slack after them cleared.
     fn fill(&mut self) -> std::result::Result<(), String> {
         let unread = self.end - self.start;
         self.buf.copy_within(self.start..self.end, 0);
         self.scanned -= self.start;
         (self.start, self.end) = (0, unread);
-        if unread == self.buf.len() {
+        if unread == self.buf.len() - SLACK {
             if unread > MAX_LINE {
                 return Err(format!(
                     "the line is longer than {}",
                     human(MAX_LINE as u64)
                 ));
             }
-            self.buf.resize(unread * 2, 0);
+            self.buf.resize(unread * 2 + SLACK, 0);
         }
-        loop {
-            match self.reader.read(&mut self.buf[self.end..]) {
-                Ok(0) => self.eof = true,
-                Ok(n) => self.end += n,
+        let room = self.buf.len() - SLACK;
+        let read = loop {
+            match self.reader.read(&mut self.buf[self.end..room]) {
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e.to_string()),
+                read => break read,
             }
-            return Ok(());
+        };
+        match read {
+            Ok(0) => self.eof = true,
+            Ok(n) => self.end += n,
+            Err(e) => return Err(e.to_string()),
         }
+        self.buf[self.end..self.end + SLACK].fill(0);
+        Ok(())
     }
 }
+
+/// The NUL bytes after the unread ones in [`Lines`]' buffer, so that a
+/// reader may look 8 bytes past any byte it has read (a NUL ends every
+/// item).
+pub const SLACK: usize = 16;
 
 /// Whether `b` separates words: every control character and the space
 /// (tabs, a stray carriage return), in one compare.
@@ -326,21 +355,6 @@ impl<'l> Cursor<'l> {
     /// to `fast-float2`, also correctly rounded.
     #[inline]
     pub fn number(&mut self) -> Option<std::result::Result<f32, (&'l [u8], usize)>> {
-        /// Powers of ten exact in f32 (5^10 < 2^24).
-        const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
-        const POW10_INT: [u64; 11] = [
-            1,
-            10,
-            100,
-            1_000,
-            10_000,
-            100_000,
-            1_000_000,
-            10_000_000,
-            100_000_000,
-            1_000_000_000,
-            10_000_000_000,
-        ];
         if !self.more() {
             return None;
         }
@@ -364,8 +378,7 @@ impl<'l> Cursor<'l> {
         }
         if self.ends(i) && whole + decimals > 0 && decimals <= 10 && m < 1 << 24 {
             self.pos = i;
-            let v = m as f32 / POW10[decimals];
-            return Some(Ok(if neg { -v } else { v }));
+            return Some(Ok(exact_decimal(m, decimals, neg)));
         }
         self.slow_number()
     }
@@ -419,6 +432,33 @@ impl<'l> Cursor<'l> {
     }
 }
 
+/// Powers of ten exact in f32 (5^10 < 2^24).
+const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+/// The same powers as integers.
+pub const POW10_INT: [u64; 11] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+    10_000_000_000,
+];
+
+/// The number `±m / 10^decimals`, correctly rounded when `m < 2^24` and
+/// `decimals <= 10` (Clinger's fast path: an exact integer divided by an
+/// exact power of ten, rounded once).
+#[inline]
+pub fn exact_decimal(m: u64, decimals: usize, neg: bool) -> f32 {
+    debug_assert!(m < 1 << 24 && decimals <= 10);
+    let v = m as f32 / POW10[decimals];
+    if neg { -v } else { v }
+}
+
 /// The decimal digits `s` starts with: their value (saturated at
 /// `u64::MAX` past 19 digits) and how many there are. Eight bytes at a time
 /// where eight are there (Lemire's SWAR method: which bytes are digits
@@ -426,7 +466,6 @@ impl<'l> Cursor<'l> {
 /// byte in a line's last few bytes.
 #[inline]
 fn digits(s: &[u8]) -> (u64, usize) {
-    const ZEROS: u64 = 0x3030_3030_3030_3030;
     let Some(chunk) = s.first_chunk::<8>() else {
         let mut value = 0;
         for (k, &b) in s.iter().enumerate() {
@@ -438,24 +477,50 @@ fn digits(s: &[u8]) -> (u64, usize) {
         }
         return (value, s.len());
     };
-    let x = u64::from_le_bytes(*chunk).wrapping_sub(ZEROS);
-    // A byte is not a digit when it was below '0' (its top bit set by the
-    // subtraction) or above '9' (then adding 0x76 sets it). A borrow or
-    // carry from a non-digit only spoils the bytes after it.
-    let not_digit = (x | x.wrapping_add(0x7676_7676_7676_7676)) & 0x8080_8080_8080_8080;
+    match short_digits(*chunk) {
+        Some(value) => value,
+        None => many_digits(s),
+    }
+}
+
+/// The decimal digits `chunk` starts with, their value and how many there
+/// are, when a byte of it is not a digit (`None` when all eight are).
+#[inline]
+pub fn short_digits(chunk: [u8; 8]) -> Option<(u64, usize)> {
+    let (t, not_digit) = digit_bytes(chunk);
     if not_digit == 0 {
-        return many_digits(s);
+        return None;
     }
     let k = (not_digit.trailing_zeros() / 8) as usize;
     if k == 0 {
-        return (0, 0);
+        return Some((0, 0));
     }
+    Some((digits_value(t, k), k))
+}
+
+/// `chunk`'s bytes less `'0'` (a digit's value in each digit's byte), and
+/// the top bit of each byte that is not a digit: exact for every byte up
+/// to the first of `0x80` or more (only such a byte carries into the next),
+/// so for all eight where the text is ASCII.
+#[inline]
+pub fn digit_bytes(chunk: [u8; 8]) -> (u64, u64) {
+    let t = u64::from_le_bytes(chunk) ^ 0x3030_3030_3030_3030;
+    // A byte is not a digit when its top bit is set, or when it is 10 or
+    // more (then adding 0x76 sets it).
+    let not_digit = (t | t.wrapping_add(0x7676_7676_7676_7676)) & 0x8080_8080_8080_8080;
+    (t, not_digit)
+}
+
+/// The value of the first `k` (1 to 8) bytes of `t`, each a digit's value
+/// (Lemire's SWAR: three multiplications).
+#[inline]
+pub fn digits_value(t: u64, k: usize) -> u64 {
+    debug_assert!((1..=8).contains(&k));
     // The k digits, as the low-order end of an 8-digit number.
-    let x = x << (8 * (8 - k));
+    let x = t << (8 * (8 - k));
     let x = (x.wrapping_mul(10) + (x >> 8)) & 0x00ff_00ff_00ff_00ff;
     let x = (x.wrapping_mul(100) + (x >> 16)) & 0x0000_ffff_0000_ffff;
-    let x = (x.wrapping_mul(10000) + (x >> 32)) & 0xffff_ffff;
-    (x, k)
+    (x.wrapping_mul(10000) + (x >> 32)) & 0xffff_ffff
 }
 
 /// [`digits`] for eight or more.

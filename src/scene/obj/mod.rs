@@ -28,6 +28,7 @@
 //! is not an error, but the faces that use it are not drawn, and the loader
 //! says so.
 
+mod fast;
 mod mtl;
 
 use std::path::Path;
@@ -146,40 +147,28 @@ struct Reader<'a> {
 }
 
 fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let mut r = Reader {
-        name,
-        dir,
-        options,
-        pos: Vec::new(),
-        bad_pos: Vec::new(),
-        any_bad: false,
-        colors: Vec::new(),
-        vn: Vec::new(),
-        vt: Vec::new(),
-        attr_of: Vec::new(),
-        extra: Vec::new(),
-        extra_ids: FxHashMap::default(),
-        made: Vec::new(),
-        triangles: Vec::new(),
-        materials: Vec::new(),
-        library: FxHashMap::default(),
-        textures: Vec::new(),
-        texture_ids: FxHashMap::default(),
-        texels_left: options.max_texels,
-        reference_notes: Vec::new(),
-        textured: false,
-        unread_textures: 0,
-        all_normals: true,
-        lines_and_points: 0,
-        dropped_faces: 0,
-        cutter: Triangulator::new(),
-        corners: Vec::new(),
-        ids: Vec::new(),
-        corner_pos: Vec::new(),
-        cut: Vec::new(),
-    };
+    read_with(src, name, dir, options, true)
+}
+
+/// [`read`], with the fast path (`fast.rs`) or without it.
+fn read_with(
+    src: impl std::io::Read,
+    name: &str,
+    dir: &Path,
+    options: &LoadOptions,
+    fast: bool,
+) -> Result<Loaded> {
+    let mut r = Reader::new(name, dir, options);
     let mut lines = Lines::new(src);
     loop {
+        // The first line goes to the general reader (a byte order mark).
+        if fast
+            && lines.number > 0
+            && let Some(len) = r.fast_line(lines.window(), lines.number + 1)
+        {
+            lines.skip(len);
+            continue;
+        }
         let (n, line) = match lines.next_line() {
             Ok(Some(next)) => next,
             Ok(None) => break,
@@ -195,7 +184,42 @@ fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) 
     r.finish(lines.number)
 }
 
-impl Reader<'_> {
+impl<'a> Reader<'a> {
+    fn new(name: &'a str, dir: &'a Path, options: &'a LoadOptions) -> Reader<'a> {
+        Reader {
+            name,
+            dir,
+            options,
+            pos: Vec::new(),
+            bad_pos: Vec::new(),
+            any_bad: false,
+            colors: Vec::new(),
+            vn: Vec::new(),
+            vt: Vec::new(),
+            attr_of: Vec::new(),
+            extra: Vec::new(),
+            extra_ids: FxHashMap::default(),
+            made: Vec::new(),
+            triangles: Vec::new(),
+            materials: Vec::new(),
+            library: FxHashMap::default(),
+            textures: Vec::new(),
+            texture_ids: FxHashMap::default(),
+            texels_left: options.max_texels,
+            reference_notes: Vec::new(),
+            textured: false,
+            unread_textures: 0,
+            all_normals: true,
+            lines_and_points: 0,
+            dropped_faces: 0,
+            cutter: Triangulator::new(),
+            corners: Vec::new(),
+            ids: Vec::new(),
+            corner_pos: Vec::new(),
+            cut: Vec::new(),
+        }
+    }
+
     /// An error at byte `offset` of line `n`'s text `line`.
     fn at_byte(&self, line: &[u8], n: usize, offset: usize, message: impl Into<String>) -> Error {
         self.at(n, file::column(line, offset), message)
@@ -255,23 +279,12 @@ impl Reader<'_> {
                 if self.pos.len() == MAX_VERTICES {
                     return Err(self.at(n, 1, format!("more than {MAX_VERTICES} vertices")));
                 }
-                let p = Vec3::new(v[0], v[1], v[2]);
-                if !p.is_finite() {
-                    self.bad_pos.push(n as u32);
-                    self.any_bad = true;
+                if color.is_some_and(|c| c.iter().any(|x| !x.is_finite())) {
+                    return Err(self.at(n, 1, "a vertex colour is not a finite number"));
                 }
-                if let Some(c) = color {
-                    if c.iter().any(|x| !x.is_finite()) {
-                        return Err(self.at(n, 1, "a vertex colour is not a finite number"));
-                    }
-                    // Vertices before the first coloured one were white.
-                    self.colors.resize(self.pos.len(), Lin::WHITE);
-                    // Vertex colours are sRGB-encoded, as 8-bit ones are.
-                    self.colors.push(ColorSpace::Srgb.decode(c));
-                } else if !self.colors.is_empty() {
-                    self.colors.push(Lin::WHITE);
-                }
-                self.pos.push(p);
+                // Vertex colours are sRGB-encoded, as 8-bit ones are.
+                let color = color.map(|c| ColorSpace::Srgb.decode(c));
+                self.position(Vec3::new(v[0], v[1], v[2]), color, n);
             }
             b"vn" => {
                 let (v, k) = self.numbers::<3>(&mut c, n, "vn")?;
@@ -319,11 +332,27 @@ impl Reader<'_> {
         Ok(())
     }
 
+    /// A `v` of line `n` (checked: below the limit, a finite colour).
+    #[inline]
+    fn position(&mut self, p: Vec3, color: Option<Lin>, n: usize) {
+        if !p.is_finite() {
+            self.bad_pos.push(n as u32);
+            self.any_bad = true;
+        }
+        if let Some(c) = color {
+            // Vertices before the first coloured one were white.
+            self.colors.resize(self.pos.len(), Lin::WHITE);
+            self.colors.push(c);
+        } else if !self.colors.is_empty() {
+            self.colors.push(Lin::WHITE);
+        }
+        self.pos.push(p);
+    }
+
     /// One face: its corners resolved and checked, cut into triangles.
     fn face(&mut self, mut c: Cursor, n: usize) -> Result<()> {
         let line = c.line();
         self.corners.clear();
-        let mut dropped = false;
         let counts = [self.pos.len(), self.vt.len(), self.vn.len()];
         while let Some(corner) = c.corner() {
             let (parts, col) = match corner {
@@ -349,10 +378,6 @@ impl Reader<'_> {
                 idx[k] = resolved as u32;
             }
             let [v, vt, vn] = idx;
-            if self.any_bad {
-                dropped |= !self.pos[v as usize].is_finite()
-                    || (vn != NONE && !self.vn[vn as usize].is_finite());
-            }
             // Texture coordinates matter only where a texture is read.
             let vt = if self.textured { vt } else { NONE };
             self.corners.push([v, vt, vn]);
@@ -367,44 +392,81 @@ impl Reader<'_> {
                 ),
             ));
         }
-        if dropped {
-            self.dropped_faces += 1;
-            return Ok(());
-        }
-        let corners = std::mem::take(&mut self.corners);
-        let mut ids = std::mem::take(&mut self.ids);
-        ids.clear();
-        for &[v, vt, vn] in &corners {
-            self.all_normals &= vn != NONE;
-            ids.push(self.vertex(v, vt, vn));
-        }
-        let quad = match corners[..] {
-            [a, b, c, d] => polygon::quad([a, b, c, d].map(|[v, ..]| self.pos[v as usize])),
-            _ => None,
-        };
-        if corners.len() == 3 {
-            self.triangles.push([ids[0], ids[1], ids[2]]);
-        } else if let Some(d) = quad {
-            let [a, b, c, e] = [d, d + 1, d + 2, (d + 3) % 4].map(|k| ids[k]);
-            self.triangles.push([a, b, c]);
-            self.triangles.push([a, c, e]);
-        } else {
-            self.corner_pos.clear();
-            self.corner_pos
-                .extend(corners.iter().map(|&[v, ..]| self.pos[v as usize]));
-            self.cut.clear();
-            self.cutter.triangulate(&self.corner_pos, &mut self.cut);
-            for tri in std::mem::take(&mut self.cut) {
-                let t = tri.map(|p| match p {
-                    Point::Corner(i) => ids[i as usize],
-                    Point::Between { a, b, t } => self.between(&corners, a as usize, b as usize, t),
-                });
-                self.triangles.push(t);
+        self.add_face();
+        Ok(())
+    }
+
+    /// The face whose corners are in `corners` (resolved, at least 3, `vt`
+    /// kept only where textured): its vertices found or made, cut into
+    /// triangles; not drawn if a corner is not finite.
+    fn add_face(&mut self) {
+        if self.any_bad {
+            let bad = |&[v, _, vn]: &[u32; 3]| {
+                !self.pos[v as usize].is_finite()
+                    || (vn != NONE && !self.vn[vn as usize].is_finite())
+            };
+            if self.corners.iter().any(bad) {
+                self.dropped_faces += 1;
+                return;
             }
+        }
+        // Triangles and quads (nearly every face) on the stack.
+        match self.corners[..] {
+            [a, b, c] => {
+                let t = [a, b, c].map(|[v, vt, vn]| self.corner_vertex(v, vt, vn));
+                self.triangles.push(t);
+                return;
+            }
+            [a, b, c, d] => {
+                let ids = [a, b, c, d].map(|[v, vt, vn]| self.corner_vertex(v, vt, vn));
+                if let Some(d) = polygon::quad([a, b, c, d].map(|[v, ..]| self.pos[v as usize])) {
+                    let [a, b, c, e] = [d, d + 1, d + 2, (d + 3) % 4].map(|k| ids[k]);
+                    self.triangles.extend([[a, b, c], [a, c, e]]);
+                } else {
+                    self.ids.clear();
+                    self.ids.extend(ids);
+                    self.cut_face();
+                }
+                return;
+            }
+            _ => {}
+        }
+        self.ids.clear();
+        for k in 0..self.corners.len() {
+            let [v, vt, vn] = self.corners[k];
+            let id = self.corner_vertex(v, vt, vn);
+            self.ids.push(id);
+        }
+        self.cut_face();
+    }
+
+    /// [`Reader::vertex`] for a face's corner, noting whether it names a
+    /// normal.
+    #[inline]
+    fn corner_vertex(&mut self, v: u32, vt: u32, vn: u32) -> u32 {
+        self.all_normals &= vn != NONE;
+        self.vertex(v, vt, vn)
+    }
+
+    /// The face in `corners`, its vertices in `ids`, cut by the polygon
+    /// triangulator.
+    fn cut_face(&mut self) {
+        let corners = std::mem::take(&mut self.corners);
+        let ids = std::mem::take(&mut self.ids);
+        self.corner_pos.clear();
+        self.corner_pos
+            .extend(corners.iter().map(|&[v, ..]| self.pos[v as usize]));
+        self.cut.clear();
+        self.cutter.triangulate(&self.corner_pos, &mut self.cut);
+        for tri in std::mem::take(&mut self.cut) {
+            let t = tri.map(|p| match p {
+                Point::Corner(i) => ids[i as usize],
+                Point::Between { a, b, t } => self.between(&corners, a as usize, b as usize, t),
+            });
+            self.triangles.push(t);
         }
         self.corners = corners;
         self.ids = ids;
-        Ok(())
     }
 
     /// The error for a face corner that is not `v[/[vt][/vn]]`.
@@ -420,12 +482,26 @@ impl Reader<'_> {
 
     /// The output vertex of a corner: the `v` itself, unless the `v` was
     /// first used with another texture coordinate or normal.
-    #[inline]
+    #[inline(always)]
     fn vertex(&mut self, v: u32, vt: u32, vn: u32) -> u32 {
         if vt == NONE && vn == NONE {
             return v;
         }
         let attr = attrs(vt, vn);
+        match self.attr_of.get_mut(v as usize) {
+            Some(first) if *first == attr => v,
+            Some(first) if *first == UNSET => {
+                *first = attr;
+                v
+            }
+            _ => self.other_vertex(v, attr),
+        }
+    }
+
+    /// [`Reader::vertex`] when the list of first attributes is short or
+    /// the `v` was first used with others.
+    #[inline(never)]
+    fn other_vertex(&mut self, v: u32, attr: u64) -> u32 {
         if self.attr_of.len() <= v as usize {
             self.attr_of.resize(self.pos.len(), UNSET);
         }

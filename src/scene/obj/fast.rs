@@ -1,0 +1,437 @@
+//! The OBJ reader's fast path: the lines that make up nearly all of a
+//! large file (`v x y z`, `vn x y z`, `vt u v [w]`, and `f` with positive
+//! indices in any of the four corner forms), read straight from the line
+//! buffer in one pass, with no line split first and no word split at all.
+//!
+//! It is a shortcut, never a second reading: a line is taken only when it
+//! is exactly what the general reader ([`Reader::statement`]) would read
+//! the same way, and its effect is made by the same code (a `v` through
+//! `Reader::position`, a face through `Reader::add_face`). Whatever else it
+//! meets (a sign `+`, an exponent, eight digits in a row, a comment, a
+//! negative or out-of-range index, a `v` with colours, a line that the
+//! buffer has not yet read to its end) it hands back, untouched, to the
+//! general reader, which also places every error. The property test in
+//! `mod.rs` holds the two readers to the same models and the same errors.
+//!
+//! The bytes after the buffer's unread ones are NUL (`file::SLACK` of
+//! them), and no item takes a NUL, so every 8-byte look ahead stays inside
+//! the window and a line that is cut off is never taken.
+
+use glam::{Vec2, Vec3};
+
+use super::{MAX_VERTICES, NONE, Reader};
+use crate::scene::file::{POW10_INT, digit_bytes, digits_value, exact_decimal, short_digits};
+
+/// A position in the buffer's window.
+struct Scan<'w> {
+    w: &'w [u8],
+    i: usize,
+}
+
+/// Whether `b` separates items on a fast line (a subset of what the
+/// general reader calls blank).
+#[inline]
+fn gap(b: u8) -> bool {
+    b == b' ' || b == b'\t' || b == b'\r'
+}
+
+impl Scan<'_> {
+    /// The byte at the position (NUL past the window).
+    #[inline]
+    fn byte(&self) -> u8 {
+        self.byte_at(self.i)
+    }
+
+    /// The byte at `at` (NUL past the window).
+    #[inline]
+    fn byte_at(&self, at: usize) -> u8 {
+        self.w.get(at).copied().unwrap_or(0)
+    }
+
+    /// The digits at `at`, their value and how many there are (fewer than
+    /// eight; `None` for eight in a row).
+    #[inline]
+    fn digits(&self, at: usize) -> Option<(u64, usize)> {
+        short_digits(*self.w.get(at..)?.first_chunk::<8>()?)
+    }
+
+    /// Past the gaps; `Some(true)` at the line's end (the position then
+    /// after its `\n`), `Some(false)` before another item, `None` if an item
+    /// does not end here.
+    #[inline]
+    fn next(&mut self) -> Option<bool> {
+        let start = self.i;
+        while gap(self.byte()) {
+            self.i += 1;
+        }
+        if self.byte() == b'\n' {
+            self.i += 1;
+            return Some(true);
+        }
+        (self.i > start).then_some(false)
+    }
+
+    /// A decimal `[-]digits[.digits]` that the general reader reads
+    /// exactly (fewer than eight digits on each side, below 2^24 in all).
+    /// One 8-byte look finds the point and the end, and reads a number of
+    /// up to 8 bytes (`-0.008366`, `12.125`, `1500`) with the point
+    /// taken out; a longer one takes a look on each side of the point.
+    #[inline]
+    fn decimal(&mut self) -> Option<f32> {
+        let neg = self.byte() == b'-';
+        self.i += neg as usize;
+        let (t, not_digit) = digit_bytes(*self.w.get(self.i..)?.first_chunk::<8>()?);
+        // Where the first byte that is not a digit is (8: none).
+        let d = (not_digit.trailing_zeros() / 8) as usize;
+        if d < 8 && (t >> (8 * d)) as u8 == b'.' ^ b'0' {
+            // The second (8: none), its byte exact as the point does not carry.
+            let e = ((not_digit & (not_digit - 1)).trailing_zeros() / 8) as usize;
+            if e < 8 || !self.byte_at(self.i + 8).is_ascii_digit() {
+                let (n, decimals) = (e - 1, e - d - 1);
+                if n == 0 {
+                    return None;
+                }
+                // The digits after the point moved down over it.
+                let low = (1u64 << (8 * d)) - 1;
+                let m = digits_value((t & low) | ((t >> 8) & !low), n);
+                self.i += e;
+                return Some(exact_decimal(m, decimals, neg));
+            }
+        } else if (1..8).contains(&d) {
+            self.i += d;
+            return Some(exact_decimal(digits_value(t, d), 0, neg));
+        }
+        self.long_decimal(neg)
+    }
+
+    /// [`Scan::decimal`] for one of more than 8 bytes (after its sign).
+    #[inline(never)]
+    fn long_decimal(&mut self, neg: bool) -> Option<f32> {
+        let (mut m, whole) = self.digits(self.i)?;
+        self.i += whole;
+        let mut decimals = 0;
+        if self.byte() == b'.' {
+            let (f, n) = self.digits(self.i + 1)?;
+            m = m * POW10_INT[n] + f;
+            decimals = n;
+            self.i += 1 + n;
+        }
+        (whole + decimals > 0 && m < 1 << 24).then(|| exact_decimal(m, decimals, neg))
+    }
+
+    /// `N` decimals and the line's end; `K` or more of them may be enough.
+    #[inline]
+    fn decimals<const N: usize>(&mut self, least: usize) -> Option<([f32; N], usize)> {
+        let mut v = [0.0; N];
+        for (k, x) in v.iter_mut().enumerate() {
+            *x = self.decimal()?;
+            if self.next()? {
+                return (k + 1 >= least).then_some((v, k + 1));
+            }
+        }
+        None
+    }
+
+    /// A positive index, resolved from 1 (`count` is how many there are).
+    #[inline]
+    fn index(&mut self, count: usize) -> Option<u32> {
+        let (i, n) = self.digits(self.i)?;
+        self.i += n;
+        (i >= 1 && i <= count as u64).then(|| i as u32 - 1)
+    }
+}
+
+impl Reader<'_> {
+    /// Reads the line at the start of `window` (the line buffer's unread
+    /// bytes and their NUL slack), numbered `n`, if it is a fast line:
+    /// returns its length with its `\n`, or `None` (nothing changed) for
+    /// the general reader to read.
+    #[inline]
+    pub(super) fn fast_line(&mut self, window: &[u8], n: usize) -> Option<usize> {
+        let key = *window.first_chunk::<3>()?;
+        let (skip, kind) = match key {
+            [b'v', b, _] if gap(b) => (1, b'v'),
+            [b'v', b'n', b] if gap(b) => (2, b'n'),
+            [b'v', b't', b] if gap(b) => (2, b't'),
+            [b'f', b, _] if gap(b) => (1, b'f'),
+            _ => return None,
+        };
+        let mut s = Scan { w: window, i: skip };
+        if s.next()? {
+            return None;
+        }
+        match kind {
+            b'v' => {
+                let ([x, y, z], _) = s.decimals::<3>(3)?;
+                if self.pos.len() == MAX_VERTICES {
+                    return None;
+                }
+                self.position(Vec3::new(x, y, z), None, n);
+            }
+            b'n' => {
+                let (v, _) = s.decimals::<3>(3)?;
+                self.vn.push(Vec3::from(v));
+            }
+            b't' => {
+                let ([u, v, _], _) = s.decimals::<3>(2)?;
+                if self.vt.len() == MAX_VERTICES {
+                    return None;
+                }
+                self.vt.push(Vec2::new(u, 1.0 - v));
+            }
+            _ => {
+                self.fast_corners(&mut s)?;
+                self.add_face();
+            }
+        }
+        Some(s.i)
+    }
+
+    /// A face's corners into `corners`, to the line's end, if every one is
+    /// `v`, `v/vt`, `v//vn` or `v/vt/vn` with positive indices in range,
+    /// and there are at least 3.
+    #[inline]
+    fn fast_corners(&mut self, s: &mut Scan) -> Option<()> {
+        let counts = [self.pos.len(), self.vt.len(), self.vn.len()];
+        self.corners.clear();
+        loop {
+            let v = s.index(counts[0])?;
+            let (mut vt, mut vn) = (NONE, NONE);
+            if s.byte() == b'/' {
+                s.i += 1;
+                if s.byte() != b'/' {
+                    vt = s.index(counts[1])?;
+                }
+                if s.byte() == b'/' {
+                    s.i += 1;
+                    vn = s.index(counts[2])?;
+                }
+            }
+            // Texture coordinates matter only where a texture is read.
+            let vt = if self.textured { vt } else { NONE };
+            self.corners.push([v, vt, vn]);
+            if s.next()? {
+                break;
+            }
+        }
+        (self.corners.len() >= 3).then_some(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Read;
+    use std::path::Path;
+
+    use proptest::prelude::*;
+
+    use super::super::{LoadOptions, Reader, read_with};
+    use crate::scene::file::Cursor;
+
+    /// A reader that hands out `step` bytes at a time, so that lines are
+    /// cut at every place by the line buffer's ends.
+    struct Trickle<'a>(&'a [u8], usize);
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let n = self.0.len().min(self.1).min(buf.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    /// The model or the error, as text (`{:?}` writes every float so that
+    /// it reads back to the same bits), read with or without the fast path.
+    fn read(src: &[u8], step: usize, fast: bool) -> String {
+        let options = LoadOptions::default();
+        match read_with(Trickle(src, step), "t.obj", Path::new("."), &options, fast) {
+            Ok(loaded) => format!("{loaded:?}"),
+            Err(e) => format!("error: {e}"),
+        }
+    }
+
+    /// How many lines of `src` the fast path takes.
+    fn fast_lines(src: &[u8]) -> usize {
+        let options = LoadOptions::default();
+        let mut r = Reader::new("t.obj", Path::new("."), &options);
+        for line in ["v 0 0 0", "v 1 0 0", "v 0 1 0", "vt 0 0", "vn 0 0 1"] {
+            r.statement(Cursor::new(line.as_bytes()), 1).unwrap();
+        }
+        let mut n = 0;
+        for line in src.split_inclusive(|&b| b == b'\n') {
+            let mut window = line.to_vec();
+            window.extend([0; crate::scene::file::SLACK]);
+            n += r.fast_line(&window, 2).is_some() as usize;
+        }
+        n
+    }
+
+    /// `usual` mostly, sometimes `odd`, and (in a noisy model) seldom `bad`.
+    fn mix<T: std::fmt::Debug + 'static>(
+        noisy: bool,
+        usual: BoxedStrategy<T>,
+        odd: BoxedStrategy<T>,
+        bad: BoxedStrategy<T>,
+    ) -> BoxedStrategy<T> {
+        if noisy {
+            prop_oneof![40 => usual, 8 => odd, 1 => bad].boxed()
+        } else {
+            prop_oneof![5 => usual, 1 => odd].boxed()
+        }
+    }
+
+    fn strings(s: &[&'static str]) -> BoxedStrategy<String> {
+        prop::sample::select(s.to_vec())
+            .prop_map(String::from)
+            .boxed()
+    }
+
+    /// A number in the shapes files use (short decimals, long ones,
+    /// integers, odd but valid forms), or one the reader refuses.
+    fn number(noisy: bool) -> BoxedStrategy<String> {
+        let short =
+            (-3000i32..3000, 0usize..7).prop_map(|(m, k)| format!("{:.*}", k, m as f64 / 997.0));
+        let long = (-99_999_999i64..99_999_999, 0usize..12)
+            .prop_map(|(m, k)| format!("{:.*}", k, m as f64 / 1e5));
+        let odd = strings(&[
+            "1e3",
+            "+1.5",
+            ".5",
+            "-.25",
+            "5.",
+            "-0",
+            "-0.0",
+            "00000000001",
+            "12345678",
+            "16777216",
+            "16777217",
+            "1.6777217",
+            "9999999.9",
+            "0.00000001",
+            "1234567.",
+            "inf",
+        ]);
+        let usual = prop_oneof![3 => short, 1 => long].boxed();
+        mix(
+            noisy,
+            usual,
+            odd,
+            strings(&["-", ".", "1.2.3", "0x1", "1-2"]),
+        )
+    }
+
+    /// A face corner in one of the four forms, or odd forms, or one out
+    /// of range.
+    fn corner(noisy: bool) -> BoxedStrategy<String> {
+        let index = mix(
+            noisy,
+            (1i32..13).boxed(),
+            (-4i32..0).boxed(),
+            prop_oneof![Just(0), Just(13)].boxed(),
+        );
+        let form = mix(noisy, (0u8..4).boxed(), (4u8..6).boxed(), Just(6).boxed());
+        (index.clone(), index.clone(), index, form)
+            .prop_map(|(v, t, n, form)| match form {
+                0 => format!("{v}"),
+                1 => format!("{v}/{t}"),
+                2 => format!("{v}//{n}"),
+                3 => format!("{v}/{t}/{n}"),
+                4 => format!("{v}/{t}/"),
+                5 => format!("{v}//"),
+                _ => format!("/{t}"),
+            })
+            .boxed()
+    }
+
+    /// A line: `v`, `vn`, `vt` and `f` in their usual and unusual shapes,
+    /// gaps and endings of every kind, and other statements.
+    fn line(noisy: bool) -> BoxedStrategy<String> {
+        let gap = mix(
+            noisy,
+            strings(&[" "]),
+            strings(&["\t", "  ", " \r", "\x0b"]),
+            strings(&[""]),
+        );
+        let end = mix(
+            noisy,
+            strings(&["\n"]),
+            strings(&[" \n", "\r\n", " # c\n", "\t\n"]),
+            strings(&["\n\n"]),
+        );
+        let items =
+            move |key: &'static str, items: BoxedStrategy<String>, n: BoxedStrategy<usize>| {
+                let (gap, end) = (gap.clone(), end.clone());
+                n.prop_flat_map(move |n| {
+                    (
+                        prop::collection::vec((gap.clone(), items.clone()), n),
+                        end.clone(),
+                    )
+                })
+                .prop_map(move |(items, end)| {
+                    let body: String = items.into_iter().map(|(g, x)| format!("{g}{x}")).collect();
+                    format!("{key}{body}{end}")
+                })
+                .boxed()
+            };
+        let count = |usual: usize, odd: &[usize], bad: &[usize]| {
+            let pick = |n: &[usize]| prop::sample::select(n.to_vec()).boxed();
+            mix(noisy, Just(usual).boxed(), pick(odd), pick(bad))
+        };
+        prop_oneof![
+            6 => items("v", number(noisy), count(3, &[4, 6, 7], &[2, 5, 8])),
+            2 => items("vn", number(noisy), count(3, &[3], &[2, 4])),
+            2 => items("vt", number(noisy), count(2, &[1, 3], &[0, 4])),
+            6 => items("f", corner(noisy), count(3, &[4, 4, 4, 5, 8], &[1, 2])),
+            1 => strings(&["\n", "# x\n", "o a b\n", "usemtl m\n", "l 1 2\n", "vx 1 2 3\n", "\u{feff}v 1 2 3\n"]),
+        ]
+        .boxed()
+    }
+
+    /// A model of enough vertices, normals and texture coordinates for most
+    /// corners, then random lines (free of errors in half the models), and
+    /// how many bytes the reader gets at a time.
+    fn model() -> impl Strategy<Value = (String, usize)> {
+        any::<bool>()
+            .prop_flat_map(|noisy| {
+                (
+                    prop::collection::vec(line(noisy), 1..40),
+                    prop_oneof![1usize..80, Just(1 << 20)],
+                )
+            })
+            .prop_map(|(lines, step)| {
+                let mut text = String::new();
+                for k in 0..12 {
+                    text += &format!("v {k}.5 {} -{k}.25\nvn 0 0 1\nvt 0.{k} 0.5\n", k * k);
+                }
+                text += &lines.concat();
+                (text, step)
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(600))]
+        /// Whatever the lines and wherever the buffer cuts them, the fast
+        /// path reads the same model, or the same error, as the general
+        /// reader alone.
+        #[test]
+        fn the_fast_path_reads_what_the_general_reader_reads((text, step) in model()) {
+            let src = text.as_bytes();
+            let a = read(src, step, true);
+            prop_assert_eq!(a, read(src, step, false));
+        }
+    }
+
+    #[test]
+    fn the_fast_path_takes_the_common_lines_and_leaves_the_rest() {
+        let taken = b"v 1.349972 0.004398 -0.000000\nv -12.5 7 0.125\nvn 0.6265 -0.7116 0.3180\n\
+            vt 0.742686 0.551393\nvt 0.5 0.5 0\nf 1 2 3\nf 1/1 2/1 3/1\nf 1//1 2//1 3//1 \r\n\
+            f 1/1/1 2/1/1 3/1/1 1/1/1\nf\t1  2\t3\nv 1234567.8 -0.0000001 1.\n";
+        assert_eq!(fast_lines(taken), 11);
+        let left =
+            b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
+            v 1 2\nvn 1 2\nvt 1\nf -1 2 3\nf 1 2\nf 1 2 9\nf 1/ 2 3\nf 1/1/ 2 3\nf 0 1 2\nf 1//2 2//1 3//1\nf 1/2 2/1 3/1\n\
+            vx 1 2 3\n v 1 2 3\nv 1 2 3";
+        assert_eq!(fast_lines(left), 0);
+    }
+}
