@@ -30,20 +30,21 @@
 //!
 //! **Connectivity** is found once at load, in linear time and without an
 //! edge table: positions are welded by a compact hash set
-//! ([`PositionSet`]), then the corners around each welded position are
-//! listed by a counting sort (4 bytes a corner, dropped once closedness is
-//! found, before the normals' tables are made; the normals read only the
-//! welded positions, and list again the corners of the few positions with
-//! a crease). **Closed** (every
-//! edge walked once each way) is that each position's corners lead to and
-//! come from the same positions, each once; a closed mesh's Euler
-//! characteristic (V − F/2) says at once whether it has a sphere's
-//! topology. A model that is not closed shows its inside through the gaps,
-//! so it is drawn from both sides by default. **Convex** is decided only
-//! when the planner asks (a scene of one closed mesh of a sphere's
-//! topology, culled at the back, where it would let the depth test go),
-//! and then exactly (see [`Geometry::is_convex`]), from the same corner
-//! lists built again.
+//! ([`PositionSet`]), then around each welded position the positions its
+//! corners' edges lead to are listed by a counting sort (4 bytes a corner,
+//! dropped once closedness is found, before the normals' tables are made;
+//! the normals read only the welded positions, and list again the corners
+//! of the few positions with a crease). **Closed** (every edge walked once
+//! each way) is that no position leads to itself or twice to one position,
+//! and that each edge up (to a higher position) has its way back: the
+//! lists sorted in place, each edge up looked for in its end's list. A
+//! closed mesh's Euler characteristic (V − F/2) says at once whether it
+//! has a sphere's topology. A model that is not closed shows its inside
+//! through the gaps, so it is drawn from both sides by default. **Convex**
+//! is decided only when the planner asks (a scene of one closed mesh of a
+//! sphere's topology, culled at the back, where it would let the depth test
+//! go), and then exactly (see [`Geometry::is_convex`]), from the corners
+//! around each position, listed the same way.
 //!
 //! While a frame is drawn the renderer keeps one transformed vertex per
 //! vertex of the mesh being drawn: 40 bytes (clip outcode, snapped screen
@@ -228,12 +229,12 @@ impl Geometry {
     /// Recomputes the bounds and closedness (and forgets convexity); call
     /// it after changing the positions or faces.
     pub fn analyze(&mut self) {
-        let topo = Topology::new(&self.positions, &self.faces);
-        self.facts(&topo);
+        let mut topo = Topology::new(&self.positions, &self.faces, Listing::Next);
+        self.facts(&mut topo);
     }
 
     /// Sets the facts the planner reads from the mesh's connectivity.
-    fn facts(&mut self, topo: &Topology) {
+    fn facts(&mut self, topo: &mut Topology) {
         self.bounds = bounds(&self.positions);
         self.closed = self.bounds.is_some() && topo.closed(&self.faces);
         self.sphere_like = self.closed && topo.sphere_like(&self.faces);
@@ -376,11 +377,11 @@ impl Geometry {
     /// across a crease are split, which appends vertices. Also finds the
     /// facts [`Geometry::analyze`] finds, from the same connectivity.
     pub fn compute_normals(&mut self, crease: f32) {
-        let mut topo = Topology::new(&self.positions, &self.faces);
+        let mut topo = Topology::new(&self.positions, &self.faces, Listing::Next);
         // Splitting vertices moves no position: the facts found now stand
         // after it. Then the corners lists go before the normals' tables
         // come.
-        self.facts(&topo);
+        self.facts(&mut topo);
         topo.forget_corners();
         let (normals, splits) = smooth_normals(&topo, &self.positions, &self.faces, crease);
         drop(topo);
@@ -854,9 +855,48 @@ mod tests {
         let mut open = faces.clone();
         open.pop();
         assert!(!Geometry::new("open", positions.clone(), open).closed);
-        let mut flipped = faces;
+        let mut flipped = faces.clone();
         flipped[3].swap(1, 2);
-        assert!(!Geometry::new("flipped", positions, flipped).closed);
+        assert!(!Geometry::new("flipped", positions.clone(), flipped).closed);
+        // A face at an apex twice, once each way: every edge still has a
+        // reverse, but two faces walk one edge the same way.
+        let mut doubled = faces;
+        doubled.extend([[0, n, 1], [1, n, 0]]);
+        assert!(!Geometry::new("doubled", positions, doubled).closed);
+    }
+
+    #[test]
+    fn closedness_refuses_an_edge_walked_twice_the_same_way() {
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        let tetra = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        assert!(Geometry::new("tetra", p.clone(), tetra.clone()).closed);
+        let mut doubled = tetra.clone();
+        doubled.extend([[0, 1, 3], [0, 3, 1]]);
+        assert!(!Geometry::new("doubled", p.clone(), doubled).closed);
+        // A face with a corner twice: an edge from a position to itself.
+        let mut pinched = tetra;
+        pinched.extend([[0, 0, 1], [1, 0, 0]]);
+        assert!(!Geometry::new("pinched", p, pinched).closed);
+        // The same where every position of the doubled faces has more
+        // faces around it than are sorted on the stack: the apexes of three
+        // closed pyramids of 17 sides, and a triangle between them, both
+        // sides, twice.
+        let mut p = vec![Vec3::ZERO, Vec3::X * 9.0, Vec3::Y * 9.0];
+        let mut faces = Vec::new();
+        for apex in 0..3u32 {
+            let base = p.len() as u32;
+            p.push(p[apex as usize] + Vec3::Z);
+            for i in 0..17u32 {
+                let a = i as f32 * 0.3;
+                p.push(p[apex as usize] + Vec3::new(a.cos(), a.sin(), 1.0));
+                let (r, s) = (base + 1 + i, base + 1 + (i + 1) % 17);
+                faces.extend([[apex, r, s], [base, s, r]]);
+            }
+        }
+        faces.extend([[0, 1, 2], [0, 2, 1]]);
+        assert!(Geometry::new("fans", p.clone(), faces.clone()).closed);
+        faces.extend([[0, 1, 2], [0, 2, 1]]);
+        assert!(!Geometry::new("fans doubled", p, faces).closed);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Connectivity and normals at load: positions welded by a compact hash
-//! set ([`PositionSet`]), the corners around each welded position listed by
-//! a counting sort, and from them whether the mesh is closed and (when the
-//! planner asks) whether it is convex; the angle-weighted normals with the
+//! set ([`PositionSet`]), around each welded position the positions its
+//! edges lead to (for whether the mesh is closed) or its corners (for
+//! whether it is convex, when the planner asks) listed by a counting sort;
+//! the angle-weighted normals with the
 //! crease rule. The layout and the reasons are in `mesh.rs`.
 //!
 //! **Normals** are summed in passes over the faces in order, each face's
@@ -145,24 +146,36 @@ pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
 }
 
 /// The connectivity of a mesh, built once in linear time and dropped after
-/// use: which welded position each vertex is at, and the corners around
-/// each welded position. Closedness, convexity and normals all read it, so
-/// no edge table is ever hashed: an edge's other side is found among the
-/// few corners around its end.
+/// use: which welded position each vertex is at, and around each welded
+/// position either its corners (for convexity, which walks across edges)
+/// or the welded position each of its corners' edges leads to (for
+/// closedness, which needs nothing else). No edge table is ever hashed: an
+/// edge's other side is found among the few entries around its end.
 pub(super) struct Topology {
     /// The welded position of each vertex.
     pub(super) ids: Vec<u32>,
-    /// The corners around welded position `p` are
-    /// `corners[start[p]..start[p + 1]]`, each as `face * 3 + k`.
+    /// The entries around welded position `p` are
+    /// `list[start[p]..start[p + 1]]`.
     start: Vec<u32>,
-    corners: Vec<u32>,
+    list: Vec<u32>,
+    listing: Listing,
+}
+
+/// What [`Topology`] lists around each welded position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Listing {
+    /// Each corner there, as `face * 3 + k`.
+    Corners,
+    /// For each corner there, the welded position at the next corner of
+    /// its face: where its outgoing edge leads.
+    Next,
 }
 
 impl Topology {
     /// At most this many faces: corners are numbered in a u32.
     const MAX_FACES: usize = (u32::MAX / 3) as usize;
 
-    pub(super) fn new(positions: &[Vec3], faces: &[[u32; 3]]) -> Topology {
+    pub(super) fn new(positions: &[Vec3], faces: &[[u32; 3]], listing: Listing) -> Topology {
         assert!(faces.len() <= Self::MAX_FACES, "too many faces");
         let (ids, welded) = weld(positions);
         // Counting sort of the corners by welded position.
@@ -173,11 +186,17 @@ impl Topology {
         for p in 0..welded {
             start[p + 1] += start[p];
         }
-        let mut corners = vec![0u32; faces.len() * 3];
-        for (c, &i) in faces.iter().flatten().enumerate() {
-            let slot = &mut start[ids[i as usize] as usize];
-            corners[*slot as usize] = c as u32;
-            *slot += 1;
+        let mut list = vec![0u32; faces.len() * 3];
+        for (f, face) in faces.iter().enumerate() {
+            let w = face.map(|i| ids[i as usize]);
+            for k in 0..3 {
+                let slot = &mut start[w[k] as usize];
+                list[*slot as usize] = match listing {
+                    Listing::Corners => (f * 3 + k) as u32,
+                    Listing::Next => w[if k == 2 { 0 } else { k + 1 }],
+                };
+                *slot += 1;
+            }
         }
         // Each slot now holds its successor's start: shift back.
         start.rotate_right(1);
@@ -185,7 +204,8 @@ impl Topology {
         Topology {
             ids,
             start,
-            corners,
+            list,
+            listing,
         }
     }
 
@@ -195,21 +215,28 @@ impl Topology {
     }
 
     /// How many corners there are around welded position `p` (also once
-    /// the corners are forgotten).
+    /// the lists are forgotten).
     pub(super) fn fan(&self, p: usize) -> usize {
         (self.start[p + 1] - self.start[p]) as usize
     }
 
-    /// Frees the corners around each position (12 bytes a triangle), once
+    /// Frees the lists around each position (12 bytes a triangle), once
     /// what reads them (closedness) is done: the normals need only the
     /// welded positions and each fan's size.
     pub(super) fn forget_corners(&mut self) {
-        self.corners = Vec::new();
+        self.list = Vec::new();
     }
 
-    /// The corners around welded position `p`.
+    /// The range of `list` around welded position `p`.
+    fn range(&self, p: usize) -> std::ops::Range<usize> {
+        self.start[p] as usize..self.start[p + 1] as usize
+    }
+
+    /// The corners around welded position `p` (of a [`Listing::Corners`]
+    /// topology).
     pub(super) fn around(&self, p: usize) -> &[u32] {
-        &self.corners[self.start[p] as usize..self.start[p + 1] as usize]
+        debug_assert_eq!(self.listing, Listing::Corners);
+        &self.list[self.range(p)]
     }
 
     /// The welded position at corner `c` (`face * 3 + k`).
@@ -218,64 +245,67 @@ impl Topology {
     }
 
     /// Whether every edge is walked exactly once in each direction (closed
-    /// and consistently wound): at every position, the positions its
-    /// corners lead to and come from are the same set, without repeats.
-    /// A fan of up to 16 corners (every position of most meshes) is
-    /// sorted on the stack by insertion, which for six or so corners is a
-    /// dozen steps; larger fans are sorted in a reused vector.
-    pub(super) fn closed(&self, faces: &[[u32; 3]]) -> bool {
+    /// and consistently wound), from a [`Listing::Next`] topology, whose
+    /// lists it sorts in place: no position leads to itself or twice to
+    /// the same position, and each position one leads to leads back. (Then
+    /// the edges form a set that is its own reverse, which is what the
+    /// words say.) Only edges to a higher position need looking up the
+    /// other way (see the code). A list of up to 16 (every position of most meshes) is
+    /// sorted by insertion, a dozen steps for six or so; a position that
+    /// leads back is found by a scan of a short list, a binary search of a
+    /// long one.
+    pub(super) fn closed(&mut self, faces: &[[u32; 3]]) -> bool {
         const SMALL: usize = 16;
+        assert_eq!(self.listing, Listing::Next);
         if faces.is_empty() {
             return false;
         }
-        let (mut big_out, mut big_into) = (Vec::new(), Vec::new());
-        (0..self.welded()).all(|p| {
-            let around = self.around(p);
+        for p in 0..self.welded() {
+            let range = self.range(p);
+            let next = &mut self.list[range];
             let p = p as u32;
-            let ends = |c: u32| {
-                let f = &faces[(c / 3) as usize];
-                let k = (c % 3) as usize;
-                let next = if k == 2 { 0 } else { k + 1 };
-                let prev = if k == 0 { 2 } else { k - 1 };
-                (self.ids[f[next] as usize], self.ids[f[prev] as usize])
-            };
-            let n = around.len();
-            if n <= SMALL {
-                let (mut out, mut into) = ([0u32; SMALL], [0u32; SMALL]);
-                for (i, &c) in around.iter().enumerate() {
-                    let (o, f) = ends(c);
-                    insert(&mut out, i, o);
-                    insert(&mut into, i, f);
-                }
-                let (out, into) = (&out[..n], &into[..n]);
+            let ok = if next.len() <= SMALL {
+                // Sorted as it is checked: a repeat lands just after its twin.
                 let mut ok = true;
-                for i in 0..n {
-                    ok &= out[i] == into[i] && out[i] != p && (i == 0 || out[i - 1] != out[i]);
+                for i in 0..next.len() {
+                    let x = next[i];
+                    let at = insert(next, i, x);
+                    ok &= x != p && (at == 0 || next[at - 1] != x);
                 }
                 ok
             } else {
-                big_out.clear();
-                big_into.clear();
-                for &c in around {
-                    let (o, i) = ends(c);
-                    big_out.push(o);
-                    big_into.push(i);
-                }
-                big_out.sort_unstable();
-                big_into.sort_unstable();
-                big_out == big_into
-                    && big_out.windows(2).all(|w| w[0] != w[1])
-                    && !big_out.contains(&p)
+                next.sort_unstable();
+                next.windows(2).all(|w| w[0] != w[1]) && next.binary_search(&p).is_err()
+            };
+            if !ok {
+                return false;
             }
+        }
+        // Only edges up (to a higher position) are looked for the other way.
+        // Each corner is an edge out of its position and one into it, so
+        // at every position as many edges leave as arrive, and so do the
+        // edges without their reverse: if there are any, they go round in
+        // cycles, and a cycle goes up somewhere.
+        (0..self.welded()).all(|p| {
+            let p = p as u32;
+            self.list[self.range(p as usize)]
+                .iter()
+                .filter(|&&q| q > p)
+                .all(|&q| {
+                    let back = &self.list[self.range(q as usize)];
+                    if back.len() <= SMALL {
+                        back.contains(&p)
+                    } else {
+                        back.binary_search(&p).is_ok()
+                    }
+                })
         })
     }
 
     /// For a closed mesh: whether its surface is one piece with a sphere's
     /// topology, V − E + F = 2, where E = 3F/2 (every edge has two sides).
     pub(super) fn sphere_like(&self, faces: &[[u32; 3]]) -> bool {
-        let used = (0..self.welded())
-            .filter(|&p| !self.around(p).is_empty())
-            .count() as i64;
+        let used = (0..self.welded()).filter(|&p| self.fan(p) > 0).count() as i64;
         used * 2 - faces.len() as i64 == 4
     }
 
@@ -292,21 +322,23 @@ impl Topology {
     }
 }
 
-/// Puts `x` into `sorted[..len]` in order (one step of an insertion sort).
+/// Puts `x` into `sorted[..len]` in order (one step of an insertion sort),
+/// and says where.
 #[inline]
-fn insert(sorted: &mut [u32], len: usize, x: u32) {
+fn insert(sorted: &mut [u32], len: usize, x: u32) -> usize {
     let mut i = len;
     while i > 0 && sorted[i - 1] > x {
         sorted[i] = sorted[i - 1];
         i -= 1;
     }
     sorted[i] = x;
+    i
 }
 
 /// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
 /// with a sphere's topology.
 pub(super) fn convex(g: &Geometry) -> bool {
-    let topo = Topology::new(&g.positions, &g.faces);
+    let topo = Topology::new(&g.positions, &g.faces, Listing::Corners);
     let point = |c: u32| {
         let p = g.positions[g.faces[(c / 3) as usize][(c % 3) as usize] as usize];
         robust::Coord3D {
