@@ -45,50 +45,43 @@ impl Fit {
 
     /// The outline of `points` (at least one).
     pub fn of(points: &[Vec3]) -> Fit {
-        // Along each axis, unnormalised (only the order matters), padded
-        // to 16 lanes so that the comparisons below go four at a time.
-        let along = |p: Vec3| -> [f32; 16] {
+        use glam::Vec4;
+        // Along each axis, unnormalised (only the order matters), in four
+        // groups of four lanes (the last three lanes padding), so that the
+        // comparisons go four at a time.
+        let along = |p: Vec3| -> [Vec4; 4] {
             [
-                p.x,
-                p.y,
-                p.z,
-                p.x + p.y,
-                p.x - p.y,
-                p.x + p.z,
-                p.x - p.z,
-                p.y + p.z,
-                p.y - p.z,
-                p.x + p.y + p.z,
-                p.x + p.y - p.z,
-                p.x - p.y + p.z,
-                -p.x + p.y + p.z,
-                0.0,
-                0.0,
-                0.0,
+                Vec4::new(p.x, p.y, p.z, p.x + p.y),
+                Vec4::new(p.x - p.y, p.x + p.z, p.x - p.z, p.y + p.z),
+                Vec4::new(p.y - p.z, p.x + p.y + p.z, p.x + p.y - p.z, p.x - p.y + p.z),
+                Vec4::new(-p.x + p.y + p.z, 0.0, 0.0, 0.0),
             ]
         };
-        let (mut lo, mut hi) = ([f32::INFINITY; 16], [f32::NEG_INFINITY; 16]);
-        let (mut lo_at, mut hi_at) = ([0u32; 16], [0u32; 16]);
+        let (mut lo, mut hi) = ([Vec4::INFINITY; 4], [Vec4::NEG_INFINITY; 4]);
+        // Where each extreme is: the point's index, its bits kept in an
+        // f32 lane (a select moves bits, it does no arithmetic).
+        let (mut lo_at, mut hi_at) = ([Vec4::ZERO; 4], [Vec4::ZERO; 4]);
         for (i, &p) in points.iter().enumerate() {
             if !p.is_finite() {
                 continue;
             }
-            let s = along(p);
-            for k in 0..16 {
-                let (below, above) = (s[k] < lo[k], s[k] > hi[k]);
-                lo[k] = if below { s[k] } else { lo[k] };
-                lo_at[k] = if below { i as u32 } else { lo_at[k] };
-                hi[k] = if above { s[k] } else { hi[k] };
-                hi_at[k] = if above { i as u32 } else { hi_at[k] };
+            let at = Vec4::splat(f32::from_bits(i as u32));
+            for (k, s) in along(p).into_iter().enumerate() {
+                let (below, above) = (s.cmplt(lo[k]), s.cmpgt(hi[k]));
+                lo[k] = Vec4::select(below, s, lo[k]);
+                lo_at[k] = Vec4::select(below, at, lo_at[k]);
+                hi[k] = Vec4::select(above, s, hi[k]);
+                hi_at[k] = Vec4::select(above, at, hi_at[k]);
             }
         }
+        let index = |lanes: &[Vec4; 4], axis: usize| lanes[axis / 4][axis % 4].to_bits();
         let at = |i: u32| points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
         Fit {
             points: std::array::from_fn(|i| {
                 if i < 13 {
-                    at(lo_at[i])
+                    at(index(&lo_at, i))
                 } else {
-                    at(hi_at[i - 13])
+                    at(index(&hi_at, i - 13))
                 }
             }),
         }
@@ -455,6 +448,58 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// The outline keeps, on each of the 13 axes, the first point of
+        /// least and of greatest extent, as one axis and one point at a
+        /// time finds them; points that are not finite are passed over.
+        #[test]
+        fn the_outline_is_the_first_extreme_point_on_each_axis(
+            raw in proptest::collection::vec((0u8..6, -3i8..4, -3i8..4, -3i8..4), 1..60),
+        ) {
+            let points: Vec<Vec3> = raw
+                .iter()
+                .map(|&(kind, x, y, z)| match kind {
+                    0 => Vec3::new(f32::NAN, y as f32, z as f32),
+                    1 => Vec3::new(x as f32 * 1e38, y as f32 * 1e38, z as f32),
+                    _ => Vec3::new(x as f32, y as f32, z as f32) * 0.5,
+                })
+                .collect();
+            let axes: [fn(Vec3) -> f32; 13] = [
+                |p| p.x,
+                |p| p.y,
+                |p| p.z,
+                |p| p.x + p.y,
+                |p| p.x - p.y,
+                |p| p.x + p.z,
+                |p| p.x - p.z,
+                |p| p.y + p.z,
+                |p| p.y - p.z,
+                |p| p.x + p.y + p.z,
+                |p| p.x + p.y - p.z,
+                |p| p.x - p.y + p.z,
+                |p| -p.x + p.y + p.z,
+            ];
+            let first = |axis: fn(Vec3) -> f32, better: fn(f32, f32) -> bool| {
+                let finite = points.iter().copied().filter(|p| p.is_finite());
+                finite.fold(None, |best: Option<Vec3>, p| match best {
+                    Some(b) if !better(axis(p), axis(b)) => Some(b),
+                    _ => Some(p),
+                })
+                .unwrap_or(points[0])
+            };
+            let want: Vec<Vec3> = axes
+                .iter()
+                .map(|&a| first(a, |s, t| s < t))
+                .chain(axes.iter().map(|&a| first(a, |s, t| s > t)))
+                .collect();
+            let got = Fit::of(&points).points;
+            proptest::prop_assert_eq!(
+                got.iter().map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>(),
+                want.iter().map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>()
+            );
+        }
+    }
 
     #[test]
     fn a_drag_turns_by_the_view_heights_it_crosses() {

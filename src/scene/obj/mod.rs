@@ -2,10 +2,13 @@
 //! of the MTL files it names.
 //!
 //! Read in one pass over the bytes, a line at a time through a buffer
-//! (never the whole file in memory); each line is scanned once by a
-//! `Cursor`, which reads short decimals eight digits
-//! at a time and converts them exactly (others go to `fast-float2`), and
-//! every error names the file, line and column of what is wrong. rastty's
+//! (never the whole file in memory). The lines that make up nearly all of
+//! a large file (`v`, `vn`, `vt`, and `f` with positive indices) are read
+//! by a fast path (`fast.rs`) straight from the buffer; every other line,
+//! and any line the fast path is unsure of, is scanned once by a `Cursor`,
+//! which reads short decimals eight digits at a time and converts them
+//! exactly (others go to `fast-float2`), and every error names the file,
+//! line and column of what is wrong. rastty's
 //! own parser rather than `tobj`, which reports no positions and, measured
 //! on Tux with callgrind, took about three times the instructions (the
 //! current load's cost is in docs/figures.md, "Loading").
