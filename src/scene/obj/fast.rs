@@ -10,8 +10,8 @@
 //! meets (a sign `+`, an exponent, eight digits in a row, a comment, a
 //! negative or out-of-range index, a `v` with colours, a line that the
 //! buffer has not yet read to its end) it hands back, untouched, to the
-//! general reader, which also places every error. The property test in
-//! `mod.rs` holds the two readers to the same models and the same errors.
+//! general reader, which also places every error. The property test below
+//! holds the two readers to the same models and the same errors.
 //!
 //! The bytes after the buffer's unread ones are NUL (`file::SLACK` of
 //! them), and no item takes a NUL, so every 8-byte look ahead stays inside
@@ -119,7 +119,8 @@ impl Scan<'_> {
         (whole + decimals > 0 && m < 1 << 24).then(|| exact_decimal(m, decimals, neg))
     }
 
-    /// `N` decimals and the line's end; `K` or more of them may be enough.
+    /// Up to `N` decimals and the line's end, if there are at least `least`;
+    /// the numbers and how many.
     #[inline]
     fn decimals<const N: usize>(&mut self, least: usize) -> Option<([f32; N], usize)> {
         let mut v = [0.0; N];
