@@ -287,8 +287,8 @@ impl Sink<'_> {
 /// unit normals and positions in the turned world (in the set-up's vertex
 /// order), the run's reflectance and roughness, the lights and the eye.
 pub(crate) struct Shine<'a> {
-    normal: [Vec3; 3],
-    world: [Vec3; 3],
+    normal: [Vec3A; 3],
+    world: [Vec3A; 3],
     /// Reflectance at normal incidence, `None` for a matte run (the full
     /// pipeline sends every run here: a matte one adds nothing).
     f0: Option<Vec3A>,
@@ -298,7 +298,7 @@ pub(crate) struct Shine<'a> {
     /// The eye as `(e, k, d)`, towards it from `p` being `e − k·p + d`:
     /// `(eye, 1, 0)` for a point, `(0, 0, direction)` for a direction; no
     /// branch per sample.
-    eye: (Vec3, f32, Vec3),
+    eye: (Vec3A, f32, Vec3A),
     /// [`crate::Highlights::Vertex`]: the highlight found at each corner,
     /// interpolated.
     corners: Option<[Vec3A; 3]>,
@@ -326,27 +326,26 @@ impl Eye {
 }
 
 impl<'a> Shine<'a> {
-    /// `order` is the set-up's vertex order; `normal` and `world` in the
-    /// caller's; `finish` is the run's `(f0, α²)`.
+    /// `normal` and `world` in the set-up's vertex order; `finish` is the
+    /// run's `(f0, α²)`.
     /// `per_vertex`: found at the corners and interpolated
     /// ([`crate::Highlights::Vertex`]).
     #[inline(always)]
     pub(crate) fn new(
-        order: [usize; 3],
         (normal, world): ([Vec3; 3], [Vec3; 3]),
         finish: Option<(Vec3A, f32)>,
         (lights, eye): (&'a Lights, Eye),
         per_vertex: bool,
     ) -> Shine<'a> {
         let mut s = Shine {
-            normal: order.map(|i| normal[i]),
-            world: order.map(|i| world[i]),
+            normal: normal.map(Vec3A::from),
+            world: world.map(Vec3A::from),
             f0: finish.map(|f| f.0),
             a2: finish.map_or(1.0, |f| f.1),
             lights,
             eye: match eye {
-                Eye::At(e) => (e, 1.0, Vec3::ZERO),
-                Eye::Towards(d) => (Vec3::ZERO, 0.0, d),
+                Eye::At(e) => (Vec3A::from(e), 1.0, Vec3A::ZERO),
+                Eye::Towards(d) => (Vec3A::ZERO, 0.0, Vec3A::from(d)),
             },
             corners: None,
         };
@@ -373,7 +372,7 @@ impl<'a> Shine<'a> {
 
     /// The specular light at a point `p` of normal `n` (any length).
     #[inline(always)]
-    fn light(&self, n: Vec3, p: Vec3, f0: Vec3A) -> Vec3A {
+    fn light(&self, n: Vec3A, p: Vec3A, f0: Vec3A) -> Vec3A {
         let (e, k, d) = self.eye;
         let v = (e - p * k + d).normalize_or_zero();
         let mut n = n.normalize_or_zero();

@@ -98,17 +98,25 @@ impl Lights {
     /// window and the cone's).
     #[inline(always)]
     fn incident(&self, i: usize, p: Vec3) -> (Vec3, f32) {
+        let (t, share) = self.incident_a(i, Vec3A::from(p));
+        (Vec3::from(t), share)
+    }
+
+    /// [`Lights::incident`] in SIMD lanes (the same operations per
+    /// coordinate, so the same bits).
+    #[inline(always)]
+    fn incident_a(&self, i: usize, p: Vec3A) -> (Vec3A, f32) {
         match self.reach[i] {
-            Reach::Far => (self.towards[i], 1.0),
+            Reach::Far => (Vec3A::from(self.towards[i]), 1.0),
             Reach::Near {
                 position,
                 inv_range4,
                 cone,
             } => {
-                let d = position - p;
+                let d = Vec3A::from(position) - p;
                 let d2 = d.length_squared();
                 if d2.is_nan() || d2 <= 0.0 {
-                    return (Vec3::ZERO, 0.0);
+                    return (Vec3A::ZERO, 0.0);
                 }
                 let t = d / d2.sqrt();
                 let mut share = 1.0 / d2;
@@ -118,7 +126,7 @@ impl Lights {
                 if let Some((scale, offset)) = cone {
                     // The cosine between the spot's axis (where its light
                     // travels, −towards) and the way to `p` (−t).
-                    let cd = self.towards[i].dot(t);
+                    let cd = Vec3A::from(self.towards[i]).dot(t);
                     let s = (cd * scale + offset).clamp(0.0, 1.0);
                     share *= s * s;
                 }
@@ -206,21 +214,21 @@ impl Lights {
     /// the fourth; `p` where the surface is (for point and spot lights).
     /// Zero where the eye or a light is behind the surface.
     #[inline(always)]
-    pub(crate) fn specular_a(&self, n: Vec3, v: Vec3, p: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
+    pub(crate) fn specular_a(&self, n: Vec3A, v: Vec3A, p: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
         // Two copies of one loop: directional lights alone skip the
         // positional match per light (their share of 1 folds away).
         if self.positional {
             self.specular_near(n, v, p, f0, a2)
         } else {
-            self.specular_from(n, v, f0, a2, |i| (self.towards[i], 1.0))
+            self.specular_from(n, v, f0, a2, |i| (Vec3A::from(self.towards[i]), 1.0))
         }
     }
 
     /// [`Lights::specular_a`] with point or spot lights, out of line: the
     /// fill that inlines the directional loop stays as short as it was.
     #[inline(never)]
-    fn specular_near(&self, n: Vec3, v: Vec3, p: Vec3, f0: Vec3A, a2: f32) -> Vec3A {
-        self.specular_from(n, v, f0, a2, |i| self.incident(i, p))
+    fn specular_near(&self, n: Vec3A, v: Vec3A, p: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
+        self.specular_from(n, v, f0, a2, |i| self.incident_a(i, p))
     }
 
     /// [`Lights::specular_a`] with `incident` giving each light's unit
@@ -228,11 +236,11 @@ impl Lights {
     #[inline(always)]
     fn specular_from(
         &self,
-        n: Vec3,
-        v: Vec3,
+        n: Vec3A,
+        v: Vec3A,
         f0: Vec3A,
         a2: f32,
-        incident: impl Fn(usize) -> (Vec3, f32),
+        incident: impl Fn(usize) -> (Vec3A, f32),
     ) -> Vec3A {
         let nv = n.dot(v);
         let mut sum = Vec3A::ZERO;

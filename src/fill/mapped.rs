@@ -171,7 +171,7 @@ impl Mapped<'_> {
             let dielectric = Vec3A::from(k.reflectance);
             let f0 = dielectric + (albedo / 65535.0 - dielectric) * metallic;
             let a = roughness * roughness;
-            lit += lights.specular_a(n, v, p, f0, a * a) * 65535.0;
+            lit += lights.specular_a(n.into(), v.into(), p.into(), f0, a * a) * 65535.0;
         }
         if self.rim {
             lit += lights.rim_a(n);

@@ -148,10 +148,10 @@ impl Painter<'_> {
                 done
             }
             _ => {
-                let shine = t.shine.map(|corners| {
+                let o = setup.order();
+                let shine = t.shine.map(|(normal, world)| {
                     Shine::new(
-                        setup.order(),
-                        corners,
+                        (o.map(|i| normal[i]), o.map(|i| world[i])),
                         self.surface.shine,
                         (&stage.lights, stage.eye),
                         stage.highlights == Highlights::Vertex,

@@ -188,14 +188,14 @@ impl Painter<'_> {
                     let v = verts.of(*face);
                     // A shining run's normals and positions, found only
                     // for a triangle that covers a sample.
-                    let shine = || {
+                    let shine = |order: [usize; 3]| {
                         let model = Model {
                             positions: f.positions,
-                            face: *face,
+                            face: order.map(|k| face[k]),
                             mvp: &f.transforms.mvp64,
                             world: &f.transforms.model,
                         };
-                        corners(SHINY, stage, v, &model)
+                        corners(SHINY, stage, order.map(|k| v[k]), &model)
                     };
                     self.inside_triangle(stage, v, (base, shine), &t);
                 }
@@ -481,7 +481,7 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         v: [V<'_>; 3],
-        (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn() -> Shining),
+        (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn([usize; 3]) -> Shining),
         t: &SnappedTriangle,
     ) {
         let (grid, band) = (self.fb.grid(), self.fb.band());
@@ -501,7 +501,7 @@ impl Painter<'_> {
         &mut self,
         stage: &Stage<'_>,
         v: [V<'_>; 3],
-        (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn() -> Shining),
+        (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn([usize; 3]) -> Shining),
         s: &C,
     ) {
         if !s.covers_any() {
@@ -517,7 +517,7 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&color);
-        match shine() {
+        match shine(s.order()) {
             Some(corners) => self.fill_shiny(s, &a, flat, (None, corners), stage),
             None => self.fill_colour(s, &a, flat, stage),
         }
@@ -665,7 +665,8 @@ impl Painter<'_> {
             self.fill_special(setup, t, &a, flat, stage, texture);
             return;
         }
-        if let Some(corners) = t.shine {
+        if let Some((normal, world)) = t.shine {
+            let corners = (o.map(|i| normal[i]), o.map(|i| world[i]));
             let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
             let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
             self.fill_shiny(setup, &a, flat, (tex, corners), stage);
@@ -709,7 +710,6 @@ impl Painter<'_> {
         stage: &Stage,
     ) {
         let shine = Shine::new(
-            setup.order(),
             corners,
             self.surface.shine,
             (&stage.lights, stage.eye),
