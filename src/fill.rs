@@ -24,7 +24,9 @@
 //! A per-sample term is a fill of its own, chosen by the plan: the
 //! specular fill ([`Sink::shiny`]) interpolates a shining triangle's
 //! normal and position with the same weights as its colour and adds the
-//! highlight found there ([`Shine`]); a matte run sent through it (the full
+//! highlight found there ([`Shine`]), all in `Vec3A` lanes (the same
+//! operations per coordinate as `Vec3`, so the same bits, in fewer
+//! instructions); a matte run sent through it (the full
 //! pipeline sends every run) adds nothing, so it writes what the other
 //! fills write, to the bit. A material that is not opaque takes a fill of
 //! its own ([`Sink::see_through`]): a mask's coverage decided per sample
