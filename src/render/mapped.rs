@@ -10,7 +10,7 @@
 
 use glam::{Vec3, Vec3A, Vec4};
 
-use super::triangle::{Corners, Faces, Model, Tex};
+use super::triangle::{Corners, Faces, Model, Tex, in_order};
 use super::vertex::Verts;
 use super::{Painter, Stage};
 use crate::fill::{self, AlphaFill, Attributes, Mapped, MappedCorners, ScreenTriangle, Shine};
@@ -148,10 +148,9 @@ impl Painter<'_> {
                 done
             }
             _ => {
-                let o = setup.order();
-                let shine = t.shine.map(|(normal, world)| {
+                let shine = t.shine.map(|corners| {
                     Shine::new(
-                        (o.map(|i| normal[i]), o.map(|i| world[i])),
+                        in_order(setup.order(), corners),
                         self.surface.shine,
                         (&stage.lights, stage.eye),
                         stage.highlights == Highlights::Vertex,

@@ -665,8 +665,8 @@ impl Painter<'_> {
             self.fill_special(setup, t, &a, flat, stage, texture);
             return;
         }
-        if let Some((normal, world)) = t.shine {
-            let corners = (o.map(|i| normal[i]), o.map(|i| world[i]));
+        if let Some(corners) = t.shine {
+            let corners = in_order(o, corners);
             let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
             let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
             self.fill_shiny(setup, &a, flat, (tex, corners), stage);
@@ -761,6 +761,12 @@ pub(super) fn corners(shiny: bool, stage: &Stage<'_>, v: [V<'_>; 3], model: &Mod
         _ => [transform::face_normal(world[0], world[1], world[2]); 3],
     };
     Some((normal, world))
+}
+
+/// A triangle's corners in the set-up's vertex `order`.
+#[inline(always)]
+pub(super) fn in_order(order: [usize; 3], (normal, world): Corners) -> Corners {
+    (order.map(|i| normal[i]), order.map(|i| world[i]))
 }
 
 /// The light on a flat face of normal `n` at its centre, from lights
