@@ -16,7 +16,7 @@
 //! on a face of no area) take the per-position pass. What it costs is in
 //! docs/figures.md ("Loading").
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A};
 
 use super::mesh::*;
 
@@ -474,9 +474,14 @@ pub(super) fn smooth_normals(
     let cos_half = (crease / 2.0).to_radians().cos();
     let ids = &topo.ids;
     let corners = |f: &[u32; 3]| f.map(|v| positions[v as usize]);
-    // Per position: the weighted normals' sum (x, y, z) and the weights'
-    // (w), and the least weight.
-    let mut sums = vec![Vec4::ZERO; topo.welded()];
+    // The normals, one per vertex, are first each position's sum of
+    // weighted face normals, then its mean (position `p` at index `p`,
+    // which no vertex before it needs: ids are numbered in order of first
+    // appearance, so `ids[v] <= v`), then, in place, each vertex's: no
+    // buffer of sums beside them (at load, this is where memory peaks).
+    let mut normals = vec![Vec3::ZERO; positions.len()];
+    // Per position: the weights' sum, and the least weight.
+    let mut total = vec![0.0f32; topo.welded()];
     let mut least = vec![f32::INFINITY; topo.welded()];
     // Per position: proven one smooth fan, to be tested, or creased.
     const SMOOTH: u8 = 0;
@@ -488,7 +493,8 @@ pub(super) fn smooth_normals(
         match face_weights_of(corners(f)) {
             Some((n, w)) => {
                 for k in 0..3 {
-                    sums[p[k]] += (n * w[k]).extend(w[k]);
+                    normals[p[k]] += Vec3::from(n * w[k]);
+                    total[p[k]] += w[k];
                     least[p[k]] = least[p[k]].min(w[k]);
                 }
             }
@@ -505,10 +511,15 @@ pub(super) fn smooth_normals(
     // the crease, and only the positions it does not prove are tested face
     // by face, with the very test the per-position pass made.
     let mut test = false;
-    // The sums become the means, in place (x, y, z; w no longer read).
-    for (p, ((sum, &least), state)) in sums.iter_mut().zip(&least).zip(&mut state).enumerate() {
-        let length = sum.truncate().length();
-        let total = sum.w;
+    // The sums become the means, in place.
+    for (p, (((sum, &total), &least), state)) in normals
+        .iter_mut()
+        .zip(&total)
+        .zip(&least)
+        .zip(&mut state)
+        .enumerate()
+    {
+        let length = sum.length();
         if *state == SMOOTH
             && topo.fan(p) <= MAX_CREASE_FAN
             && length <= total - least * (1.0 - cos_half) + 1e-4 * total
@@ -516,10 +527,9 @@ pub(super) fn smooth_normals(
             *state = TEST;
             test = true;
         }
-        *sum = direction(sum.truncate()).extend(0.0);
+        *sum = direction(*sum);
     }
-    drop(least);
-    let mean = |p: usize| sums[p].truncate();
+    drop((total, least));
     if test {
         for f in faces {
             let p = f.map(|v| ids[v as usize] as usize);
@@ -528,7 +538,7 @@ pub(super) fn smooth_normals(
             }
             if let Some((n, ..)) = face_frame_of(corners(f)) {
                 for p in p {
-                    if state[p] == TEST && Vec3::from(n).dot(mean(p)) < cos_half {
+                    if state[p] == TEST && Vec3::from(n).dot(normals[p]) < cos_half {
                         state[p] = CREASED;
                     }
                 }
@@ -543,16 +553,34 @@ pub(super) fn smooth_normals(
             n
         }
     };
-    // Not yet set: NaN.
-    let mut normals = vec![Vec3::NAN; positions.len()];
-    for f in faces {
-        for &v in f {
-            let p = ids[v as usize] as usize;
-            if !creased(p) {
-                normals[v as usize] = fix(mean(p));
-            }
-        }
+    // The means the per-position pass reads (of creased positions with
+    // too many faces to test), kept before the means give way to the
+    // vertices' normals: few or none.
+    let mut big: Vec<(u32, Vec3)> = (0..topo.welded())
+        .filter(|&p| creased(p) && topo.fan(p) > MAX_CREASE_FAN)
+        .map(|p| (p as u32, normals[p]))
+        .collect();
+    big.shrink_to_fit();
+    let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
+    // Which vertices a face uses: the others are +z.
+    let mut used = vec![0u64; positions.len().div_ceil(64)];
+    for &v in faces.iter().flatten() {
+        used[v as usize / 64] |= 1 << (v % 64);
     }
+    // Each vertex's normal, from the last down (see above: vertex `v`
+    // reads position `ids[v] <= v`, not yet overwritten). Not yet set (a
+    // creased position's): NaN.
+    for v in (0..positions.len()).rev() {
+        let p = ids[v] as usize;
+        normals[v] = if used[v / 64] >> (v % 64) & 1 == 0 {
+            Vec3::Z
+        } else if creased(p) {
+            Vec3::NAN
+        } else {
+            fix(normals[p])
+        };
+    }
+    drop(used);
     // The corners at creased positions, by position and in order at each
     // (the order the corners around a position are listed in): the
     // per-position pass's, without keeping every position's corners.
