@@ -91,10 +91,16 @@ pub(super) fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool 
 /// the point, plus one if the point is on it: three vertices whose keys
 /// on an axis are equal and even lie strictly between two neighbouring
 /// centres there, so their box holds no centre (nor does it once clamped to
-/// a grid or a band). Computed once per vertex by the vertex stage, four
-/// at a time in integer lanes ([`CentreKey::of4`]).
+/// a grid or a band). Each axis in 16 bits (the vertex stage's vertices
+/// are 16 bytes), clamped to `i16`'s range for a point more than 16,383
+/// samples from the origin (in the guard band): the largest key, 32,767,
+/// is odd, so it never tells a box empty, and the least, −32,768, is
+/// kept only by points left of (below) the grid, so three of them do hold
+/// no centre of it. Computed once per
+/// vertex by the vertex stage, four at a time in integer lanes
+/// ([`CentreKey::of4`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct CentreKey(u64);
+pub(crate) struct CentreKey(u32);
 
 impl CentreKey {
     /// The key of a snapped point.
@@ -103,9 +109,10 @@ impl CentreKey {
         let axis = |v: i64| {
             let d = v - ONE / 2;
             // An arithmetic shift is a division rounding down.
-            ((d >> FRAC_BITS) * 2 + (d & (ONE - 1) == 0) as i64) as u32
+            let k = (d >> FRAC_BITS) * 2 + (d & (ONE - 1) == 0) as i64;
+            k.clamp(i16::MIN.into(), i16::MAX.into()) as u16 as u32
         };
-        CentreKey((axis(p.x.0) as u64) << 32 | axis(p.y.0) as u64)
+        CentreKey(axis(p.x.0) << 16 | axis(p.y.0))
     }
 
     /// The keys of four snapped points, computed in integer lanes: the
@@ -120,7 +127,12 @@ impl CentreKey {
             ((d >> FRAC_BITS) << 1) - on
         };
         let (x, y) = (axis(p.x).to_array(), axis(p.y).to_array());
-        std::array::from_fn(|i| CentreKey((x[i] as u32 as u64) << 32 | y[i] as u32 as u64))
+        // SSE2's saturating pack: the clamp of [`CentreKey::of`].
+        let k = wide::i16x8::from_i32x8_saturate(wide::i32x8::new([
+            x[0], x[1], x[2], x[3], y[0], y[1], y[2], y[3],
+        ]))
+        .to_array();
+        std::array::from_fn(|i| CentreKey((k[i] as u16 as u32) << 16 | k[i + 4] as u16 as u32))
     }
 
     /// Whether the keys of a triangle's vertices show that its bounding box
@@ -130,8 +142,8 @@ impl CentreKey {
         let [a, b, c] = k.map(|k| k.0);
         // Zero in an axis's half exactly when the three are equal there and
         // even.
-        let m = (a ^ b) | (a ^ c) | (a & (1 << 32 | 1));
-        m >> 32 == 0 || m as u32 == 0
+        let m = (a ^ b) | (a ^ c) | (a & 0x0001_0001);
+        m >> 16 == 0 || m & 0xffff == 0
     }
 }
 

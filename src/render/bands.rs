@@ -140,12 +140,14 @@ impl Renderer {
                 more: &mut band.more,
                 acc: &mut band.acc,
             };
-            let of = |m: &super::MeshVerts| Verts {
-                core: &verts[m.core.clone()],
-                more: &more[m.more.clone()],
+            let of = |i: usize| {
+                let m = &meshes[i];
+                let (positions, normals) = super::vertices_of(posed, p, i, &scene.meshes[i]);
+                let kept = (&verts[m.core.clone()], &more[m.more.clone()]);
+                Verts::new(kept, (positions, normals), &m.transforms, stage)
             };
             for (i, mesh) in scene.meshes.iter().enumerate() {
-                let (m, transforms) = (&meshes[i], &meshes[i].transforms);
+                let transforms = &meshes[i].transforms;
                 let faces = Faces {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
@@ -153,7 +155,7 @@ impl Renderer {
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
                 if p.faces.run {
-                    painter.faces(stage, &faces, of(m), super::Pass::Opaque);
+                    painter.faces(stage, &faces, of(i), super::Pass::Opaque);
                 }
                 if p.edges.run {
                     painter.edges(stage, mesh, faces.positions, transforms, opts.wire);
@@ -162,14 +164,14 @@ impl Renderer {
             painter.loose(scene, opts, stage, vp, turn);
             for &i in blended.iter().filter(|_| p.faces.run) {
                 let mesh = &scene.meshes[i];
-                let (m, transforms) = (&meshes[i], &meshes[i].transforms);
+                let transforms = &meshes[i].transforms;
                 let faces = Faces {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                painter.faces(stage, &faces, of(m), super::Pass::Blend);
+                painter.faces(stage, &faces, of(i), super::Pass::Blend);
             }
             band.known = blit::blit_band(
                 painter.fb.view(),

@@ -66,7 +66,9 @@ impl Painter<'_> {
         let uvs = mesh.uvs.as_deref().unwrap_or(&[]);
         let draw = |me: &mut Self, id: usize| {
             let face = mesh.faces[id];
-            let v = verts.of(face);
+            let mut scratch = super::vertex::More::SCRATCH;
+            let v = verts.of(face, &mut scratch);
+            me.count_lazy(stage, &verts);
             let base = match &mesh.colors {
                 Some(c) => face.map(|i| c[i as usize].to_lanes()),
                 None => [run_color; 3],

@@ -571,10 +571,7 @@ impl Renderer {
             // Borrowed out of the painter for the loop, and put back.
             let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
             if p.faces.run {
-                let v = Verts {
-                    core: &verts,
-                    more: &more,
-                };
+                let v = Verts::new((&verts, &more), (positions, normals), &transforms, stage);
                 painter.faces(stage, &faces, v, Pass::Opaque);
             }
             if p.edges.run {
@@ -608,10 +605,7 @@ impl Renderer {
                 cull,
             };
             let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
-            let v = Verts {
-                core: &verts,
-                more: &more,
-            };
+            let v = Verts::new((&verts, &more), (positions, normals), &transforms, stage);
             painter.faces(stage, &faces, v, Pass::Blend);
             (*painter.verts, *painter.more) = (verts, more);
         }
@@ -675,13 +669,28 @@ mod tests {
         };
         assert_eq!(
             (size_of::<Vert>(), size_of::<More>()),
-            (40, 32),
+            (16, 52),
             "the sizes the docs say"
         );
-        // Lit, culled at the back, matte, inside the view: none.
-        let lean = RenderOptions::default();
+        // Lit, culled at the back, matte, inside the view, of more
+        // vertices a sample than `Plan::DEFER_PER_SAMPLE`: none (the depth
+        // and light of a face's corners found again at set-up).
+        let lean = RenderOptions {
+            cols: 8,
+            rows: 4,
+            ..RenderOptions::default()
+        };
+        let grid = lean.glyphs.grid(lean.cols, lean.rows);
+        assert!(n > Plan::DEFER_PER_SAMPLE * (grid.width * grid.height) as usize);
         let (verts, more, plain) = draw(&lean);
         assert_eq!((verts, more), (n, 0));
+        // Of fewer vertices a sample: kept.
+        let (verts, more, _) = draw(&RenderOptions {
+            cols: 80,
+            rows: 24,
+            ..lean
+        });
+        assert_eq!((verts, more), (n, n));
         // A rim reads each corner's normal; both sides drawn, the back's.
         let rim = RenderOptions {
             rim: Some(Rgb::BLACK),

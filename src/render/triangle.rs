@@ -23,7 +23,7 @@
 
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
-use super::vertex::{BAD_NORMAL, PLANES, Transforms, V, Verts};
+use super::vertex::{BAD_NORMAL, More, PLANES, Transforms, V, Verts};
 use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
@@ -133,26 +133,26 @@ impl Painter<'_> {
                     super::Ids::Range(run.faces)
                 };
                 self.run_mapped(stage, f, verts, ids, (texture, run_color));
-            } else if self.surface.shiny {
-                self.run_faces::<true>(stage, f, verts, faces, (lean, texture, run_color, diffuse));
             } else {
-                self.run_faces::<false>(
-                    stage,
-                    f,
-                    verts,
-                    faces,
-                    (lean, texture, run_color, diffuse),
-                );
+                // A shining run keeps its extras (`Plan::vertex_extras`).
+                let run = (lean, texture, run_color, diffuse);
+                match (self.surface.shiny, verts.lazy()) {
+                    (true, _) => self.run_faces::<true, false>(stage, f, verts, faces, run),
+                    (false, true) => self.run_faces::<false, true>(stage, f, verts, faces, run),
+                    (false, false) => self.run_faces::<false, false>(stage, f, verts, faces, run),
+                }
             }
             *self.sorted = sorted;
         }
     }
 
     /// Draws one run's faces: `SHINY` says whether they go through the
-    /// specular fill (the surface's `shiny`, as a constant).
+    /// specular fill (the surface's `shiny`, as a constant), `LAZY`
+    /// whether their corners' depth and light are found at set-up
+    /// ([`Verts::lazy`]).
     #[inline(never)]
     #[allow(clippy::type_complexity)]
-    fn run_faces<const SHINY: bool>(
+    fn run_faces<const SHINY: bool, const LAZY: bool>(
         &mut self,
         stage: &Stage<'_>,
         f: &Faces<'_>,
@@ -161,6 +161,8 @@ impl Painter<'_> {
         (lean, texture, run_color, diffuse): (bool, Option<(&Texture, Sampler)>, Vec3A, f32),
     ) {
         let mesh = f.mesh;
+        // Where the corners' depth and light are found, when not kept.
+        let mut scratch = More::SCRATCH;
         for face in faces {
             let v = face.map(|i| &verts.core[i as usize]);
             let inside = v[0].code | v[1].code | v[2].code == 0;
@@ -185,7 +187,8 @@ impl Painter<'_> {
                 // keys: nothing more to count. The colours are read
                 // only if it covers a sample.
                 if !CentreKey::box_is_empty(v.map(|v| v.key)) {
-                    let v = verts.of(*face);
+                    let v = verts.of_as::<LAZY>(*face, &mut scratch);
+                    self.count_lazy(stage, &verts);
                     // A shining run's normals and positions, found only
                     // for a triangle that covers a sample.
                     let shine = |order: [usize; 3]| {
@@ -216,7 +219,9 @@ impl Painter<'_> {
                 mvp: &f.transforms.mvp64,
                 world: &f.transforms.model,
             };
-            self.triangle::<SHINY, false>(stage, verts.of(*face), base, f.cull, model, tex);
+            self.count_lazy(stage, &verts);
+            let v = verts.of_as::<LAZY>(*face, &mut scratch);
+            self.triangle::<SHINY, false>(stage, v, base, f.cull, model, tex);
         }
     }
 
@@ -245,13 +250,10 @@ impl Painter<'_> {
             let vertices = (&tri.vertices[..], &[normal; 3][..]);
             self.vertex_stage(stage, &loose, vertices, loose_tests, true);
             let (verts, more) = (std::mem::take(self.verts), std::mem::take(self.more));
-            let v = Verts {
-                core: &verts,
-                more: &more,
-            };
+            let v = Verts::new((&verts, &more), vertices, &loose, stage);
             self.triangle::<false, false>(
                 stage,
-                v.of([0, 1, 2]),
+                v.of([0, 1, 2], &mut { More::SCRATCH }),
                 tri.color
                     .at_vertices()
                     .map(|c| Lin::from_srgb(c).to_lanes()),
@@ -313,8 +315,8 @@ impl Painter<'_> {
             let xy = v.map(|v| v.xy().map(f64::from));
             let screen = |color| ScreenTriangle {
                 xy,
-                z: v.map(|v| v.z),
-                inv_w: v.map(|v| v.inv_w),
+                z: v.map(|v| v.deep().z),
+                inv_w: v.map(|v| v.deep().inv_w),
                 color,
                 uv,
                 // Found once a triangle is set up and lit, not for one culled.
@@ -381,8 +383,8 @@ impl Painter<'_> {
             snapped: (v[i].code == 0).then_some(Snapped {
                 fixed: v[i].fixed(),
                 xy: v[i].xy(),
-                z: v[i].z,
-                inv_w: v[i].inv_w,
+                z: v[i].deep().z,
+                inv_w: v[i].deep().inv_w,
             }),
         });
         let mut poly = *self.poly;
@@ -512,7 +514,7 @@ impl Painter<'_> {
         let a = Attributes::new(
             s.order(),
             s.inv_area(),
-            [v.map(|v| v.z), v.map(|v| v.inv_w)],
+            [v.map(|v| v.deep().z), v.map(|v| v.deep().inv_w)],
             color,
             stage.plan.perspective.run,
         );
@@ -604,12 +606,13 @@ impl Painter<'_> {
                 // The rim from each corner's normal, here rather than in the
                 // vertex stage: a frame without a rim keeps its vertices as
                 // small and its vertex loop as short as before.
-                let l =
-                    |i: usize| b(i) * Vec3A::from(v[i].light) + stage.lights.rim_a(v[i].normal());
+                let l = |i: usize| {
+                    b(i) * Vec3A::from(v[i].deep().light) + stage.lights.rim_a(v[i].normal())
+                };
                 [l(0), l(1), l(2)]
             }
             Shading::Smooth => {
-                let l = |i: usize| b(i) * Vec3A::from(v[i].light);
+                let l = |i: usize| b(i) * Vec3A::from(v[i].deep().light);
                 [l(0), l(1), l(2)]
             }
         }

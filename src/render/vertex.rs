@@ -8,13 +8,22 @@
 //! the same arithmetic per lane and so the same bits.
 //!
 //! **What is kept.** Every face reads a vertex's outcode and snapped
-//! position, and a face that covers a sample its depth, `1/w` and light:
-//! [`Vert`], 40 bytes. World position, normal and unsnapped position
-//! ([`More`], 32 bytes) are read only by flat shading, falling-off lights,
-//! rims, highlights, textures, alpha, maps, the general and clip paths and
-//! back faces; they go to a second buffer only for a mesh the plan says
-//! may need them, or one with a vertex off the common path, so a large
-//! lit, culled, matte model keeps 40 bytes a vertex rather than 72.
+//! position (and its centre key, for the first test): [`Vert`], 16 bytes.
+//! A face that covers a sample also reads its depth, `1/w` and light
+//! ([`Deep`]); some faces read its world position, normal and unsnapped
+//! position (flat shading, falling-off lights, rims, highlights,
+//! textures, alpha, maps, the general and clip paths and back faces).
+//! Those go, with the [`Deep`], to a second buffer ([`More`], 52 bytes)
+//! for a mesh the plan says may read them or that has few vertices for the
+//! frame's samples (`Plan::vertex_extras`), or one with a vertex off the
+//! common path. A large lit, culled, matte model seen small keeps
+//! 16 bytes a vertex, and the [`Deep`] of the corners of a face with a
+//! sample in its box is found again at set-up ([`Lazy`], by the very
+//! function the stage uses, so the bits are the same): most of its
+//! vertices are never the corner of such a face, so finding it there costs
+//! less than finding it for every vertex, where there are many more
+//! vertices than samples (and more where there are fewer: the plan
+//! decides, by [`crate::Plan::DEFER_PER_SAMPLE`]).
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 
@@ -50,18 +59,13 @@ impl Transforms {
     }
 }
 
-/// A vertex after the vertex stage: what every face reads of it (its clip
-/// outcode and, inside every plane, its snapped position and centre key)
-/// and what a face that covers a sample reads (depth, `1/w`, and under
-/// smooth shading the light reaching it). 40 bytes; what only some
-/// scenes' faces read is in [`More`], kept only where the plan reads it.
+/// A vertex after the vertex stage: what every face reads of it, its clip
+/// outcode and, inside every plane, its snapped position and centre key.
+/// 16 bytes; what a face that covers a sample reads of it beyond these is
+/// in [`More`], kept only where the plan reads it, or found again at
+/// set-up ([`Lazy`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
-    /// The light reaching the front of the vertex (smooth shading only).
-    pub(super) light: Vec3,
-    /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
-    /// every plane with a finite normal (then the fields below are valid).
-    pub(super) code: u16,
     /// The screen position snapped, once per vertex rather than once per
     /// triangle; kept in `i32` (a snapped coordinate is at most
     /// `MAX_COORD · 256` = 2^29 in magnitude) and widened where read
@@ -70,8 +74,9 @@ pub(super) struct Vert {
     /// Where `fixed` lies among sample centres, for the face loop's first
     /// test.
     pub(super) key: CentreKey,
-    pub(super) z: f32,
-    pub(super) inv_w: f32,
+    /// Clip outcode, with [`F64_PATH`] and [`BAD_NORMAL`]: 0 when inside
+    /// every plane with a finite normal (then the fields above are valid).
+    pub(super) code: u16,
 }
 
 impl Vert {
@@ -91,14 +96,28 @@ impl Vert {
     }
 }
 
-/// What some scenes' faces read of a vertex beyond [`Vert`]: world
-/// position, normal and unsnapped screen position (32 bytes). Kept, in a
-/// buffer beside the vertices, for a mesh whose faces may read it
-/// ([`crate::Plan::vertex_extras`], or a vertex off the common path), and
-/// not otherwise: a lit, culled, matte mesh inside the view (the common
-/// large model) keeps 40 bytes a vertex rather than 72.
+/// What a face that covers a sample reads of a vertex inside every plane:
+/// its depth, `1/w`, and under smooth shading the light reaching it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Deep {
+    /// The light reaching the front of the vertex (smooth shading only).
+    pub(super) light: Vec3,
+    pub(super) z: f32,
+    pub(super) inv_w: f32,
+}
+
+/// What some scenes' faces read of a vertex beyond [`Vert`]: its
+/// [`Deep`], world position, normal and unsnapped screen position (52
+/// bytes). Kept, in a buffer beside the vertices, for a mesh whose faces
+/// may read it ([`crate::Plan::vertex_extras`], or a vertex off the common
+/// path), and not otherwise: a lit, culled, matte mesh inside the view
+/// (the common large model) keeps 16 bytes a vertex, and the [`Deep`] of
+/// the corners of a face with a sample in its box is found again at set-up
+/// ([`Lazy`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct More {
+    /// Depth, `1/w` and light (inside every plane only).
+    pub(super) deep: Deep,
     /// Position in the turned world, where lights live (flat shading, and
     /// point and spot lights, only: zero otherwise).
     pub(super) world: Vec3,
@@ -111,11 +130,13 @@ pub(super) struct More {
 }
 
 /// A vertex as the triangle stage reads it: its [`Vert`] (its fields read
-/// through `Deref`) and its [`More`], where kept.
+/// through `Deref`) and its [`More`], kept or, where not, its [`Deep`]
+/// found again into a face's scratch (whose other fields are NaN: the
+/// plan reads none of them there, [`crate::Plan::vertex_extras`]).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct V<'a> {
     at: &'a Vert,
-    more: Option<&'a More>,
+    more: &'a More,
 }
 
 impl std::ops::Deref for V<'_> {
@@ -127,13 +148,15 @@ impl std::ops::Deref for V<'_> {
 }
 
 impl V<'_> {
+    /// Depth, `1/w` and light.
+    #[inline(always)]
+    pub(super) fn deep(&self) -> &Deep {
+        &self.more.deep
+    }
+
     #[inline(always)]
     fn more(&self) -> &More {
-        // The plan keeps a mesh's extras wherever its faces read them
-        // (`Plan::vertex_extras`), and the vertex stage keeps them for a
-        // mesh with any vertex off the common path.
         self.more
-            .expect("vertex extras are kept wherever they are read")
     }
 
     /// [`More::world`].
@@ -156,21 +179,132 @@ impl V<'_> {
 }
 
 /// One mesh's vertices after the vertex stage: every vertex's [`Vert`],
-/// and every vertex's [`More`] or none.
-#[derive(Clone, Copy, Debug)]
+/// and every vertex's [`More`] or none (then each corner's [`Deep`] is
+/// found again from `lazy`).
+#[derive(Clone, Copy)]
 pub(super) struct Verts<'a> {
     pub(super) core: &'a [Vert],
     pub(super) more: &'a [More],
+    pub(super) lazy: Lazy<'a>,
+}
+
+/// What the vertex stage read, for finding a vertex's [`Deep`] again at
+/// set-up: its positions and normals, matrices and stage. For a mesh of
+/// many more vertices than the faces that cover a sample have corners
+/// (a large model seen small), finding it for those corners alone costs
+/// less than finding it for every vertex and keeping it: the vertex
+/// stage keeps 16 bytes a vertex, not 36. The same function finds it both
+/// ways ([`deep`]), so the bits are the same.
+#[derive(Clone, Copy)]
+pub(super) struct Lazy<'a> {
+    pub(super) positions: &'a [Vec3],
+    pub(super) normals: &'a [Vec3],
+    pub(super) transforms: &'a Transforms,
+    pub(super) stage: &'a Stage<'a>,
+}
+
+impl More {
+    /// A face's scratch for extras not kept ([`Verts::of`]): NaN but for
+    /// the [`Deep`] found into it.
+    pub(super) const SCRATCH: [More; 3] = [More {
+        deep: Deep {
+            light: Vec3::ZERO,
+            z: 0.0,
+            inv_w: 0.0,
+        },
+        world: Vec3::NAN,
+        normal: Vec3::NAN,
+        xy: [f32::NAN; 2],
+    }; 3];
+}
+
+impl Lazy<'_> {
+    /// The [`Deep`] of `face`'s corners, into `scratch` (out of line: the
+    /// face loop of a mesh that keeps its extras stays as short as it was).
+    #[inline(never)]
+    fn deep3(&self, face: [u32; 3], scratch: &mut [More; 3]) {
+        for (m, i) in scratch.iter_mut().zip(face) {
+            let i = i as usize;
+            m.deep = deep(
+                self.stage,
+                self.transforms,
+                self.positions[i],
+                self.normals[i],
+            );
+        }
+    }
 }
 
 impl<'a> Verts<'a> {
-    /// The corners of `face`.
+    /// A mesh's vertices after the vertex stage, which read `vertices`
+    /// (positions and normals) through `transforms`.
+    pub(super) fn new(
+        (core, more): (&'a [Vert], &'a [More]),
+        (positions, normals): (&'a [Vec3], &'a [Vec3]),
+        transforms: &'a Transforms,
+        stage: &'a Stage<'a>,
+    ) -> Verts<'a> {
+        Verts {
+            core,
+            more,
+            lazy: Lazy {
+                positions,
+                normals,
+                transforms,
+                stage,
+            },
+        }
+    }
+
+    /// The corners of `face`, their [`Deep`] found into `scratch` where
+    /// it is not kept.
     #[inline(always)]
-    pub(super) fn of(&self, face: [u32; 3]) -> [V<'a>; 3] {
-        face.map(|i| V {
+    pub(super) fn of<'s>(&self, face: [u32; 3], scratch: &'s mut [More; 3]) -> [V<'s>; 3]
+    where
+        'a: 's,
+    {
+        if self.lazy() {
+            self.of_as::<true>(face, scratch)
+        } else {
+            self.of_as::<false>(face, scratch)
+        }
+    }
+
+    /// [`Verts::of`] where `LAZY` is [`Verts::lazy`], known where the face
+    /// loop is compiled (one loop for each: a loop over kept vertices
+    /// carries no trace of finding them again).
+    #[inline(always)]
+    pub(super) fn of_as<'s, const LAZY: bool>(
+        &self,
+        face: [u32; 3],
+        scratch: &'s mut [More; 3],
+    ) -> [V<'s>; 3]
+    where
+        'a: 's,
+    {
+        // Written out, not `map`ped: the face loop is large enough that
+        // `array::map` is not always inlined into it.
+        if LAZY {
+            self.lazy.deep3(face, scratch);
+            let scratch: &'s [More; 3] = scratch;
+            let v = |k: usize| V {
+                at: &self.core[face[k] as usize],
+                more: &scratch[k],
+            };
+            return [v(0), v(1), v(2)];
+        }
+        let v = |i: u32| V {
             at: &self.core[i as usize],
-            more: self.more.get(i as usize),
-        })
+            more: &self.more[i as usize],
+        };
+        [v(face[0]), v(face[1]), v(face[2])]
+    }
+
+    /// Whether the corners' [`Deep`] is found at set-up (lit there, for
+    /// the counts).
+    #[inline(always)]
+    pub(super) fn lazy(&self) -> bool {
+        self.more.is_empty()
     }
 }
 
@@ -205,6 +339,14 @@ impl Painter<'_> {
             p.clip_tests(i),
             p.vertex_extras(i, cull),
         );
+    }
+
+    /// Counts the lights of a face's corners found at set-up ([`Lazy`]).
+    #[inline(always)]
+    pub(super) fn count_lazy(&mut self, stage: &Stage<'_>, verts: &Verts<'_>) {
+        if verts.lazy() && stage.plan.shading == Shading::Smooth {
+            self.stats.lighting_evaluations += 3;
+        }
     }
 
     /// Transforms `positions` (with `normals`), appending them to
@@ -260,6 +402,56 @@ pub(super) struct VertexWork {
     pub(super) off_path: u64,
 }
 
+/// A vertex's unit normal in the turned world (smooth shading: zero
+/// otherwise), world position (flat shading and falling-off lights: zero
+/// otherwise) and the light reaching it (smooth shading: zero otherwise).
+#[inline(always)]
+fn lit(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3) -> (Vec3, Vec3, Vec3) {
+    let smooth = stage.plan.shading == Shading::Smooth;
+    // World positions serve flat shading and point and spot lights (the
+    // clip path finds its own from the model).
+    let falloff = stage.plan.falloff.run;
+    let flat = stage.plan.shading == Shading::Flat;
+    // Only smooth shading reads vertex normals.
+    let normal = if smooth {
+        transform::direction(t.normal * n)
+    } else {
+        Vec3::ZERO
+    };
+    let world = if flat || falloff {
+        t.model.transform_point3(p)
+    } else {
+        Vec3::ZERO
+    };
+    let light = if !smooth {
+        Vec3::ZERO
+    } else if falloff {
+        Vec3::from(stage.lights.lambert_at(normal, world))
+    } else {
+        stage.lights.lambert(normal)
+    };
+    (normal, world, light)
+}
+
+/// `1/w` and depth of a clip position.
+#[inline(always)]
+fn depth(clip: glam::Vec4) -> (f32, f32) {
+    let inv_w = 1.0 / clip.w;
+    (inv_w, clip.z * inv_w)
+}
+
+/// The [`Deep`] of a vertex inside every plane, as [`vertex`] finds it:
+/// for a mesh whose vertex stage keeps none ([`Lazy`]).
+#[inline(always)]
+pub(super) fn deep(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3) -> Deep {
+    let (inv_w, z) = depth(t.mvp * p.extend(1.0));
+    Deep {
+        light: lit(stage, t, p, n).2,
+        z,
+        inv_w,
+    }
+}
+
 /// One vertex through the vertex stage: its clip position and outcode
 /// and, inside every plane, its screen position, snapped, depth and `1/w`;
 /// its world position (flat shading) or normal and light (smooth).
@@ -271,11 +463,6 @@ pub(super) fn vertex(
     n: Vec3,
     clip_tests: bool,
 ) -> (Vert, More) {
-    let smooth = stage.plan.shading == Shading::Smooth;
-    // World positions serve flat shading and point and spot lights (the
-    // clip path finds its own from the model).
-    let falloff = stage.plan.falloff.run;
-    let flat = stage.plan.shading == Shading::Flat;
     let clip = t.mvp * p.extend(1.0);
     // Inside bounds need no test: every plane's code is 0.
     let code = if !clip.is_finite() {
@@ -285,18 +472,13 @@ pub(super) fn vertex(
     } else {
         0
     };
-    // Only smooth shading reads vertex normals.
-    let normal = if smooth {
-        transform::direction(t.normal * n)
-    } else {
-        Vec3::ZERO
-    };
+    let (normal, world, light) = lit(stage, t, p, n);
     let mut more = More {
-        world: if flat || falloff {
-            t.model.transform_point3(p)
-        } else {
-            Vec3::ZERO
+        deep: Deep {
+            light,
+            ..Deep::default()
         },
+        world,
         normal,
         xy: [0.0; 2],
     };
@@ -304,17 +486,11 @@ pub(super) fn vertex(
         code,
         ..Vert::default()
     };
-    if smooth {
-        v.light = if falloff {
-            Vec3::from(stage.lights.lambert_at(normal, more.world))
-        } else {
-            stage.lights.lambert(normal)
-        };
-    }
     if code == 0 {
-        v.inv_w = 1.0 / clip.w;
-        more.xy = stage.viewport.apply(clip.x * v.inv_w, clip.y * v.inv_w);
-        v.z = clip.z * v.inv_w;
+        let (inv_w, z) = depth(clip);
+        more.deep.inv_w = inv_w;
+        more.deep.z = z;
+        more.xy = stage.viewport.apply(clip.x * inv_w, clip.y * inv_w);
         match FixedPoint::snap(more.xy) {
             Some(f) => {
                 v.set_fixed(f);

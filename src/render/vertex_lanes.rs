@@ -35,7 +35,7 @@
 use glam::{Vec3, Vec4};
 
 use super::Stage;
-use super::vertex::{More, Transforms, Vert, VertexWork, vertex};
+use super::vertex::{Deep, More, Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
@@ -59,9 +59,11 @@ pub(super) fn vertices(
     let shading = stage.plan.shading;
     // `vertex` and the lanes light a vertex exactly when shading is smooth,
     // and test it exactly when `clip_tests` says.
+    // Without extras kept, the light is found at set-up (`Lazy`).
+    let keep = more.is_some();
     let mut work = VertexWork {
         vertices: n as u64,
-        lit: if shading == Shading::Smooth {
+        lit: if shading == Shading::Smooth && keep {
             n as u64
         } else {
             0
@@ -94,7 +96,7 @@ pub(super) fn vertices(
     let smooth = shading == Shading::Smooth;
     for (p, nn) in positions.chunks_exact(4).zip(normals.chunks_exact(4)) {
         let (p, nn) = (as_four(p), as_four(nn));
-        match four(stage, t, p, nn, clip_tests, smooth) {
+        match four(stage, t, p, nn, clip_tests, smooth && keep) {
             Some((v, m)) => {
                 out.extend_from_slice(&v);
                 if let Some(more) = more.as_deref_mut() {
@@ -161,27 +163,30 @@ fn four(
     let [x, y] = stage.viewport.apply4(cx * inv_w, cy * inv_w);
     let snapped = FixedPoint::snap4(x, y)?;
     let (fixed, keys) = (snapped.points(), CentreKey::of4(&snapped));
-    let z = cz * inv_w;
     let (normal, light) = if smooth {
         let unit = directions(&t.normal, nx, ny, nz)?;
         (unit, stage.lights.lambert4(unit))
     } else {
         ([Vec4::ZERO; 3], [Vec4::ZERO; 3])
     };
+    // Unread where the extras are not kept (`smooth` is then false too).
+    let z = cz * inv_w;
     let (xs, ys, zs, ws) = (x.to_array(), y.to_array(), z.to_array(), inv_w.to_array());
     let [n0, n1, n2] = normal;
     let [l0, l1, l2] = light;
     let (n0, n1, n2) = (n0.to_array(), n1.to_array(), n2.to_array());
     let (l0, l1, l2) = (l0.to_array(), l1.to_array(), l2.to_array());
     let vert = |i: usize| Vert {
-        light: Vec3::new(l0[i], l1[i], l2[i]),
         code: 0,
         fixed32: [fixed[i].x.0 as i32, fixed[i].y.0 as i32],
         key: keys[i],
-        z: zs[i],
-        inv_w: ws[i],
     };
     let more = |i: usize| More {
+        deep: Deep {
+            light: Vec3::new(l0[i], l1[i], l2[i]),
+            z: zs[i],
+            inv_w: ws[i],
+        },
         world: Vec3::ZERO,
         normal: Vec3::new(n0[i], n1[i], n2[i]),
         xy: [xs[i], ys[i]],
@@ -274,11 +279,11 @@ mod tests {
         let f = |x: f32| x.to_bits() as u64;
         let mut b = vec![v.code as u64, v.fixed().x.0 as u64, v.fixed().y.0 as u64];
         b.extend(
-            [m.world, m.normal, v.light]
+            [m.world, m.normal, m.deep.light]
                 .iter()
                 .flat_map(|v| v.to_array().map(f)),
         );
-        b.extend([m.xy[0], m.xy[1], v.z, v.inv_w].map(f));
+        b.extend([m.xy[0], m.xy[1], m.deep.z, m.deep.inv_w].map(f));
         b
     }
 

@@ -47,11 +47,13 @@
 //! around each position, listed the same way.
 //!
 //! While a frame is drawn the renderer keeps one transformed vertex per
-//! vertex of the mesh being drawn: 40 bytes (clip outcode, snapped screen
-//! position and its centre key, depth, 1/w, light), and 32 more (world
+//! vertex of the mesh being drawn: 16 bytes (clip outcode, snapped screen
+//! position and its centre key), and 52 more (depth, 1/w, light, world
 //! position, normal, unsnapped screen position) only for a mesh whose
-//! faces may read them (see `Plan::vertex_extras`). The framebuffer holds a
-//! colour and a depth per sample (8 bytes).
+//! faces may read them or that has few vertices for the frame's samples
+//! (see `Plan::vertex_extras`); a large model seen small finds the depth
+//! and light of a face's corners again where the face has a sample in its
+//! box. The framebuffer holds a colour and a depth per sample (8 bytes).
 
 use std::sync::{Arc, OnceLock};
 
