@@ -38,21 +38,25 @@ build() {
 }
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
 peak() { /usr/bin/time -o target/load-cost/time -f '%M' "$@" >/dev/null 2>&1; cat target/load-cost/time; }
-# Inclusive instructions of the functions matching $1 in a callgrind run of the rest.
+# Inclusive instructions of the function whose name ends in $1, in a
+# callgrind run of the rest. callgrind_annotate lists a function once for
+# each source file its inlined code comes from (with or without the
+# binary's name after it): the largest of these entries is the whole
+# function with its callees; the others are parts of it.
 inclusive() {
-  local pattern=$1; shift
+  local name=$1; shift
   valgrind --tool=callgrind --callgrind-out-file=target/load-cost/cg.out "$@" >/dev/null 2>&1
   callgrind_annotate --inclusive=yes --threshold=100 target/load-cost/cg.out 2>/dev/null |
-    grep -E "$pattern" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
+    grep -E "$name( \[[^]]*\])?\$" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
 }
 row() { # label, directory of binaries
   local bin=$2/rastty frame tris1 bytes1 normals load finish a b
   local args=(--cols 200 --rows 60 --color truecolor)
   tris1=1000000
   bytes1=$(stat -c %s "$m1")
-  normals=$(inclusive 'Geometry::compute_normals \[' "$bin" render "$m1" "${args[@]}")
-  load=$(inclusive 'scene::obj::load \[' "$bin" render "$m1" "${args[@]}")
-  finish=$(inclusive 'obj::Reader::finish \[' "$bin" render "$m1" "${args[@]}")
+  normals=$(inclusive 'Geometry::compute_normals' "$bin" render "$m1" "${args[@]}")
+  load=$(inclusive 'scene::obj::load' "$bin" render "$m1" "${args[@]}")
+  finish=$(inclusive 'obj::Reader::finish' "$bin" render "$m1" "${args[@]}")
   a=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 10)
   b=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 40)
   frame=$(( (b - a) / 30 ))
