@@ -159,6 +159,9 @@ pub(super) struct Topology {
     start: Vec<u32>,
     list: Vec<u32>,
     listing: Listing,
+    /// Which vertices a face uses, a bit each (found in the pass that
+    /// counts the corners; the normals give the others +z).
+    pub(super) used: Vec<u64>,
 }
 
 /// What [`Topology`] lists around each welded position.
@@ -180,8 +183,14 @@ impl Topology {
         let (ids, welded) = weld(positions);
         // Counting sort of the corners by welded position.
         let mut start = vec![0u32; welded + 1];
-        for &i in faces.iter().flatten() {
-            start[ids[i as usize] as usize + 1] += 1;
+        let mut used = vec![0u64; positions.len().div_ceil(64)];
+        // Face by face, its three corners unrolled (a flattened iterator
+        // costs twice the instructions here).
+        for face in faces {
+            for &i in face {
+                start[ids[i as usize] as usize + 1] += 1;
+                used[i as usize / 64] |= 1 << (i % 64);
+            }
         }
         for p in 0..welded {
             start[p + 1] += start[p];
@@ -206,6 +215,7 @@ impl Topology {
             start,
             list,
             listing,
+            used,
         }
     }
 
@@ -563,10 +573,7 @@ pub(super) fn smooth_normals(
     big.shrink_to_fit();
     let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
     // Which vertices a face uses: the others are +z.
-    let mut used = vec![0u64; positions.len().div_ceil(64)];
-    for &v in faces.iter().flatten() {
-        used[v as usize / 64] |= 1 << (v % 64);
-    }
+    let used = &topo.used;
     // Each vertex's normal, from the last down (see above: vertex `v`
     // reads position `ids[v] <= v`, not yet overwritten). Not yet set (a
     // creased position's): NaN.
@@ -580,7 +587,6 @@ pub(super) fn smooth_normals(
             fix(normals[p])
         };
     }
-    drop(used);
     // The corners at creased positions, by position and in order at each
     // (the order the corners around a position are listed in): the
     // per-position pass's, without keeping every position's corners.
