@@ -234,13 +234,15 @@ impl<R: Read> Lines<R> {
         &self.buf[self.start..self.end + SLACK]
     }
 
-    /// Hands out the next `len` bytes of [`Lines::window`], a line and its
-    /// `\n`, as read by the caller.
-    pub fn skip(&mut self, len: usize) {
-        debug_assert!(self.start + len <= self.end && self.buf[self.start + len - 1] == b'\n');
+    /// Hands out the next `len` bytes of [`Lines::window`], `count` lines
+    /// with their `\n`s, as read by the caller.
+    pub fn skip_lines(&mut self, len: usize, count: usize) {
+        debug_assert!(
+            count == 0 || (self.start + len <= self.end && self.buf[self.start + len - 1] == b'\n')
+        );
         self.start += len;
         self.scanned = self.start;
-        self.number += 1;
+        self.number += count;
     }
 
     /// Reads more: the unread bytes moved to the front, the buffer doubled

@@ -505,7 +505,11 @@ pub(super) fn smooth_normals(
                 for k in 0..3 {
                     normals[p[k]] += Vec3::from(n * w[k]);
                     total[p[k]] += w[k];
-                    least[p[k]] = least[p[k]].min(w[k]);
+                    // `min`, as one comparison: the least is never NaN
+                    // (it starts at infinity), and a NaN weight leaves it
+                    // as `min` does.
+                    let l = &mut least[p[k]];
+                    *l = if w[k] < *l { w[k] } else { *l };
                 }
             }
             // A face of no area: its corners take the per-position pass.

@@ -61,6 +61,18 @@ impl Scan<'_> {
     #[inline]
     fn next(&mut self) -> Option<bool> {
         let start = self.i;
+        // Nearly always: the line's end, or one space before an item.
+        match self.byte() {
+            b'\n' => {
+                self.i += 1;
+                return Some(true);
+            }
+            b' ' if !matches!(self.byte_at(self.i + 1), b' ' | b'\t' | b'\r' | b'\n') => {
+                self.i += 1;
+                return Some(false);
+            }
+            _ => {}
+        }
         while gap(self.byte()) {
             self.i += 1;
         }
@@ -143,6 +155,18 @@ impl Scan<'_> {
 }
 
 impl Reader<'_> {
+    /// Reads the fast lines at the start of `window` ([`Reader::fast_line`]),
+    /// the first numbered `n`, up to the first that is not: returns the
+    /// bytes and the lines read.
+    pub(super) fn fast_lines(&mut self, window: &[u8], n: usize) -> (usize, usize) {
+        let (mut at, mut count) = (0, 0);
+        while let Some(len) = window.get(at..).and_then(|w| self.fast_line(w, n + count)) {
+            at += len;
+            count += 1;
+        }
+        (at, count)
+    }
+
     /// Reads the line at the start of `window` (the line buffer's unread
     /// bytes and their NUL slack), numbered `n`, if it is a fast line:
     /// returns its length with its `\n`, or `None` (nothing changed) for

@@ -164,13 +164,12 @@ fn read_with(
     let mut r = Reader::new(name, dir, options);
     let mut lines = Lines::new(src);
     loop {
-        // The first line goes to the general reader (a byte order mark).
-        if fast
-            && lines.number > 0
-            && let Some(len) = r.fast_line(lines.window(), lines.number + 1)
-        {
-            lines.skip(len);
-            continue;
+        // The first line goes to the general reader (a byte order mark);
+        // then the fast path takes what it can of the buffer, and the
+        // general reader the line it stopped at.
+        if fast && lines.number > 0 {
+            let (len, count) = r.fast_lines(lines.window(), lines.number + 1);
+            lines.skip_lines(len, count);
         }
         let (n, line) = match lines.next_line() {
             Ok(Some(next)) => next,
