@@ -247,6 +247,7 @@ fn bands(opts: &RenderOptions) -> Bands {
 }
 
 const FORCED: &str = "forced on by the full pipeline";
+const FORCED_KEPT: &str = "the full pipeline keeps every vertex's extras";
 
 impl Plan {
     /// Vertices a sample above which a mesh's corners' depth and light are
@@ -509,33 +510,59 @@ impl Plan {
 
     /// Whether the vertex stage keeps each vertex's world position, normal,
     /// unsnapped screen position, depth, `1/w` and light for the faces of
-    /// mesh `i`, culled as `cull`: where some face may read the first three
-    /// (flat shading, lights that fall off, a rim, highlights, textures,
-    /// alpha, maps, the general path, the full pipeline, back faces, which
-    /// smooth shading lights from the other side of their normals, and a
-    /// mesh whose vertices are tested against the clip planes, whose faces
-    /// may take the clip path), and for a mesh of no more than
-    /// [`Plan::DEFER_PER_SAMPLE`] vertices a sample, whose vertices are mostly
-    /// read by faces that cover a sample. A lit, culled, matte mesh of
-    /// more, inside the view on the lean path, keeps none of them: the
-    /// depth and light of a face's corners are found again at set-up, by
-    /// the same function, only for faces with a sample in their box (16
-    /// bytes a vertex rather than 68). Memory and speed alone: the frame is
-    /// the same either way (and a mesh with a vertex that takes the f64
-    /// path all the same keeps them too; see the vertex stage).
+    /// mesh `i`, culled as `cull`: the opposite of [`Plan::deferral`], which
+    /// says why. Memory and speed alone: the frame is the same either way
+    /// (and a mesh with a vertex that takes the f64 path all the same keeps
+    /// them too; see the vertex stage).
     pub fn vertex_extras(&self, i: usize, cull: crate::scene::Cull) -> bool {
-        !self.defers.get(i).copied().unwrap_or(false)
-            || self.clip_tests(i)
-            || self.full
-            || self.shading == Shading::Flat
-            || self.falloff.run
-            || self.rim.run
-            || self.specular.run
-            || self.texturing.run
-            || self.alpha.run
-            || self.maps.run
-            || !self.lean.run
-            || cull != crate::scene::Cull::Back
+        !self.deferral(i, cull).run
+    }
+
+    /// Whether the depth, `1/w` and light of mesh `i`'s vertices (culled
+    /// as `cull`) are found again at set-up, for the corners of each face
+    /// with a sample in its box, rather than kept by the vertex stage for
+    /// every vertex (16 bytes a vertex rather than 68), and why. Found
+    /// again only where no face may read a vertex's world position, normal
+    /// or unsnapped position (flat shading, lights that fall off, a rim,
+    /// highlights, textures, alpha, maps, the general path, the full
+    /// pipeline, back faces, which smooth shading lights from the other
+    /// side of their normals, and a mesh whose vertices are tested against
+    /// the clip planes, whose faces may take the clip path), and only for
+    /// a mesh of more than [`Plan::DEFER_PER_SAMPLE`] vertices a sample:
+    /// with fewer, most of its vertices are read by faces that cover a
+    /// sample, and keeping them costs less.
+    pub fn deferral(&self, i: usize, cull: crate::scene::Cull) -> Decision {
+        let kept = |why| Some(Decision::skip(why));
+        let reason = if self.full {
+            kept(FORCED_KEPT)
+        } else if self.clip_tests(i) {
+            kept(
+                "its vertices are tested against the clip planes: a face may take the clip path, which reads every extra",
+            )
+        } else if self.shading == Shading::Flat {
+            kept("flat shading lights each face from its corners' world positions")
+        } else if self.falloff.run {
+            kept("a light that falls off reads each corner's world position")
+        } else if self.rim.run {
+            kept("the rim reads each corner's normal")
+        } else if self.specular.run {
+            kept("a highlight reads each corner's normal and world position")
+        } else if self.texturing.run || self.alpha.run || self.maps.run {
+            kept("textures, alpha or maps read each corner's unsnapped position")
+        } else if !self.lean.run {
+            kept("the general path reads every extra")
+        } else if cull != crate::scene::Cull::Back {
+            kept("back faces are drawn, lit from the other side of each corner's normal")
+        } else if !self.defers.get(i).copied().unwrap_or(false) {
+            kept(
+                "at most 16 vertices a sample: most vertices are corners of a face that covers one",
+            )
+        } else {
+            None
+        };
+        reason.unwrap_or(Decision::run(
+            "more than 16 vertices a sample: only the corners of a face with a sample in its box are lit, at set-up",
+        ))
     }
 
     /// Whether mesh `i` is posed (see [`Plan::posing`]).

@@ -203,6 +203,7 @@ impl Renderer {
             let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
         }
         effects(&mut out, scene, plan);
+        deferrals(&mut out, scene, opts, plan);
         let r = &s.raster;
         let _ = writeln!(
             out,
@@ -310,6 +311,33 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
         if runs.len() > RUNS_LISTED {
             let _ = writeln!(out, "  … and {} more runs", runs.len() - RUNS_LISTED);
         }
+    }
+}
+
+/// Each mesh's [`crate::Plan::deferral`]: whether its vertices' depth and
+/// light are found again at set-up, why, and how many vertices it has a
+/// sample (the first [`RUNS_LISTED`] meshes).
+fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate::plan::Plan) {
+    let grid = opts.glyphs.grid(opts.cols, opts.rows);
+    let samples = (grid.width as f64 * grid.height as f64).max(1.0);
+    for (i, m) in scene.meshes.iter().enumerate().take(RUNS_LISTED) {
+        let d = plan.deferral(i, opts.cull.unwrap_or(m.cull));
+        let _ = writeln!(
+            out,
+            "{:<14} {d}\n{:<20}mesh {i}: {} vertices, {:.1} a sample; {} bytes a vertex kept",
+            "lazy vertices",
+            "",
+            m.positions.len(),
+            m.positions.len() as f64 / samples,
+            if d.run { 16 } else { 68 },
+        );
+    }
+    if scene.meshes.len() > RUNS_LISTED {
+        let _ = writeln!(
+            out,
+            "  … and {} more meshes",
+            scene.meshes.len() - RUNS_LISTED
+        );
     }
 }
 

@@ -709,4 +709,39 @@ mod tests {
         };
         assert_eq!(draw(&full), (n, n, plain));
     }
+
+    /// `--explain` says, mesh by mesh, whether the corners' depth and light
+    /// are found at set-up (as the plan decides, by the threshold it
+    /// names), why, and what is kept a vertex.
+    #[test]
+    fn explain_says_where_corners_are_lit() {
+        let scene = Scene::of_mesh(Shape::Torus.mesh(Rgb::WHITE));
+        let report = |cols: u16, rows: u16| {
+            let opts = RenderOptions {
+                cols,
+                rows,
+                ..RenderOptions::default()
+            };
+            let mut r = Renderer::new();
+            r.render(&scene, &opts);
+            r.explain(&scene, &opts, std::time::Duration::ZERO, 0)
+        };
+        let n = Plan::DEFER_PER_SAMPLE;
+        let far = report(8, 4);
+        assert!(
+            far.contains(&format!(
+                "lazy vertices  run   more than {n} vertices a sample"
+            )),
+            "{far}"
+        );
+        assert!(far.contains("16 bytes a vertex kept"), "{far}");
+        let near = report(80, 24);
+        assert!(
+            near.contains(&format!(
+                "lazy vertices  skip  at most {n} vertices a sample"
+            )),
+            "{near}"
+        );
+        assert!(near.contains("68 bytes a vertex kept"), "{near}");
+    }
 }
