@@ -73,11 +73,22 @@ impl PositionSet {
         new: u32,
         at: impl Fn(u32) -> Vec3,
     ) -> (u32, bool) {
+        let k = Self::key(p);
+        self.get_or_insert_keyed((k, Self::hash(k)), new, at)
+    }
+
+    /// [`PositionSet::get_or_insert`] of the position whose key and hash
+    /// are `(k, h)`.
+    #[inline]
+    fn get_or_insert_keyed(
+        &mut self,
+        (k, h): ([u32; 3], u32),
+        new: u32,
+        at: impl Fn(u32) -> Vec3,
+    ) -> (u32, bool) {
         if (self.len + 1) * 2 > self.slots.len() {
             self.grow();
         }
-        let k = Self::key(p);
-        let h = Self::hash(k);
         let mask = self.slots.len() - 1;
         let mut i = self.home(h);
         loop {
@@ -95,13 +106,14 @@ impl PositionSet {
         }
     }
 
-    /// Reads the slots where `positions` would go, so that their cache
-    /// misses overlap rather than each waiting for the last.
+    /// Reads the slots where the positions of keys and hashes `keyed`
+    /// would go, so that their cache misses overlap rather than each
+    /// waiting for the last.
     #[inline]
-    pub(super) fn touch(&self, positions: &[Vec3]) {
+    fn touch(&self, keyed: &[([u32; 3], u32)]) {
         let mut sum = 0u64;
-        for &p in positions {
-            sum = sum.wrapping_add(self.slots[self.home(Self::hash(Self::key(p)))]);
+        for &(_, h) in keyed {
+            sum = sum.wrapping_add(self.slots[self.home(h)]);
         }
         std::hint::black_box(sum);
     }
@@ -129,13 +141,21 @@ pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
     // Each id's first position index, to compare against.
     let mut first: Vec<u32> = Vec::new();
     let mut ids = Vec::with_capacity(positions.len());
+    let mut keyed = [([0u32; 3], 0u32); 16];
     for (block, chunk) in positions.chunks(16).enumerate() {
         // Touch the slots of the next sixteen first: their cache misses
-        // overlap, rather than each waiting for the last.
-        set.touch(chunk);
-        for (k, &p) in chunk.iter().enumerate() {
+        // overlap, rather than each waiting for the last. Their keys and
+        // hashes are found once, for both.
+        for (kh, &p) in keyed.iter_mut().zip(chunk) {
+            let k = PositionSet::key(p);
+            *kh = (k, PositionSet::hash(k));
+        }
+        let keyed = &keyed[..chunk.len()];
+        set.touch(keyed);
+        for (k, &kh) in keyed.iter().enumerate() {
             let next = first.len() as u32;
-            let (id, new) = set.get_or_insert(p, next, |id| positions[first[id as usize] as usize]);
+            let (id, new) =
+                set.get_or_insert_keyed(kh, next, |id| positions[first[id as usize] as usize]);
             if new {
                 first.push((block * 16 + k) as u32);
             }
