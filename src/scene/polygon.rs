@@ -44,7 +44,7 @@ use std::cell::Cell;
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::Once;
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec3A};
 use rustc_hash::FxHashMap;
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
@@ -87,13 +87,16 @@ fn folded(n: DVec3, m: DVec3) -> bool {
 ///   them and open it.
 #[inline]
 pub fn quad(p: [Vec3; 4]) -> Option<usize> {
+    // In SIMD lanes: the same operations on each coordinate, and the dot
+    // products summed in the same order, so the same bits as `Vec3`'s.
+    let p = p.map(Vec3A::from);
     let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
     let (n, m) = (facing(0, 1, 2), facing(0, 2, 3));
     if n.dot(m) > 0.0 {
         Some(0)
     } else if facing(1, 2, 3).dot(facing(1, 3, 0)) > 0.0 {
         Some(1)
-    } else if folded(n.as_dvec3(), m.as_dvec3()) {
+    } else if folded(Vec3::from(n).as_dvec3(), Vec3::from(m).as_dvec3()) {
         Some(0)
     } else {
         None
@@ -327,6 +330,39 @@ fn plane(corners: &[Vec3]) -> Option<(DVec3, DVec3)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// A quad's cut decided in SIMD lanes is the cut decided one
+        /// coordinate at a time (`Vec3`), for quads of every shape and
+        /// scale, flat, folded, crossed and degenerate among them.
+        #[test]
+        fn quad_in_lanes_is_quad_in_scalars(
+            c in prop::collection::vec(
+                prop_oneof![(-4i32..5).prop_map(|i| i as f32 / 7.0), -1.0f32..1.0],
+                12,
+            ),
+            scale in prop::sample::select(vec![1e-30f32, 1e-3, 0.37, 1.0, 3.0e4, 1e30]),
+            flat: bool,
+        ) {
+            let p: [Vec3; 4] = std::array::from_fn(|k| {
+                let z = if flat { 0.0 } else { c[3 * k + 2] };
+                Vec3::new(c[3 * k], c[3 * k + 1], z) * scale
+            });
+            let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
+            let (n, m) = (facing(0, 1, 2), facing(0, 2, 3));
+            let scalar = if n.dot(m) > 0.0 {
+                Some(0)
+            } else if facing(1, 2, 3).dot(facing(1, 3, 0)) > 0.0 {
+                Some(1)
+            } else if folded(n.as_dvec3(), m.as_dvec3()) {
+                Some(0)
+            } else {
+                None
+            };
+            prop_assert_eq!(quad(p), scalar);
+        }
+    }
 
     fn flat(pts: &[(f32, f32)]) -> Vec<Vec3> {
         pts.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect()
