@@ -85,7 +85,12 @@ fn folded(n: DVec3, m: DVec3) -> bool {
 ///   cut every quad. Either diagonal keeps its four edges, so a closed
 ///   surface stays closed; the even-odd cut would add a vertex on two of
 ///   them and open it.
-#[inline]
+///
+/// Out of line: a quad is cut once, at load, and inlined into the OBJ
+/// reader it saved less there (0.35 instructions a byte) than the
+/// program's face loop lost by how the compiler then laid it out (0.5 %
+/// of a Tux frame through `spin`, by callgrind).
+#[inline(never)]
 pub fn quad(p: [Vec3; 4]) -> Option<usize> {
     // In SIMD lanes: the same operations on each coordinate, and the dot
     // products summed in the same order, so the same bits as `Vec3`'s.
