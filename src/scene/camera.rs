@@ -57,11 +57,21 @@ impl Fit {
                 Vec4::new(-p.x + p.y + p.z, 0.0, 0.0, 0.0),
             ]
         };
-        let (mut lo, mut hi) = ([Vec4::INFINITY; 4], [Vec4::NEG_INFINITY; 4]);
+        // Without a finite point, the first point on every axis.
+        let Some(first) = points.iter().position(|p| p.is_finite()) else {
+            return Fit {
+                points: [points.first().copied().unwrap_or(Vec3::ZERO); Fit::POINTS],
+            };
+        };
+        // The first finite point is where each extreme starts, not ±∞: a
+        // finite point's extent can be infinite (1e38 + 3e38 overflows),
+        // and it is then the extreme all the same.
+        let (mut lo, mut hi) = (along(points[first]), along(points[first]));
         // Where each extreme is: the point's index, its bits kept in an
         // f32 lane (a select moves bits, it does no arithmetic).
-        let (mut lo_at, mut hi_at) = ([Vec4::ZERO; 4], [Vec4::ZERO; 4]);
-        for (i, &p) in points.iter().enumerate() {
+        let start = Vec4::splat(f32::from_bits(first as u32));
+        let (mut lo_at, mut hi_at) = ([start; 4], [start; 4]);
+        for (i, &p) in points.iter().enumerate().skip(first + 1) {
             if !p.is_finite() {
                 continue;
             }
