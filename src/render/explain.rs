@@ -329,7 +329,12 @@ fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate
             "",
             m.positions.len(),
             m.positions.len() as f64 / samples,
-            if d.run { 16 } else { 68 },
+            size_of::<super::vertex::Vert>()
+                + if d.run {
+                    0
+                } else {
+                    size_of::<super::vertex::More>()
+                },
         );
     }
     if scene.meshes.len() > RUNS_LISTED {

@@ -67,7 +67,7 @@ impl Scan<'_> {
                 self.i += 1;
                 return Some(true);
             }
-            b' ' if !matches!(self.byte_at(self.i + 1), b' ' | b'\t' | b'\r' | b'\n') => {
+            b' ' if !gap(self.byte_at(self.i + 1)) && self.byte_at(self.i + 1) != b'\n' => {
                 self.i += 1;
                 return Some(false);
             }
