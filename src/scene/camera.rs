@@ -57,21 +57,17 @@ impl Fit {
                 Vec4::new(-p.x + p.y + p.z, 0.0, 0.0, 0.0),
             ]
         };
-        // Without a finite point, the first point on every axis.
-        let Some(first) = points.iter().position(|p| p.is_finite()) else {
-            return Fit {
-                points: [points.first().copied().unwrap_or(Vec3::ZERO); Fit::POINTS],
-            };
-        };
-        // The first finite point is where each extreme starts, not ±∞: a
-        // finite point's extent can be infinite (1e38 + 3e38 overflows),
-        // and it is then the extreme all the same.
-        let (mut lo, mut hi) = (along(points[first]), along(points[first]));
+        let (mut lo, mut hi) = ([Vec4::INFINITY; 4], [Vec4::NEG_INFINITY; 4]);
         // Where each extreme is: the point's index, its bits kept in an
-        // f32 lane (a select moves bits, it does no arithmetic).
+        // f32 lane (a select moves bits, it does no arithmetic). Each starts
+        // at the first finite point (the first point where none is): a
+        // finite point's extent can be infinite (1e38 + 3e38 overflows),
+        // and where every finite point's is, the first is the extreme, though
+        // no comparison with ±∞ moves it there.
+        let first = points.iter().position(|p| p.is_finite()).unwrap_or(0);
         let start = Vec4::splat(f32::from_bits(first as u32));
         let (mut lo_at, mut hi_at) = ([start; 4], [start; 4]);
-        for (i, &p) in points.iter().enumerate().skip(first + 1) {
+        for (i, &p) in points.iter().enumerate() {
             if !p.is_finite() {
                 continue;
             }
