@@ -415,14 +415,7 @@ impl<'a> Reader<'a> {
         // Triangles and quads (nearly every face) on the stack.
         match self.corners[..] {
             [a, b, c] => {
-                // `map`, not `corner_ids`: written that way, this build's
-                // renderer face loop (another module) lost a register, 66k
-                // instructions a Tux frame; triangles are rare in the
-                // large files where the quads' saving counts.
-                let t = [a, b, c].map(|[v, vt, vn]| {
-                    self.all_normals &= vn != NONE;
-                    self.vertex(v, vt, vn)
-                });
+                let t = self.corner_ids([a, b, c]);
                 self.triangles.push(t);
                 return;
             }
