@@ -337,7 +337,10 @@ impl<'a> Reader<'a> {
     /// A `v` of line `n` (checked: below the limit, a finite colour).
     #[inline]
     fn position(&mut self, p: Vec3, color: Option<Lin>, n: usize) {
-        if !p.is_finite() {
+        // Finite: `0·x` is ±0 for each coordinate, and NaN for an infinity
+        // or a NaN (one branch, where `is_finite` takes three).
+        let d = p * 0.0;
+        if d.x + d.y + d.z != 0.0 {
             self.bad_pos.push(n as u32);
             self.any_bad = true;
         }
