@@ -988,11 +988,110 @@ mod tests {
             // Each lane alone, and up to a common factor (a power of two
             // here, as the loader's edges are scaled).
             let got = angles(
-                glam::Vec3A::new(sin, sin * 4.0, sin / 8.0),
-                glam::Vec3A::new(cos, cos * 4.0, cos / 8.0),
+                Vec4::new(sin, sin * 4.0, sin / 8.0, sin * 2.0),
+                Vec4::new(cos, cos * 4.0, cos / 8.0, cos * 2.0),
             );
             assert!((got.x - want).abs() <= 1e-6, "{t}: {} vs {want}", got.x);
-            assert_eq!(got, glam::Vec3A::splat(got.x), "{t}");
+            assert_eq!(got, Vec4::splat(got.x), "{t}");
+        }
+    }
+
+    #[test]
+    fn four_pow2_factors_in_lanes_are_each_alone() {
+        // Every biased exponent (zero and subnormals, normals, infinities
+        // and NaNs), with a few mantissas and both signs.
+        let numbers: Vec<f32> = (0..=255u32)
+            .flat_map(|e| [0, 1, 0x40_0000, 0x7f_ffff].map(|m| f32::from_bits(e << 23 | m)))
+            .flat_map(|x| [x, -x])
+            .collect();
+        for four in numbers.chunks(4) {
+            let (s, t, normal) = pow2_factors4(Vec4::from_slice(four));
+            for (j, &x) in four.iter().enumerate() {
+                let want = crate::transform::pow2_factors(x);
+                assert_eq!(normal >> j & 1 == 1, want.is_some(), "{x:e}");
+                let (ws, wt) = want.unwrap_or((1.0, 1.0));
+                assert_eq!(
+                    (s[j].to_bits(), t[j].to_bits()),
+                    (ws.to_bits(), wt.to_bits()),
+                    "{x:e}"
+                );
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+        /// Four directions in lanes are, bit for bit, each alone (the
+        /// loader's means; the frames rest on these bits).
+        #[test]
+        fn four_directions_in_lanes_are_each_alone(
+            xyz in proptest::collection::vec(coordinate(), 12),
+        ) {
+            let lanes = |axis: usize| Vec4::from_array([0, 1, 2, 3].map(|j| xyz[j * 3 + axis]));
+            let four = direction4([lanes(0), lanes(1), lanes(2)]);
+            for j in 0..4 {
+                let alone = crate::transform::direction(Vec3::from_slice(&xyz[j * 3..j * 3 + 3]));
+                let lane = Vec3::new(four[0][j], four[1][j], four[2][j]);
+                proptest::prop_assert_eq!(
+                    lane.to_array().map(f32::to_bits),
+                    alone.to_array().map(f32::to_bits),
+                    "vector {}",
+                    j
+                );
+            }
+        }
+    }
+
+    /// A coordinate for the lanes test: often one of a few values (so
+    /// faces repeat corners, lie on a line or on an axis), sometimes any
+    /// f32 at all (NaN, infinities, subnormals, the largest).
+    fn coordinate() -> impl proptest::strategy::Strategy<Value = f32> {
+        use proptest::prelude::*;
+        prop_oneof![
+            prop::sample::select(vec![0.0, -0.0, 1.0, -1.0, 2.0, 0.5, 3.0]),
+            -4.0f32..4.0,
+            any::<f32>(),
+            prop::sample::select(vec![1e-30, 3e38, -3e38, 1e-42, 7.0e-39]),
+        ]
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(4000))]
+        /// Four faces in lanes give, bit for bit, what each face gives
+        /// alone: the same normal times each angle, the same angles, the
+        /// same faces of no area (the loader sums the lanes; the frames of
+        /// every model rest on these bits).
+        #[test]
+        fn four_faces_in_lanes_are_each_face_alone(
+            xyz in proptest::collection::vec(coordinate(), 36),
+        ) {
+            let p = |i: usize| Vec3::new(xyz[i * 3], xyz[i * 3 + 1], xyz[i * 3 + 2]);
+            let face = |j: usize| [p(j * 3), p(j * 3 + 1), p(j * 3 + 2)];
+            let lanes = |k: usize, axis: usize| {
+                Vec4::from_array([0, 1, 2, 3].map(|j| face(j)[k][axis]))
+            };
+            let corner = |k: usize| [lanes(k, 0), lanes(k, 1), lanes(k, 2)];
+            let four = face_weights4([corner(0), corner(1), corner(2)]);
+            let bits = |v: Vec4| v.to_array().map(f32::to_bits);
+            for j in 0..4 {
+                let [a, b, c] = face(j);
+                match face_weights(a, b, c) {
+                    None => proptest::prop_assert_eq!(four.area >> j & 1, 0, "face {}", j),
+                    Some((n, w)) => {
+                        proptest::prop_assert_eq!(four.area >> j & 1, 1, "face {}", j);
+                        for k in 0..3 {
+                            let alone = Vec3::from(n * w[k]).extend(w[k]);
+                            proptest::prop_assert_eq!(
+                                bits(four.corner[k][j]),
+                                bits(alone),
+                                "face {} corner {}",
+                                j,
+                                k
+                            );
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -16,7 +16,7 @@
 //! on a face of no area) take the per-position pass. What it costs is in
 //! docs/figures.md ("Loading").
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::mesh::*;
 
@@ -276,53 +276,53 @@ impl Topology {
 
     /// Whether every edge is walked exactly once in each direction (closed
     /// and consistently wound), from a [`Listing::Next`] topology, whose
-    /// lists it sorts in place: no position leads to itself or twice to
-    /// the same position, and each position one leads to leads back. (Then
-    /// the edges form a set that is its own reverse, which is what the
-    /// words say.) Only edges to a higher position need looking up the
-    /// other way (see the code). A list of up to 16 (every position of most meshes) is
-    /// sorted by insertion, a dozen steps for six or so; a position that
-    /// leads back is found by a scan of a short list, a binary search of a
-    /// long one.
+    /// long lists it sorts in place: no position leads to itself or twice
+    /// to the same position, and each position one leads to leads back.
+    /// (Then the edges form a set that is its own reverse, which is what
+    /// the words say.) Only edges to a higher position need looking up the
+    /// other way (see the code). A list of up to 8 (every position of most
+    /// meshes) is checked pair by pair and searched in SIMD lanes, without
+    /// branches; one of up to 16 is sorted on the stack and scanned; a
+    /// longer one is sorted in place and searched by halves.
     pub(super) fn closed(&mut self, faces: &[[u32; 3]]) -> bool {
-        const SMALL: usize = 16;
         assert_eq!(self.listing, Listing::Next);
         if faces.is_empty() {
             return false;
         }
+        // The padding of short lists must be ids no position has.
+        if self.welded() > (u32::MAX - 8) as usize {
+            return false;
+        }
         for p in 0..self.welded() {
             let range = self.range(p);
-            let next = &mut self.list[range];
-            let p = p as u32;
-            let ok = if next.len() <= SMALL {
-                // Sorted as it is checked: a repeat lands just after its twin.
-                let mut ok = true;
-                for i in 0..next.len() {
-                    let x = next[i];
-                    let at = insert(next, i, x);
-                    ok &= x != p && (at == 0 || next[at - 1] != x);
-                }
-                ok
-            } else {
-                next.sort_unstable();
-                next.windows(2).all(|w| w[0] != w[1]) && next.binary_search(&p).is_err()
-            };
-            if !ok {
-                return false;
+            if range.len() > SMALL {
+                self.list[range].sort_unstable();
             }
         }
-        // Only edges up (to a higher position) are looked for the other way.
-        // Each corner is an edge out of its position and one into it, so
-        // at every position as many edges leave as arrive, and so do the
-        // edges without their reverse: if there are any, they go round in
-        // cycles, and a cycle goes up somewhere.
+        let list = &self.list;
+        let row = |p: usize| &list[self.start[p] as usize..self.start[p + 1] as usize];
         (0..self.welded()).all(|p| {
+            let next = row(p);
             let p = p as u32;
-            self.list[self.range(p as usize)]
-                .iter()
-                .filter(|&&q| q > p)
-                .all(|&q| {
-                    let back = &self.list[self.range(q as usize)];
+            let distinct = if next.len() <= 8 {
+                distinct8(next, p)
+            } else if next.len() <= SMALL {
+                let mut v = [0u32; SMALL];
+                v[..next.len()].copy_from_slice(next);
+                let v = &mut v[..next.len()];
+                v.sort_unstable();
+                v.windows(2).all(|w| w[0] != w[1]) && !v.contains(&p)
+            } else {
+                next.windows(2).all(|w| w[0] != w[1]) && next.binary_search(&p).is_err()
+            };
+            // Only edges up (to a higher position) are looked for the other
+            // way. Each corner is an edge out of its position and one into
+            // it, so at every position as many edges leave as arrive, and
+            // so do the edges without their reverse: if there are any, they
+            // go round in cycles, and a cycle goes up somewhere.
+            distinct
+                && next.iter().filter(|&&q| q > p).all(|&q| {
+                    let back = row(q as usize);
                     if back.len() <= SMALL {
                         back.contains(&p)
                     } else {
@@ -352,17 +352,25 @@ impl Topology {
     }
 }
 
-/// Puts `x` into `sorted[..len]` in order (one step of an insertion sort),
-/// and says where.
-#[inline]
-fn insert(sorted: &mut [u32], len: usize, x: u32) -> usize {
-    let mut i = len;
-    while i > 0 && sorted[i - 1] > x {
-        sorted[i] = sorted[i - 1];
-        i -= 1;
+/// Lists around a position up to this long are checked on the stack.
+const SMALL: usize = 16;
+
+/// Whether the up to eight ids of `list` differ from each other and from
+/// `p`: every pair compared, without branches (in SIMD lanes, as the
+/// compiler lays them out), the slots past the list holding ids no
+/// position has, each its own (`u32::MAX - slot`).
+#[inline(always)]
+fn distinct8(list: &[u32], p: u32) -> bool {
+    let mut v: [u32; 8] = std::array::from_fn(|i| u32::MAX - i as u32);
+    v[..list.len()].copy_from_slice(list);
+    let mut same = 0u32;
+    for i in 0..8 {
+        same |= (v[i] == p) as u32;
+        for j in i + 1..8 {
+            same |= (v[i] == v[j]) as u32;
+        }
     }
-    sorted[i] = x;
-    i
+    same == 0
 }
 
 /// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
@@ -426,7 +434,7 @@ pub(super) const MAX_CREASE_FAN: usize = 256;
 /// below 4e-8 before f32 rounding), then reflected into place. A weight,
 /// where libm's `atan2` cost a seventh of loading a large model; a face's
 /// three corners in one go.
-pub(super) fn angles(sin: Vec3A, cos: Vec3A) -> Vec3A {
+pub(super) fn angles(sin: Vec4, cos: Vec4) -> Vec4 {
     use std::f32::consts::{FRAC_PI_2, PI};
     const C: [f32; 8] = [
         0.999_999_3,
@@ -444,9 +452,9 @@ pub(super) fn angles(sin: Vec3A, cos: Vec3A) -> Vec3A {
     let r = t * C
         .iter()
         .rev()
-        .fold(Vec3A::ZERO, |p, &c| p * t2 + Vec3A::splat(c));
-    let r = Vec3A::select(a.cmpgt(b), Vec3A::splat(FRAC_PI_2) - r, r);
-    Vec3A::select(cos.cmplt(Vec3A::ZERO), Vec3A::splat(PI) - r, r)
+        .fold(Vec4::ZERO, |p, &c| p * t2 + Vec4::splat(c));
+    let r = Vec4::select(a.cmpgt(b), Vec4::splat(FRAC_PI_2) - r, r);
+    Vec4::select(cos.cmplt(Vec4::ZERO), Vec4::splat(PI) - r, r)
 }
 
 /// A face's unit normal and its edges `b − a`, `c − b`, `a − c` scaled
@@ -478,8 +486,196 @@ fn face_frame(a: Vec3, b: Vec3, c: Vec3) -> Option<(Vec3A, f32, [Vec3A; 3])> {
 #[inline]
 pub(super) fn face_weights(a: Vec3, b: Vec3, c: Vec3) -> Option<(Vec3A, Vec3A)> {
     let (n, twice_area, [ab, bc, ca]) = face_frame(a, b, c)?;
-    let cos = Vec3A::new(-ab.dot(ca), -bc.dot(ab), -ca.dot(bc));
-    Some((n, angles(Vec3A::splat(twice_area), cos)))
+    let cos = Vec4::new(-ab.dot(ca), -bc.dot(ab), -ca.dot(bc), 0.0);
+    Some((n, angles(Vec4::splat(twice_area), cos).truncate().into()))
+}
+
+/// [`crate::transform::pow2_factors`] of four numbers at once, lane by
+/// lane the same integer steps on the exponent (which the compiler lays out
+/// in SIMD lanes): the two factors (1 where there are none) and which lanes
+/// have them, a bit each.
+#[inline(always)]
+pub(super) fn pow2_factors4(max: Vec4) -> (Vec4, Vec4, u32) {
+    let bits = [
+        max.x.to_bits(),
+        max.y.to_bits(),
+        max.z.to_bits(),
+        max.w.to_bits(),
+    ];
+    let mut s = [0u32; 4];
+    let mut t = [0u32; 4];
+    let mut normal = 0u32;
+    for j in 0..4 {
+        let exponent = bits[j] >> 23 & 0xff;
+        // Normal: a biased exponent from 1 to 254.
+        let ok = exponent.wrapping_sub(1) < 254;
+        let e = exponent as i32 - 127;
+        // −e / 2, rounded toward zero, as Rust's `/` rounds.
+        let a = (-e + ((-e) as u32 >> 31) as i32) >> 1;
+        let b = -e - a;
+        // Without branches: all ones where normal.
+        let keep = 0u32.wrapping_sub(ok as u32);
+        let one = 1.0f32.to_bits() & !keep;
+        s[j] = (((a + 127) as u32) << 23) & keep | one;
+        t[j] = (((b + 127) as u32) << 23) & keep | one;
+        normal |= (ok as u32) << j;
+    }
+    let f = |v: [u32; 4]| {
+        Vec4::new(
+            f32::from_bits(v[0]),
+            f32::from_bits(v[1]),
+            f32::from_bits(v[2]),
+            f32::from_bits(v[3]),
+        )
+    };
+    (f(s), f(t), normal)
+}
+
+/// [`crate::transform::direction`] of four vectors at once, a vector a
+/// lane (`[x, y, z]`), lane by lane the same steps: brought to a largest
+/// component in [1, 2) by two powers of two (by 1 where there are none,
+/// which changes nothing), then divided by the length's reciprocal times
+/// itself, or zero where that reciprocal is not finite and positive.
+#[inline(always)]
+pub(super) fn direction4([x, y, z]: [Vec4; 3]) -> [Vec4; 3] {
+    // `max` as glam's scalar max_element takes it: the second where the
+    // first is not larger (as SSE's max does).
+    let (s, t, _) = pow2_factors4(x.abs().max(y.abs().max(z.abs())));
+    let (x, y, z) = (x * s * t, y * s * t, z * s * t);
+    let rcp = Vec4::ONE / (x * x + y * y + z * z).sqrt();
+    let ok = rcp.cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
+    let keep = |v: Vec4| Vec4::select(ok, v * rcp, Vec4::ZERO);
+    [keep(x), keep(y), keep(z)]
+}
+
+/// Four faces at once, a face a lane: `corner[k][axis]` holds that
+/// coordinate of corner `k` of each face.
+pub(super) type Corners4 = [[Vec4; 3]; 3];
+
+/// What [`face_weights4`] finds for four faces.
+pub(super) struct Weights4 {
+    /// `corner[k][j]`: at corner `k` of face `j`, the face's unit normal
+    /// times its angle there (x, y, z) and the angle (w).
+    pub(super) corner: [[Vec4; 4]; 3],
+    /// Which faces have area, a bit each (the others' numbers mean
+    /// nothing).
+    pub(super) area: u32,
+}
+
+/// [`face_weights`] of four faces at once, lane by lane the same
+/// operations in the same order, so the same bits (a test holds them to
+/// it): each step of one face runs on four faces' numbers in one SIMD
+/// operation, where [`face_weights`] fills three lanes of four and
+/// shuffles them for its cross and dot products.
+#[inline]
+pub(super) fn face_weights4([a, b, c]: Corners4) -> Weights4 {
+    let sub = |p: [Vec4; 3], q: [Vec4; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let (ab, bc, ca) = (sub(b, a), sub(c, b), sub(a, c));
+    // The largest component's magnitude: a NaN it drops makes the cross
+    // product NaN below, and the face one of no area, as in face_frame.
+    let max = [ab, bc, ca]
+        .iter()
+        .flatten()
+        .fold(Vec4::ZERO, |m, v| m.max(v.abs()));
+    let (s, t, mut area) = pow2_factors4(max);
+    // (Not `[T; N]::map`, which is not always inlined.)
+    let scale = |[x, y, z]: [Vec4; 3]| [x * s * t, y * s * t, z * s * t];
+    let (ab, bc, ca) = (scale(ab), scale(bc), scale(ca));
+    // ab × (−ca), each component as glam's cross makes it.
+    let v = [-ca[0], -ca[1], -ca[2]];
+    let cross = [
+        ab[1] * v[2] - v[1] * ab[2],
+        ab[2] * v[0] - v[2] * ab[0],
+        ab[0] * v[1] - v[0] * ab[1],
+    ];
+    // Dot products as glam's: (x + y) + z.
+    let dot = |p: [Vec4; 3], q: [Vec4; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+    let twice_area = dot(cross, cross).sqrt();
+    area &= (twice_area.cmpgt(Vec4::ZERO) & twice_area.cmplt(Vec4::INFINITY)).bitmask();
+    let n = [
+        cross[0] / twice_area,
+        cross[1] / twice_area,
+        cross[2] / twice_area,
+    ];
+    let angle = [
+        angles(twice_area, -dot(ab, ca)),
+        angles(twice_area, -dot(bc, ab)),
+        angles(twice_area, -dot(ca, bc)),
+    ];
+    // Lanes to faces: one transpose a corner.
+    let corner = |w: Vec4| {
+        let m = glam::Mat4::from_cols(n[0] * w, n[1] * w, n[2] * w, w).transpose();
+        [m.x_axis, m.y_axis, m.z_axis, m.w_axis]
+    };
+    Weights4 {
+        corner: [corner(angle[0]), corner(angle[1]), corner(angle[2])],
+        area,
+    }
+}
+
+/// Per position: proven one smooth fan, to be tested, or creased.
+const SMOOTH: u8 = 0;
+const TEST: u8 = 1;
+const CREASED: u8 = 2;
+
+/// The first pass's tables, each indexed by welded position.
+struct Sums<'a> {
+    /// Each position's sum of weighted face normals.
+    sums: &'a mut [Vec3],
+    /// Each position's sum of weights.
+    total: &'a mut [f32],
+    /// Each position's least weight.
+    least: &'a mut [f32],
+    /// Each position's state (`SMOOTH`, `TEST` or `CREASED`).
+    state: &'a mut [u8],
+}
+
+impl Sums<'_> {
+    /// Adds the first `len` of faces `four` to the sums, in order (faces
+    /// of no area mark their positions for the per-position pass).
+    #[inline(always)]
+    fn add_four(&mut self, positions: &[Vec3], ids: &[u32], four: &[[u32; 3]; 4], len: usize) {
+        // One length for each kind of table, so that one bounds check
+        // serves all of a kind.
+        let n = self.sums.len();
+        let (sums, total, least, state) = (
+            &mut *self.sums,
+            &mut self.total[..n],
+            &mut self.least[..n],
+            &mut self.state[..n],
+        );
+        let ids = &ids[..positions.len()];
+        let mut at = [[0usize; 3]; 4];
+        // Corner k of the four faces: four positions, transposed to lanes.
+        let mut corner = |k: usize| {
+            let mut p = [Vec4::ZERO; 4];
+            for j in 0..4 {
+                let v = four[j][k] as usize;
+                p[j] = Vec3A::from(positions[v]).extend(0.0);
+                at[j][k] = ids[v] as usize;
+            }
+            let m = glam::Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
+            [m.x_axis, m.y_axis, m.z_axis]
+        };
+        let w = face_weights4([corner(0), corner(1), corner(2)]);
+        // Face by face, in order.
+        for (j, p) in at.into_iter().enumerate().take(len) {
+            if w.area >> j & 1 == 0 {
+                p.iter().for_each(|&p| state[p] = CREASED);
+                continue;
+            }
+            for k in 0..3 {
+                let v = w.corner[k][j];
+                sums[p[k]] += v.truncate();
+                total[p[k]] += v.w;
+                // `min`, as one comparison: the least is never NaN (it
+                // starts at infinity), and a NaN weight leaves it as `min`
+                // does.
+                let l = &mut least[p[k]];
+                *l = if v.w < *l { v.w } else { *l };
+            }
+        }
+    }
 }
 
 /// Angle-weighted normals per position with creases (see the module doc):
@@ -513,27 +709,24 @@ pub(super) fn smooth_normals(
     // Per position: the weights' sum, and the least weight.
     let mut total = vec![0.0f32; topo.welded()];
     let mut least = vec![f32::INFINITY; topo.welded()];
-    // Per position: proven one smooth fan, to be tested, or creased.
-    const SMOOTH: u8 = 0;
-    const TEST: u8 = 1;
-    const CREASED: u8 = 2;
     let mut state = vec![SMOOTH; topo.welded()];
-    for f in faces {
-        let p = f.map(|v| ids[v as usize] as usize);
-        match face_weights_of(corners(f)) {
-            Some((n, w)) => {
-                for k in 0..3 {
-                    normals[p[k]] += Vec3::from(n * w[k]);
-                    total[p[k]] += w[k];
-                    // `min`, as one comparison: the least is never NaN
-                    // (it starts at infinity), and a NaN weight leaves it
-                    // as `min` does.
-                    let l = &mut least[p[k]];
-                    *l = if w[k] < *l { w[k] } else { *l };
-                }
-            }
-            // A face of no area: its corners take the per-position pass.
-            None => p.iter().for_each(|&p| state[p] = CREASED),
+    {
+        let mut sums = Sums {
+            sums: &mut normals[..topo.welded()],
+            total: &mut total,
+            least: &mut least,
+            state: &mut state,
+        };
+        // Four faces at a time, a face a lane; the last few padded with
+        // copies of the last face, whose sums are not added.
+        let fours = faces.as_chunks::<4>();
+        for four in fours.0 {
+            sums.add_four(positions, ids, four, 4);
+        }
+        if let Some(&last) = fours.1.last() {
+            let mut four = [last; 4];
+            four[..fours.1.len()].copy_from_slice(fours.1);
+            sums.add_four(positions, ids, &four, fours.1.len());
         }
     }
     // One smooth fan when every face is within half the crease angle of
@@ -545,22 +738,61 @@ pub(super) fn smooth_normals(
     // the crease, and only the positions it does not prove are tested face
     // by face, with the very test the per-position pass made.
     let mut test = false;
-    // The sums become the means, in place.
-    for (p, (((sum, &total), &least), state)) in normals
-        .iter_mut()
-        .zip(&total)
-        .zip(&least)
-        .zip(&mut state)
-        .enumerate()
-    {
-        let length = sum.length();
-        if *state == SMOOTH
-            && topo.fan(p) <= MAX_CREASE_FAN
-            && length <= total - least * (1.0 - cos_half) + 1e-4 * total
-        {
+    // The sums become the means, in place, four at a time (a position a
+    // lane), then the last few one by one: the same bits either way.
+    let bound = |total: f32, least: f32| total - least * (1.0 - cos_half) + 1e-4 * total;
+    let bound4 = |total: Vec4, least: Vec4| total - least * (1.0 - cos_half) + 1e-4 * total;
+    let mut settle = |p: usize, state: &mut u8, length_within: bool| {
+        if length_within && *state == SMOOTH && topo.fan(p) <= MAX_CREASE_FAN {
             *state = TEST;
             test = true;
         }
+    };
+    let welded = topo.welded();
+    let (sums, totals, leasts, states) = (
+        &mut normals[..welded],
+        &total[..welded],
+        &least[..welded],
+        &mut state[..welded],
+    );
+    let (four_sums, rest) = sums.as_chunks_mut::<4>();
+    for (i, four) in four_sums.iter_mut().enumerate() {
+        let p = i * 4;
+        let m = glam::Mat4::from_cols(
+            four[0].extend(0.0),
+            four[1].extend(0.0),
+            four[2].extend(0.0),
+            four[3].extend(0.0),
+        )
+        .transpose();
+        let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
+        let length = (x * x + y * y + z * z).sqrt();
+        let within = length
+            .cmple(bound4(
+                Vec4::from_slice(&totals[p..p + 4]),
+                Vec4::from_slice(&leasts[p..p + 4]),
+            ))
+            .bitmask();
+        for (j, state) in states[p..p + 4].iter_mut().enumerate() {
+            settle(p + j, state, within >> j & 1 == 1);
+        }
+        let [x, y, z] = direction4([x, y, z]);
+        let m = glam::Mat4::from_cols(x, y, z, Vec4::ZERO).transpose();
+        *four = [
+            m.x_axis.truncate(),
+            m.y_axis.truncate(),
+            m.z_axis.truncate(),
+            m.w_axis.truncate(),
+        ];
+    }
+    let first = welded - rest.len();
+    for (k, sum) in rest.iter_mut().enumerate() {
+        let p = first + k;
+        settle(
+            p,
+            &mut states[p],
+            sum.length() <= bound(totals[p], leasts[p]),
+        );
         *sum = direction(*sum);
     }
     drop((total, least));
