@@ -997,6 +997,28 @@ mod tests {
     }
 
     #[test]
+    fn a_vertex_no_face_uses_gets_plus_z_and_changes_no_other() {
+        let tetra = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+        ];
+        let faces = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        let alone = Geometry::new("tetra", tetra.clone(), faces.clone());
+        // A stray vertex at a place of its own (every vertex its own
+        // position), then one at a used vertex's place (welded to it).
+        for stray in [Vec3::new(5.0, 5.0, 5.0), tetra[0]] {
+            let mut positions = tetra.clone();
+            positions.push(stray);
+            let g = Geometry::new("tetra", positions, faces.clone());
+            assert_eq!(g.normals[4], Vec3::Z, "{stray}");
+            assert_eq!(g.normals[..4], alone.normals[..4], "{stray}");
+            assert!(g.closed, "{stray}");
+        }
+    }
+
+    #[test]
     fn four_pow2_factors_in_lanes_are_each_alone() {
         // Every biased exponent (zero and subnormals, normals, infinities
         // and NaNs), with a few mantissas and both signs.

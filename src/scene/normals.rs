@@ -180,8 +180,10 @@ pub(super) struct Topology {
     list: Vec<u32>,
     listing: Listing,
     /// Which vertices a face uses, a bit each (found in the pass that
-    /// counts the corners; the normals give the others +z).
-    pub(super) used: Vec<u64>,
+    /// counts the corners; the normals give the others +z); `None` when
+    /// every vertex is its own welded position (then `ids[v] == v`, and
+    /// a vertex is used when a face has a corner at its position).
+    pub(super) used: Option<Vec<u64>>,
 }
 
 /// What [`Topology`] lists around each welded position.
@@ -203,13 +205,24 @@ impl Topology {
         let (ids, welded) = weld(positions);
         // Counting sort of the corners by welded position.
         let mut start = vec![0u32; welded + 1];
-        let mut used = vec![0u64; positions.len().div_ceil(64)];
+        let mut used = (welded < positions.len()).then(|| vec![0u64; positions.len().div_ceil(64)]);
         // Face by face, its three corners unrolled (a flattened iterator
         // costs twice the instructions here).
-        for face in faces {
-            for &i in face {
-                start[ids[i as usize] as usize + 1] += 1;
-                used[i as usize / 64] |= 1 << (i % 64);
+        match &mut used {
+            Some(used) => {
+                for face in faces {
+                    for &i in face {
+                        start[ids[i as usize] as usize + 1] += 1;
+                        used[i as usize / 64] |= 1 << (i % 64);
+                    }
+                }
+            }
+            None => {
+                for face in faces {
+                    for &i in face {
+                        start[ids[i as usize] as usize + 1] += 1;
+                    }
+                }
             }
         }
         for p in 0..welded {
@@ -828,20 +841,35 @@ pub(super) fn smooth_normals(
         .collect();
     big.shrink_to_fit();
     let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
-    // Which vertices a face uses: the others are +z.
-    let used = &topo.used;
-    // Each vertex's normal, from the last down (see above: vertex `v`
-    // reads position `ids[v] <= v`, not yet overwritten). Not yet set (a
-    // creased position's): NaN.
-    for v in (0..positions.len()).rev() {
-        let p = ids[v] as usize;
-        normals[v] = if used[v / 64] >> (v % 64) & 1 == 0 {
-            Vec3::Z
-        } else if creased(p) {
-            Vec3::NAN
-        } else {
-            fix(normals[p])
-        };
+    // Each vertex's normal: +z for one no face uses; not yet set (NaN)
+    // for a creased position's.
+    match &topo.used {
+        Some(used) => {
+            // From the last down (see above: vertex `v` reads position
+            // `ids[v] <= v`, not yet overwritten).
+            for v in (0..positions.len()).rev() {
+                let p = ids[v] as usize;
+                normals[v] = if used[v / 64] >> (v % 64) & 1 == 0 {
+                    Vec3::Z
+                } else if creased(p) {
+                    Vec3::NAN
+                } else {
+                    fix(normals[p])
+                };
+            }
+        }
+        // Each vertex its own position, in place.
+        None => {
+            for (p, n) in normals.iter_mut().enumerate() {
+                *n = if topo.fan(p) == 0 {
+                    Vec3::Z
+                } else if creased(p) {
+                    Vec3::NAN
+                } else {
+                    fix(*n)
+                };
+            }
+        }
     }
     // The corners at creased positions, by position and in order at each
     // (the order the corners around a position are listed in): the
