@@ -172,8 +172,11 @@ pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
 /// closedness, which needs nothing else). No edge table is ever hashed: an
 /// edge's other side is found among the few entries around its end.
 pub(super) struct Topology {
-    /// The welded position of each vertex.
-    pub(super) ids: Vec<u32>,
+    /// The welded position of each vertex; `None` when every vertex is its
+    /// own (vertex `v` at position `v`), as in most files without texture
+    /// coordinates: then no table is kept (4 bytes a vertex, at the peak
+    /// of loading) or read.
+    pub(super) ids: Option<Vec<u32>>,
     /// The entries around welded position `p` are
     /// `list[start[p]..start[p + 1]]`.
     start: Vec<u32>,
@@ -181,8 +184,8 @@ pub(super) struct Topology {
     listing: Listing,
     /// Which vertices a face uses, a bit each (found in the pass that
     /// counts the corners; the normals give the others +z); `None` when
-    /// every vertex is its own welded position (then `ids[v] == v`, and
-    /// a vertex is used when a face has a corner at its position).
+    /// every vertex is its own welded position (then a vertex is used when
+    /// a face has a corner at its position).
     pub(super) used: Option<Vec<u64>>,
 }
 
@@ -196,6 +199,92 @@ pub(super) enum Listing {
     Next,
 }
 
+/// Where a vertex's welded position is found: in a table of them
+/// (`&[u32]`), or the vertex's own number ([`Own`]): each pass that reads
+/// them is compiled for each, so the common case reads no table.
+pub(super) trait Welded: Copy {
+    /// The welded position of vertex `v`.
+    fn of(self, v: u32) -> u32;
+
+    /// Those of the first `n` vertices only (a table cut to `n`, so that
+    /// one bounds check on a vertex serves it and the positions).
+    fn first(self, n: usize) -> Self;
+}
+
+/// Every vertex is its own welded position.
+#[derive(Clone, Copy)]
+pub(super) struct Own;
+
+impl Welded for Own {
+    #[inline(always)]
+    fn of(self, v: u32) -> u32 {
+        v
+    }
+
+    fn first(self, _: usize) -> Self {
+        self
+    }
+}
+
+impl Welded for &[u32] {
+    #[inline(always)]
+    fn of(self, v: u32) -> u32 {
+        self[v as usize]
+    }
+
+    fn first(self, n: usize) -> Self {
+        &self[..n]
+    }
+}
+
+/// The counting sort of [`Topology::new`]: each welded position's first
+/// entry (then, shifted, one past its last) and the entries, and which
+/// vertices a face uses where `used` is given.
+fn corners_by_position(
+    ids: impl Welded,
+    welded: usize,
+    faces: &[[u32; 3]],
+    listing: Listing,
+    used: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; welded + 1];
+    // Face by face, its three corners unrolled (a flattened iterator
+    // costs twice the instructions here).
+    match used {
+        Some(used) => {
+            for face in faces {
+                for &i in face {
+                    start[ids.of(i) as usize + 1] += 1;
+                    used[i as usize / 64] |= 1 << (i % 64);
+                }
+            }
+        }
+        None => {
+            for face in faces {
+                for &i in face {
+                    start[ids.of(i) as usize + 1] += 1;
+                }
+            }
+        }
+    }
+    for p in 0..welded {
+        start[p + 1] += start[p];
+    }
+    let mut list = vec![0u32; faces.len() * 3];
+    for (f, face) in faces.iter().enumerate() {
+        let w = [ids.of(face[0]), ids.of(face[1]), ids.of(face[2])];
+        for k in 0..3 {
+            let slot = &mut start[w[k] as usize];
+            list[*slot as usize] = match listing {
+                Listing::Corners => (f * 3 + k) as u32,
+                Listing::Next => w[if k == 2 { 0 } else { k + 1 }],
+            };
+            *slot += 1;
+        }
+    }
+    (start, list)
+}
+
 impl Topology {
     /// At most this many faces: corners are numbered in a u32.
     const MAX_FACES: usize = (u32::MAX / 3) as usize;
@@ -203,43 +292,16 @@ impl Topology {
     pub(super) fn new(positions: &[Vec3], faces: &[[u32; 3]], listing: Listing) -> Topology {
         assert!(faces.len() <= Self::MAX_FACES, "too many faces");
         let (ids, welded) = weld(positions);
-        // Counting sort of the corners by welded position.
-        let mut start = vec![0u32; welded + 1];
-        let mut used = (welded < positions.len()).then(|| vec![0u64; positions.len().div_ceil(64)]);
-        // Face by face, its three corners unrolled (a flattened iterator
-        // costs twice the instructions here).
-        match &mut used {
-            Some(used) => {
-                for face in faces {
-                    for &i in face {
-                        start[ids[i as usize] as usize + 1] += 1;
-                        used[i as usize / 64] |= 1 << (i % 64);
-                    }
-                }
+        let ids = (welded < positions.len()).then_some(ids);
+        let mut used = ids
+            .is_some()
+            .then(|| vec![0u64; positions.len().div_ceil(64)]);
+        let (mut start, list) = match &ids {
+            Some(ids) => {
+                corners_by_position(ids.as_slice(), welded, faces, listing, used.as_deref_mut())
             }
-            None => {
-                for face in faces {
-                    for &i in face {
-                        start[ids[i as usize] as usize + 1] += 1;
-                    }
-                }
-            }
-        }
-        for p in 0..welded {
-            start[p + 1] += start[p];
-        }
-        let mut list = vec![0u32; faces.len() * 3];
-        for (f, face) in faces.iter().enumerate() {
-            let w = face.map(|i| ids[i as usize]);
-            for k in 0..3 {
-                let slot = &mut start[w[k] as usize];
-                list[*slot as usize] = match listing {
-                    Listing::Corners => (f * 3 + k) as u32,
-                    Listing::Next => w[if k == 2 { 0 } else { k + 1 }],
-                };
-                *slot += 1;
-            }
-        }
+            None => corners_by_position(Own, welded, faces, listing, None),
+        };
         // Each slot now holds its successor's start: shift back.
         start.rotate_right(1);
         start[0] = 0;
@@ -250,6 +312,11 @@ impl Topology {
             listing,
             used,
         }
+    }
+
+    /// The welded position of vertex `v`.
+    pub(super) fn id(&self, v: u32) -> u32 {
+        self.ids.as_ref().map_or(v, |ids| ids[v as usize])
     }
 
     /// How many welded positions there are.
@@ -284,7 +351,7 @@ impl Topology {
 
     /// The welded position at corner `c` (`face * 3 + k`).
     pub(super) fn at(&self, faces: &[[u32; 3]], c: u32) -> u32 {
-        self.ids[faces[(c / 3) as usize][(c % 3) as usize] as usize]
+        self.id(faces[(c / 3) as usize][(c % 3) as usize])
     }
 
     /// Whether every edge is walked exactly once in each direction (closed
@@ -405,7 +472,7 @@ pub(super) fn convex(g: &Geometry) -> bool {
         let base = f as u32 * 3;
         for k in 0..3 {
             let c = base + k;
-            if topo.ids[face[k as usize] as usize] > topo.at(&g.faces, base + (k + 1) % 3) {
+            if topo.id(face[k as usize]) > topo.at(&g.faces, base + (k + 1) % 3) {
                 continue;
             }
             let Some(far) = topo.across(&g.faces, c) else {
@@ -644,10 +711,25 @@ struct Sums<'a> {
 }
 
 impl Sums<'_> {
+    /// Adds every face to the sums, in order: four at a time, a face a
+    /// lane; the last few padded with copies of the last face, whose sums
+    /// are not added.
+    fn add_all(&mut self, positions: &[Vec3], ids: impl Welded, faces: &[[u32; 3]]) {
+        let fours = faces.as_chunks::<4>();
+        for four in fours.0 {
+            self.add_four(positions, ids, four, 4);
+        }
+        if let Some(&last) = fours.1.last() {
+            let mut four = [last; 4];
+            four[..fours.1.len()].copy_from_slice(fours.1);
+            self.add_four(positions, ids, &four, fours.1.len());
+        }
+    }
+
     /// Adds the first `len` of faces `four` to the sums, in order (faces
     /// of no area mark their positions for the per-position pass).
     #[inline(always)]
-    fn add_four(&mut self, positions: &[Vec3], ids: &[u32], four: &[[u32; 3]; 4], len: usize) {
+    fn add_four(&mut self, positions: &[Vec3], ids: impl Welded, four: &[[u32; 3]; 4], len: usize) {
         // One length for each kind of table, so that one bounds check
         // serves all of a kind.
         let n = self.sums.len();
@@ -657,7 +739,7 @@ impl Sums<'_> {
             &mut self.least[..n],
             &mut self.state[..n],
         );
-        let ids = &ids[..positions.len()];
+        let ids = ids.first(positions.len());
         let mut at = [[0usize; 3]; 4];
         // Corner k of the four faces: four positions, transposed to lanes.
         let mut corner = |k: usize| {
@@ -665,7 +747,7 @@ impl Sums<'_> {
             for j in 0..4 {
                 let v = four[j][k] as usize;
                 p[j] = Vec3A::from(positions[v]).extend(0.0);
-                at[j][k] = ids[v] as usize;
+                at[j][k] = ids.of(v as u32) as usize;
             }
             let m = glam::Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
             [m.x_axis, m.y_axis, m.z_axis]
@@ -711,7 +793,7 @@ pub(super) fn smooth_normals(
     use crate::transform::direction;
     let cos_crease = crease.to_radians().cos();
     let cos_half = (crease / 2.0).to_radians().cos();
-    let ids = &topo.ids;
+    let id = |v: u32| topo.id(v) as usize;
     let corners = |f: &[u32; 3]| f.map(|v| positions[v as usize]);
     // The normals, one per vertex, are first each position's sum of
     // weighted face normals, then its mean (position `p` at index `p`,
@@ -732,14 +814,9 @@ pub(super) fn smooth_normals(
         };
         // Four faces at a time, a face a lane; the last few padded with
         // copies of the last face, whose sums are not added.
-        let fours = faces.as_chunks::<4>();
-        for four in fours.0 {
-            sums.add_four(positions, ids, four, 4);
-        }
-        if let Some(&last) = fours.1.last() {
-            let mut four = [last; 4];
-            four[..fours.1.len()].copy_from_slice(fours.1);
-            sums.add_four(positions, ids, &four, fours.1.len());
+        match &topo.ids {
+            Some(ids) => sums.add_all(positions, ids.as_slice(), faces),
+            None => sums.add_all(positions, Own, faces),
         }
     }
     // One smooth fan when every face is within half the crease angle of
@@ -811,7 +888,7 @@ pub(super) fn smooth_normals(
     drop((total, least));
     if test {
         for f in faces {
-            let p = f.map(|v| ids[v as usize] as usize);
+            let p = f.map(id);
             if p.iter().all(|&p| state[p] != TEST) {
                 continue;
             }
@@ -843,8 +920,8 @@ pub(super) fn smooth_normals(
     let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
     // Each vertex's normal: +z for one no face uses; not yet set (NaN)
     // for a creased position's.
-    match &topo.used {
-        Some(used) => {
+    match (&topo.used, &topo.ids) {
+        (Some(used), Some(ids)) => {
             // From the last down (see above: vertex `v` reads position
             // `ids[v] <= v`, not yet overwritten).
             for v in (0..positions.len()).rev() {
@@ -859,7 +936,7 @@ pub(super) fn smooth_normals(
             }
         }
         // Each vertex its own position, in place.
-        None => {
+        _ => {
             for (p, n) in normals.iter_mut().enumerate() {
                 *n = if topo.fan(p) == 0 {
                     Vec3::Z
@@ -874,11 +951,11 @@ pub(super) fn smooth_normals(
     // The corners at creased positions, by position and in order at each
     // (the order the corners around a position are listed in): the
     // per-position pass's, without keeping every position's corners.
-    let at = |c: u32| ids[faces[(c / 3) as usize][(c % 3) as usize] as usize];
+    let at = |c: u32| id(faces[(c / 3) as usize][(c % 3) as usize]);
     let mut creased_corners: Vec<u32> = Vec::new();
     if state.contains(&CREASED) {
         for (c, &v) in faces.iter().flatten().enumerate() {
-            if creased(ids[v as usize] as usize) {
+            if creased(id(v)) {
                 creased_corners.push(c as u32);
             }
         }
@@ -888,7 +965,7 @@ pub(super) fn smooth_normals(
     // The faces around one creased position: unit normal and the angle there.
     let mut fan: Vec<(Vec3, f32)> = Vec::new();
     for around in creased_corners.chunk_by(|&a, &b| at(a) == at(b)) {
-        let p = at(around[0]) as usize;
+        let p = at(around[0]);
         fan.clear();
         fan.extend(around.iter().map(|&c| {
             let f = &faces[(c / 3) as usize];
