@@ -3,13 +3,20 @@
 //! edges lead to (for whether the mesh is closed) or its corners (for
 //! whether it is convex, when the planner asks) listed by a counting sort;
 //! the angle-weighted normals with the
-//! crease rule. The layout and the reasons are in `mesh.rs`.
+//! crease rule. The layout and the reasons are in `mesh.rs`. When every
+//! vertex is its own position (most files without texture coordinates) no
+//! table of welded positions is kept: the passes that would read one are
+//! compiled for both cases ([`Welded`]).
 //!
 //! **Normals** are summed in passes over the faces in order, each face's
-//! normal and its three corner angles found once (one cross product, the
-//! angles in three SIMD lanes), rather than once for each of its corners
-//! from the positions' side: the sums come out in the same order, and the
-//! frames of every shared model are the same bytes. Whether a position's
+//! normal and its three corner angles found once, rather than once for each
+//! of its corners from the positions' side: the sums come out in the same
+//! order, and the frames of every shared model are the same bytes. Four
+//! faces are found at once, a face a SIMD lane ([`face_weights4`]), and
+//! four positions' means at once ([`direction4`]): each lane runs the
+//! operations of the one-at-a-time code in its order, so the same bits,
+//! which property tests hold them to (the transposes in and out cost less
+//! than the shuffles a face's three lanes of four needed). Whether a position's
 //! faces stay within half the crease of their mean is first bounded from
 //! the sums alone (see [`smooth_normals`]); only the positions the bound
 //! does not settle are tested face by face, and only creased ones (and those
