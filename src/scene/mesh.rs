@@ -66,6 +66,7 @@ use crate::color::{Lin, Rgb};
 use crate::texture::Texture;
 
 use super::normals::*;
+use super::topology::*;
 
 /// The crease angle: faces meeting at a sharper angle than this keep their
 /// own normals at the edge between them.
@@ -352,7 +353,7 @@ impl Geometry {
     /// asks.
     pub fn edges(&self) -> &[[u32; 2]] {
         self.edges.get_or_init(|| {
-            let (ids, _) = super::normals::weld(&self.positions);
+            let (ids, _) = super::topology::weld(&self.positions);
             let id = |i: u32| ids.get(i as usize).copied().unwrap_or(u32::MAX);
             let mut keyed: Vec<([u32; 2], [u32; 2])> = self
                 .faces

@@ -68,6 +68,7 @@ mod finish;
 mod load;
 mod mesh;
 mod normals;
+mod topology;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 #[cfg(feature = "textures")]

@@ -25,8 +25,8 @@ use glam::Vec3;
 use super::LoadOptions;
 use super::file::{self, Cursor, Lines};
 use super::mesh::Geometry;
-use super::normals::PositionSet;
 use super::obj::Loaded;
+use super::topology::PositionSet;
 use crate::error::{Error, Result};
 
 /// Loads an STL file.

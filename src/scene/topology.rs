@@ -1,0 +1,497 @@
+//! Connectivity at load, built once in linear time and dropped after use:
+//! positions welded by a compact hash set ([`PositionSet`]); around each
+//! welded position, listed by a counting sort, the positions its edges lead
+//! to (for whether the mesh is closed) or its corners (for whether it is
+//! convex, when the planner asks). No edge table is ever hashed: an edge's
+//! other side is found among the few entries around its end. When every
+//! vertex is its own position (most files without texture coordinates) no
+//! table of welded positions is kept: the passes that would read one are
+//! compiled for both cases ([`Welded`]). The normals (`normals.rs`) read the
+//! welded positions and each position's number of corners.
+
+use glam::Vec3;
+
+use super::mesh::*;
+
+/// A set of positions for welding, by open addressing over a table of
+/// 8-byte slots, at most half full: each holds a handle and 32 bits of its
+/// position's hash, so a probe compares positions (kept where the caller
+/// keeps them, a random read) only when the hashes agree: 8 bytes a slot
+/// against a general hash map's key, value and control bytes, which for
+/// 2M positions was more than twice the memory. Positions are equal when their bits are, with −0.0
+/// and 0.0 one.
+pub(super) struct PositionSet {
+    /// `hash << 32 | handle + 1`, or 0 for empty.
+    slots: Vec<u64>,
+    len: usize,
+}
+
+impl PositionSet {
+    /// A set with room for `n` positions before it grows.
+    pub(super) fn with_capacity(n: usize) -> PositionSet {
+        PositionSet {
+            slots: vec![0; (n * 2).next_power_of_two().max(16)],
+            len: 0,
+        }
+    }
+
+    pub(super) fn key(p: Vec3) -> [u32; 3] {
+        p.to_array().map(|v| (v + 0.0).to_bits())
+    }
+
+    /// The key's 32-bit hash: its top bits pick the slot to start from,
+    /// and all of it is kept in the slot.
+    #[inline]
+    pub(super) fn hash(k: [u32; 3]) -> u32 {
+        let h = (k[0] as u64 ^ (k[1] as u64) << 32)
+            .wrapping_mul(0x9e37_79b9_7f4a_7c15)
+            .rotate_left(29)
+            ^ (k[2] as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+        (h.wrapping_mul(0x1656_67b1_9e37_79f9) >> 32) as u32
+    }
+
+    #[inline]
+    pub(super) fn home(&self, h: u32) -> usize {
+        // At most 2^32 slots: handles are u32.
+        (h as u64 >> (32 - self.slots.len().trailing_zeros())) as usize
+    }
+
+    /// The handle of position `p`, where `at(handle)` is the position a
+    /// handle stands for: an existing one (`false`), or `new` inserted
+    /// (`true`).
+    #[inline]
+    pub(super) fn get_or_insert(
+        &mut self,
+        p: Vec3,
+        new: u32,
+        at: impl Fn(u32) -> Vec3,
+    ) -> (u32, bool) {
+        let k = Self::key(p);
+        self.get_or_insert_keyed((k, Self::hash(k)), new, at)
+    }
+
+    /// [`PositionSet::get_or_insert`] of the position whose key and hash
+    /// are `(k, h)`.
+    #[inline]
+    fn get_or_insert_keyed(
+        &mut self,
+        (k, h): ([u32; 3], u32),
+        new: u32,
+        at: impl Fn(u32) -> Vec3,
+    ) -> (u32, bool) {
+        if (self.len + 1) * 2 > self.slots.len() {
+            self.grow();
+        }
+        let mask = self.slots.len() - 1;
+        let mut i = self.home(h);
+        loop {
+            let s = self.slots[i];
+            if s == 0 {
+                self.slots[i] = (h as u64) << 32 | (new as u64 + 1);
+                self.len += 1;
+                return (new, true);
+            }
+            let handle = (s as u32).wrapping_sub(1);
+            if (s >> 32) as u32 == h && Self::key(at(handle)) == k {
+                return (handle, false);
+            }
+            i = (i + 1) & mask;
+        }
+    }
+
+    /// Reads the slots where the positions of keys and hashes `keyed`
+    /// would go, so that their cache misses overlap rather than each
+    /// waiting for the last.
+    #[inline]
+    fn touch(&self, keyed: &[([u32; 3], u32)]) {
+        let mut sum = 0u64;
+        for &(_, h) in keyed {
+            sum = sum.wrapping_add(self.slots[self.home(h)]);
+        }
+        std::hint::black_box(sum);
+    }
+
+    /// Doubles the table, placing each slot by the hash it keeps: no
+    /// position is read again.
+    pub(super) fn grow(&mut self) {
+        let size = (self.slots.len() * 2).max(16);
+        let old = std::mem::replace(&mut self.slots, vec![0; size]);
+        let mask = size - 1;
+        for s in old.into_iter().filter(|&s| s != 0) {
+            let mut i = self.home((s >> 32) as u32);
+            while self.slots[i] != 0 {
+                i = (i + 1) & mask;
+            }
+            self.slots[i] = s;
+        }
+    }
+}
+
+/// One id per distinct position (see [`PositionSet`]), numbered in order
+/// of first appearance, for each position index; and how many there are.
+pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
+    let mut set = PositionSet::with_capacity(positions.len());
+    // Each id's first position index, to compare against.
+    let mut first: Vec<u32> = Vec::new();
+    let mut ids = Vec::with_capacity(positions.len());
+    let mut keyed = [([0u32; 3], 0u32); 16];
+    for (block, chunk) in positions.chunks(16).enumerate() {
+        // Touch the slots of the next sixteen first: their cache misses
+        // overlap, rather than each waiting for the last. Their keys and
+        // hashes are found once, for both.
+        for (kh, &p) in keyed.iter_mut().zip(chunk) {
+            let k = PositionSet::key(p);
+            *kh = (k, PositionSet::hash(k));
+        }
+        let keyed = &keyed[..chunk.len()];
+        set.touch(keyed);
+        for (k, &kh) in keyed.iter().enumerate() {
+            let next = first.len() as u32;
+            let (id, new) =
+                set.get_or_insert_keyed(kh, next, |id| positions[first[id as usize] as usize]);
+            if new {
+                first.push((block * 16 + k) as u32);
+            }
+            ids.push(id);
+        }
+    }
+    (ids, first.len())
+}
+
+/// The connectivity of a mesh, built once in linear time and dropped after
+/// use: which welded position each vertex is at, and around each welded
+/// position either its corners (for convexity, which walks across edges)
+/// or the welded position each of its corners' edges leads to (for
+/// closedness, which needs nothing else). No edge table is ever hashed: an
+/// edge's other side is found among the few entries around its end.
+pub(super) struct Topology {
+    /// The welded position of each vertex; `None` when every vertex is its
+    /// own (vertex `v` at position `v`), as in most files without texture
+    /// coordinates: then no table is kept (4 bytes a vertex, at the peak
+    /// of loading) or read.
+    pub(super) ids: Option<Vec<u32>>,
+    /// The entries around welded position `p` are
+    /// `list[start[p]..start[p + 1]]`.
+    start: Vec<u32>,
+    list: Vec<u32>,
+    listing: Listing,
+    /// Which vertices a face uses, a bit each (found in the pass that
+    /// counts the corners; the normals give the others +z); `None` when
+    /// every vertex is its own welded position (then a vertex is used when
+    /// a face has a corner at its position).
+    pub(super) used: Option<Vec<u64>>,
+}
+
+/// What [`Topology`] lists around each welded position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Listing {
+    /// Each corner there, as `face * 3 + k`.
+    Corners,
+    /// For each corner there, the welded position at the next corner of
+    /// its face: where its outgoing edge leads.
+    Next,
+}
+
+/// Where a vertex's welded position is found: in a table of them
+/// (`&[u32]`), or the vertex's own number ([`Own`]): each pass that reads
+/// them is compiled for each, so the common case reads no table.
+pub(super) trait Welded: Copy {
+    /// The welded position of vertex `v`.
+    fn of(self, v: u32) -> u32;
+
+    /// Those of the first `n` vertices only (a table cut to `n`, so that
+    /// one bounds check on a vertex serves it and the positions).
+    fn first(self, n: usize) -> Self;
+}
+
+/// Every vertex is its own welded position.
+#[derive(Clone, Copy)]
+pub(super) struct Own;
+
+impl Welded for Own {
+    #[inline(always)]
+    fn of(self, v: u32) -> u32 {
+        v
+    }
+
+    fn first(self, _: usize) -> Self {
+        self
+    }
+}
+
+impl Welded for &[u32] {
+    #[inline(always)]
+    fn of(self, v: u32) -> u32 {
+        self[v as usize]
+    }
+
+    fn first(self, n: usize) -> Self {
+        &self[..n]
+    }
+}
+
+/// The counting sort of [`Topology::new`]: each welded position's first
+/// entry (then, shifted, one past its last) and the entries, and which
+/// vertices a face uses where `used` is given.
+fn corners_by_position(
+    ids: impl Welded,
+    welded: usize,
+    faces: &[[u32; 3]],
+    listing: Listing,
+    used: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; welded + 1];
+    // Face by face, its three corners unrolled (a flattened iterator
+    // costs twice the instructions here).
+    match used {
+        Some(used) => {
+            for face in faces {
+                for &i in face {
+                    start[ids.of(i) as usize + 1] += 1;
+                    used[i as usize / 64] |= 1 << (i % 64);
+                }
+            }
+        }
+        None => {
+            for face in faces {
+                for &i in face {
+                    start[ids.of(i) as usize + 1] += 1;
+                }
+            }
+        }
+    }
+    for p in 0..welded {
+        start[p + 1] += start[p];
+    }
+    let mut list = vec![0u32; faces.len() * 3];
+    for (f, face) in faces.iter().enumerate() {
+        let w = [ids.of(face[0]), ids.of(face[1]), ids.of(face[2])];
+        for k in 0..3 {
+            let slot = &mut start[w[k] as usize];
+            list[*slot as usize] = match listing {
+                Listing::Corners => (f * 3 + k) as u32,
+                Listing::Next => w[if k == 2 { 0 } else { k + 1 }],
+            };
+            *slot += 1;
+        }
+    }
+    (start, list)
+}
+
+impl Topology {
+    /// At most this many faces: corners are numbered in a u32.
+    const MAX_FACES: usize = (u32::MAX / 3) as usize;
+
+    pub(super) fn new(positions: &[Vec3], faces: &[[u32; 3]], listing: Listing) -> Topology {
+        assert!(faces.len() <= Self::MAX_FACES, "too many faces");
+        let (ids, welded) = weld(positions);
+        let ids = (welded < positions.len()).then_some(ids);
+        let mut used = ids
+            .is_some()
+            .then(|| vec![0u64; positions.len().div_ceil(64)]);
+        let (mut start, list) = match &ids {
+            Some(ids) => {
+                corners_by_position(ids.as_slice(), welded, faces, listing, used.as_deref_mut())
+            }
+            None => corners_by_position(Own, welded, faces, listing, None),
+        };
+        // Each slot now holds its successor's start: shift back.
+        start.rotate_right(1);
+        start[0] = 0;
+        Topology {
+            ids,
+            start,
+            list,
+            listing,
+            used,
+        }
+    }
+
+    /// The welded position of vertex `v`.
+    pub(super) fn id(&self, v: u32) -> u32 {
+        self.ids.as_ref().map_or(v, |ids| ids[v as usize])
+    }
+
+    /// How many welded positions there are.
+    pub(super) fn welded(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// How many corners there are around welded position `p` (also once
+    /// the lists are forgotten).
+    pub(super) fn fan(&self, p: usize) -> usize {
+        (self.start[p + 1] - self.start[p]) as usize
+    }
+
+    /// Frees the lists around each position (12 bytes a triangle), once
+    /// what reads them (closedness) is done: the normals need only the
+    /// welded positions and each fan's size.
+    pub(super) fn forget_corners(&mut self) {
+        self.list = Vec::new();
+    }
+
+    /// The range of `list` around welded position `p`.
+    fn range(&self, p: usize) -> std::ops::Range<usize> {
+        self.start[p] as usize..self.start[p + 1] as usize
+    }
+
+    /// The corners around welded position `p` (of a [`Listing::Corners`]
+    /// topology).
+    pub(super) fn around(&self, p: usize) -> &[u32] {
+        debug_assert_eq!(self.listing, Listing::Corners);
+        &self.list[self.range(p)]
+    }
+
+    /// The welded position at corner `c` (`face * 3 + k`).
+    pub(super) fn at(&self, faces: &[[u32; 3]], c: u32) -> u32 {
+        self.id(faces[(c / 3) as usize][(c % 3) as usize])
+    }
+
+    /// Whether every edge is walked exactly once in each direction (closed
+    /// and consistently wound), from a [`Listing::Next`] topology, whose
+    /// long lists it sorts in place: no position leads to itself or twice
+    /// to the same position, and each position one leads to leads back.
+    /// (Then the edges form a set that is its own reverse, which is what
+    /// the words say.) Only edges to a higher position need looking up the
+    /// other way (see the code). A list of up to 8 (every position of most
+    /// meshes) is checked pair by pair and searched in SIMD lanes, without
+    /// branches; one of up to 16 is sorted on the stack and scanned; a
+    /// longer one is sorted in place and searched by halves.
+    pub(super) fn closed(&mut self, faces: &[[u32; 3]]) -> bool {
+        assert_eq!(self.listing, Listing::Next);
+        if faces.is_empty() {
+            return false;
+        }
+        // The padding of short lists must be ids no position has.
+        if self.welded() > (u32::MAX - 8) as usize {
+            return false;
+        }
+        for p in 0..self.welded() {
+            let range = self.range(p);
+            if range.len() > SMALL {
+                self.list[range].sort_unstable();
+            }
+        }
+        let list = &self.list;
+        let row = |p: usize| &list[self.start[p] as usize..self.start[p + 1] as usize];
+        (0..self.welded()).all(|p| {
+            let next = row(p);
+            let p = p as u32;
+            let distinct = if next.len() <= 8 {
+                distinct8(next, p)
+            } else if next.len() <= SMALL {
+                let mut v = [0u32; SMALL];
+                v[..next.len()].copy_from_slice(next);
+                let v = &mut v[..next.len()];
+                v.sort_unstable();
+                v.windows(2).all(|w| w[0] != w[1]) && !v.contains(&p)
+            } else {
+                next.windows(2).all(|w| w[0] != w[1]) && next.binary_search(&p).is_err()
+            };
+            // Only edges up (to a higher position) are looked for the other
+            // way. Each corner is an edge out of its position and one into
+            // it, so at every position as many edges leave as arrive, and
+            // so do the edges without their reverse: if there are any, they
+            // go round in cycles, and a cycle goes up somewhere.
+            distinct
+                && next.iter().filter(|&&q| q > p).all(|&q| {
+                    let back = row(q as usize);
+                    if back.len() <= SMALL {
+                        back.contains(&p)
+                    } else {
+                        back.binary_search(&p).is_ok()
+                    }
+                })
+        })
+    }
+
+    /// For a closed mesh: whether its surface is one piece with a sphere's
+    /// topology, V − E + F = 2, where E = 3F/2 (every edge has two sides).
+    pub(super) fn sphere_like(&self, faces: &[[u32; 3]]) -> bool {
+        let used = (0..self.welded()).filter(|&p| self.fan(p) > 0).count() as i64;
+        used * 2 - faces.len() as i64 == 4
+    }
+
+    /// The corner of the face across the edge from corner `c` to the next
+    /// corner of its face: the far corner of the face that walks the edge
+    /// the other way. `None` if there is none.
+    pub(super) fn across(&self, faces: &[[u32; 3]], c: u32) -> Option<u32> {
+        let base = c - c % 3;
+        let (a, b) = (self.at(faces, c), self.at(faces, base + (c + 1) % 3));
+        self.around(b as usize).iter().find_map(|&d| {
+            let base = d - d % 3;
+            (self.at(faces, base + (d + 1) % 3) == a).then_some(base + (d + 2) % 3)
+        })
+    }
+}
+
+/// Lists around a position up to this long are checked on the stack.
+const SMALL: usize = 16;
+
+/// Whether the up to eight ids of `list` differ from each other and from
+/// `p`: every pair compared, without branches (in SIMD lanes, as the
+/// compiler lays them out), the slots past the list holding ids no
+/// position has, each its own (`u32::MAX - slot`).
+#[inline(always)]
+fn distinct8(list: &[u32], p: u32) -> bool {
+    let mut v: [u32; 8] = std::array::from_fn(|i| u32::MAX - i as u32);
+    v[..list.len()].copy_from_slice(list);
+    let mut same = 0u32;
+    for i in 0..8 {
+        same |= (v[i] == p) as u32;
+        for j in i + 1..8 {
+            same |= (v[i] == v[j]) as u32;
+        }
+    }
+    same == 0
+}
+
+/// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
+/// with a sphere's topology.
+pub(super) fn convex(g: &Geometry) -> bool {
+    let topo = Topology::new(&g.positions, &g.faces, Listing::Corners);
+    let point = |c: u32| {
+        let p = g.positions[g.faces[(c / 3) as usize][(c % 3) as usize] as usize];
+        robust::Coord3D {
+            x: p.x as f64,
+            y: p.y as f64,
+            z: p.z as f64,
+        }
+    };
+    // Locally convex at every edge (seen from its lower-numbered end): the
+    // far corner of the face across it on or below (inside) this face's
+    // plane.
+    for (f, face) in g.faces.iter().enumerate() {
+        let base = f as u32 * 3;
+        for k in 0..3 {
+            let c = base + k;
+            if topo.id(face[k as usize]) > topo.at(&g.faces, base + (k + 1) % 3) {
+                continue;
+            }
+            let Some(far) = topo.across(&g.faces, c) else {
+                return false;
+            };
+            if robust::orient3d(point(base), point(base + 1), point(base + 2), point(far)) < 0.0 {
+                return false;
+            }
+        }
+    }
+    // At every vertex the faces turn once around it: their angles there
+    // sum to at most 2π (a flat vertex inside a face sums to 2π, up to
+    // rounding; a cone wound twice, to nearly 4π).
+    let full = std::f64::consts::TAU * (1.0 + 1e-9);
+    (0..topo.welded()).all(|p| {
+        let mut sum = 0.0f64;
+        for &c in topo.around(p) {
+            let face = g.faces[(c / 3) as usize].map(|i| g.positions[i as usize].as_dvec3());
+            let k = (c % 3) as usize;
+            let (a, b) = (face[(k + 1) % 3] - face[k], face[(k + 2) % 3] - face[k]);
+            let turn = a.cross(b).length().atan2(a.dot(b));
+            if turn.is_nan() || turn <= 0.0 {
+                return false;
+            }
+            sum += turn;
+        }
+        sum <= full
+    })
+}
