@@ -132,6 +132,6 @@ pub use options::{
     Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS,
     Pipeline, RenderOptions, Threads, Wire,
 };
-pub use plan::{Bands, Decision, Plan};
+pub use plan::{Bands, Decision, Extras, Plan};
 pub use render::{FrameStats, FrameTimes, Renderer, render};
 pub use shade::{Lights, Shading, specular_reference};

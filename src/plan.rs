@@ -199,6 +199,24 @@ impl fmt::Display for Bands {
     }
 }
 
+/// What the vertex stage keeps of a mesh's vertices beyond the 16 bytes
+/// every face reads (snapped position, centre key, outcode), as the plan
+/// decides ([`Plan::vertex_extras`]): memory and speed alone, the frame is
+/// the same whichever.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extras {
+    /// Nothing: the depth, `1/w` and light of the corners of a face with a
+    /// sample in its box are found again at set-up (a large model seen
+    /// small).
+    Found,
+    /// Depth, `1/w` and light (20 bytes), all that a lean face reads: a
+    /// model with few vertices for the frame's samples.
+    Deep,
+    /// Those and the world position, normal and unsnapped screen position
+    /// (52 bytes), for faces that may read them.
+    All,
+}
+
 /// The threads this process may run at once (asked once: the answer reads
 /// files on Linux).
 fn cores() -> u16 {
@@ -508,61 +526,72 @@ impl Plan {
         self.clip_tests.get(group).copied().unwrap_or(true)
     }
 
-    /// Whether the vertex stage keeps each vertex's world position, normal,
-    /// unsnapped screen position, depth, `1/w` and light for the faces of
-    /// mesh `i`, culled as `cull`: the opposite of [`Plan::deferral`], which
-    /// says why. Memory and speed alone: the frame is the same either way
-    /// (and a mesh with a vertex that takes the f64 path all the same keeps
-    /// them too; see the vertex stage).
-    pub fn vertex_extras(&self, i: usize, cull: crate::scene::Cull) -> bool {
-        !self.deferral(i, cull).run
+    /// What the vertex stage keeps of mesh `i`'s vertices (culled as
+    /// `cull`) beyond the 16 bytes every face reads ([`Extras`]); where
+    /// nothing, [`Plan::deferral`] runs and says why. Memory and speed
+    /// alone: the frame is the same either way (and a mesh with a vertex
+    /// that takes the f64 path all the same keeps them all; see the vertex
+    /// stage).
+    pub fn vertex_extras(&self, i: usize, cull: crate::scene::Cull) -> Extras {
+        self.extras(i, cull).0
     }
 
     /// Whether the depth, `1/w` and light of mesh `i`'s vertices (culled
     /// as `cull`) are found again at set-up, for the corners of each face
     /// with a sample in its box, rather than kept by the vertex stage for
-    /// every vertex (16 bytes a vertex rather than 68), and why. Found
-    /// again only where no face may read a vertex's world position, normal
-    /// or unsnapped position (flat shading, lights that fall off, a rim,
-    /// highlights, textures, alpha, maps, the general path, the full
+    /// every vertex (16 bytes a vertex rather than 36 or 68), and why.
+    /// Found again only where no face may read a vertex's world position,
+    /// normal or unsnapped position (flat shading, lights that fall off, a
+    /// rim, highlights, textures, alpha, maps, the general path, the full
     /// pipeline, back faces, which smooth shading lights from the other
     /// side of their normals, and a mesh whose vertices are tested against
     /// the clip planes, whose faces may take the clip path), and only for
     /// a mesh of more than [`Plan::DEFER_PER_SAMPLE`] vertices a sample:
     /// with fewer, most of its vertices are read by faces that cover a
-    /// sample, and keeping them costs less.
+    /// sample, and keeping their depth and light ([`Extras::Deep`]) costs
+    /// less.
     pub fn deferral(&self, i: usize, cull: crate::scene::Cull) -> Decision {
-        let kept = |why| Some(Decision::skip(why));
-        let reason = if self.full {
-            kept(FORCED_KEPT)
+        let (extras, why) = self.extras(i, cull);
+        Decision {
+            run: extras == Extras::Found,
+            why,
+        }
+    }
+
+    /// [`Plan::vertex_extras`] and why.
+    fn extras(&self, i: usize, cull: crate::scene::Cull) -> (Extras, &'static str) {
+        let all = |why| (Extras::All, why);
+        if self.full {
+            all(FORCED_KEPT)
         } else if self.clip_tests(i) {
-            kept(
+            all(
                 "its vertices are tested against the clip planes: a face may take the clip path, which reads every extra",
             )
         } else if self.shading == Shading::Flat {
-            kept("flat shading lights each face from its corners' world positions")
+            all("flat shading lights each face from its corners' world positions")
         } else if self.falloff.run {
-            kept("a light that falls off reads each corner's world position")
+            all("a light that falls off reads each corner's world position")
         } else if self.rim.run {
-            kept("the rim reads each corner's normal")
+            all("the rim reads each corner's normal")
         } else if self.specular.run {
-            kept("a highlight reads each corner's normal and world position")
+            all("a highlight reads each corner's normal and world position")
         } else if self.texturing.run || self.alpha.run || self.maps.run {
-            kept("textures, alpha or maps read each corner's unsnapped position")
+            all("textures, alpha or maps read each corner's unsnapped position")
         } else if !self.lean.run {
-            kept("the general path reads every extra")
+            all("the general path reads every extra")
         } else if cull != crate::scene::Cull::Back {
-            kept("back faces are drawn, lit from the other side of each corner's normal")
+            all("back faces are drawn, lit from the other side of each corner's normal")
         } else if !self.defers.get(i).copied().unwrap_or(false) {
-            kept(
+            (
+                Extras::Deep,
                 "at most 16 vertices a sample: most vertices are corners of a face that covers one",
             )
         } else {
-            None
-        };
-        reason.unwrap_or(Decision::run(
-            "more than 16 vertices a sample: only the corners of a face with a sample in its box are lit, at set-up",
-        ))
+            (
+                Extras::Found,
+                "more than 16 vertices a sample: only the corners of a face with a sample in its box are lit, at set-up",
+            )
+        }
     }
 
     /// Whether mesh `i` is posed (see [`Plan::posing`]).

@@ -129,6 +129,10 @@ pub struct RasterStats {
     pub dropped_degenerate: u64,
     /// Dropped by [`Cull`].
     pub culled: u64,
+    /// Dropped unseen: the snapped vertices show that the bounding box
+    /// holds no sample centre, before the area or the winding is looked at
+    /// (on the lean path: `crate::Plan::lean`).
+    pub found_empty: u64,
     /// Samples whose coverage was decided: each sample of the grid
     /// ([`Traversal::Scan`]) or of the triangle's bounding box (the
     /// others; [`Traversal::Spans`] decides a row's samples at once, from
@@ -147,6 +151,7 @@ impl RasterStats {
         self.dropped_out_of_range += o.dropped_out_of_range;
         self.dropped_degenerate += o.dropped_degenerate;
         self.culled += o.culled;
+        self.found_empty += o.found_empty;
         self.samples_tested += o.samples_tested;
         self.samples_covered += o.samples_covered;
     }

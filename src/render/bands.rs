@@ -20,7 +20,7 @@ use glam::Mat4;
 
 use super::stats::FrameStats;
 use super::triangle::Faces;
-use super::vertex::{More, Transforms, Vert, Verts};
+use super::vertex::{Kept, Transforms, Vert, Verts};
 use super::{Painter, Renderer, Sorted, Stage};
 use crate::blit;
 use crate::clip::Polygon;
@@ -42,7 +42,7 @@ pub(super) struct BandWork {
     mapping: super::mapped::Mapping,
     /// The loose triangles' vertices, one triangle at a time.
     verts: Vec<Vert>,
-    more: Vec<More>,
+    kept: Kept,
     /// Unused: bands are not anti-aliased.
     acc: Vec<[f32; 4]>,
     /// Where the band drew this frame.
@@ -59,7 +59,7 @@ impl Default for BandWork {
             sorted: Sorted::default(),
             mapping: Default::default(),
             verts: Vec::new(),
-            more: Vec::new(),
+            kept: Kept::default(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
             known: Known::default(),
@@ -94,7 +94,7 @@ impl Renderer {
         self.fb.reset(grid, depth);
         // The vertex stage, every mesh's vertices one after another.
         self.verts.clear();
-        self.more.clear();
+        self.kept.clear();
         self.meshes.clear();
         let super::Drawing {
             mut painter,
@@ -104,13 +104,13 @@ impl Renderer {
         } = self.drawing();
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
-            let start = (painter.verts.len(), painter.more.len());
+            let start = (painter.verts.len(), painter.kept.marks());
             let (positions, normals) = super::vertices_of(posed, p, i, mesh);
             let cull = opts.cull.unwrap_or(mesh.cull);
             painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             meshes.push(super::MeshVerts {
                 core: start.0..painter.verts.len(),
-                more: start.1..painter.more.len(),
+                kept: [start.1, painter.kept.marks()],
                 transforms,
             });
         }
@@ -118,7 +118,7 @@ impl Renderer {
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, BandWork::default);
         frame.resize(cols as u16, rows as u16);
-        let (verts, more, meshes, posed) = (&self.verts, &self.more, &self.meshes, &self.posed);
+        let (verts, kept, meshes, posed) = (&self.verts, &self.kept, &self.meshes, &self.posed);
         let blended = super::blended_meshes(scene, p, vp, turn);
         let job = |k: usize,
                    band: &mut BandWork,
@@ -137,13 +137,13 @@ impl Renderer {
                 sorted: &mut band.sorted,
                 mapping: &mut band.mapping,
                 verts: &mut band.verts,
-                more: &mut band.more,
+                kept: &mut band.kept,
                 acc: &mut band.acc,
             };
             let of = |i: usize| {
                 let m = &meshes[i];
                 let (positions, normals) = super::vertices_of(posed, p, i, &scene.meshes[i]);
-                let kept = (&verts[m.core.clone()], &more[m.more.clone()]);
+                let kept = (&verts[m.core.clone()], kept.between(m.kept[0], m.kept[1]));
                 Verts::new(kept, (positions, normals), &m.transforms, stage)
             };
             for (i, mesh) in scene.meshes.iter().enumerate() {

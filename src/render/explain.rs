@@ -207,8 +207,9 @@ impl Renderer {
         let r = &s.raster;
         let _ = writeln!(
             out,
-            "raster: {} triangles set up, {} culled, {} degenerate, {} not finite; {} samples tested, {} covered",
+            "raster: {} triangles set up, {} found empty, {} culled, {} degenerate, {} not finite; {} samples tested, {} covered",
             r.triangles_drawn,
+            r.found_empty,
             r.culled,
             r.dropped_degenerate,
             r.dropped_non_finite,
@@ -321,7 +322,8 @@ fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate
     let grid = opts.glyphs.grid(opts.cols, opts.rows);
     let samples = (grid.width as f64 * grid.height as f64).max(1.0);
     for (i, m) in scene.meshes.iter().enumerate().take(RUNS_LISTED) {
-        let d = plan.deferral(i, opts.cull.unwrap_or(m.cull));
+        let cull = opts.cull.unwrap_or(m.cull);
+        let d = plan.deferral(i, cull);
         let _ = writeln!(
             out,
             "{:<14} {d}\n{:<20}mesh {i}: {} vertices, {:.1} a sample; {} bytes a vertex kept",
@@ -330,10 +332,10 @@ fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate
             m.positions.len(),
             m.positions.len() as f64 / samples,
             size_of::<super::vertex::Vert>()
-                + if d.run {
-                    0
-                } else {
-                    size_of::<super::vertex::More>()
+                + match plan.vertex_extras(i, cull) {
+                    crate::plan::Extras::Found => 0,
+                    crate::plan::Extras::Deep => size_of::<super::vertex::Deep>(),
+                    crate::plan::Extras::All => size_of::<super::vertex::More>(),
                 },
         );
     }

@@ -66,7 +66,7 @@ impl Painter<'_> {
         let uvs = mesh.uvs.as_deref().unwrap_or(&[]);
         let draw = |me: &mut Self, id: usize| {
             let face = mesh.faces[id];
-            let mut scratch = super::vertex::More::SCRATCH;
+            let mut scratch = super::vertex::Deep::SCRATCH;
             let v = verts.of(face, &mut scratch);
             me.count_lazy(stage, &verts);
             let base = match &mesh.colors {

@@ -53,7 +53,7 @@ use crate::shade::Lights;
 use crate::transform::{self, Grid};
 use mapped::Ids;
 use triangle::Faces;
-use vertex::{More, Transforms, Vert, Verts};
+use vertex::{Kept, Transforms, Vert, Verts};
 
 /// Per-frame constants of the vertex and triangle stages.
 #[derive(Clone, Copy)]
@@ -169,7 +169,7 @@ pub struct Renderer {
     frame: Frame,
     verts: Vec<Vert>,
     /// The extras of the vertices whose mesh keeps them.
-    more: Vec<More>,
+    kept: Kept,
     poly: Polygon,
     /// A blended run's faces, back to front (scratch).
     sorted: Sorted,
@@ -299,7 +299,7 @@ struct Painter<'a> {
     /// The mapped run being drawn's maps and face (none for other runs).
     mapping: &'a mut mapped::Mapping,
     verts: &'a mut Vec<Vert>,
-    more: &'a mut Vec<More>,
+    kept: &'a mut Kept,
     acc: &'a mut Vec<[f32; 4]>,
 }
 
@@ -308,8 +308,8 @@ struct Painter<'a> {
 #[derive(Debug)]
 struct MeshVerts {
     core: std::ops::Range<usize>,
-    /// Empty where the mesh keeps no extras.
-    more: std::ops::Range<usize>,
+    /// Where its extras are in `kept` ([`Kept::marks`] before and after).
+    kept: [[usize; 2]; 2],
     transforms: Transforms,
 }
 
@@ -326,7 +326,7 @@ impl Renderer {
             fb: Framebuffer::new(Grid::new(0, 0)),
             frame: Frame::default(),
             verts: Vec::new(),
-            more: Vec::new(),
+            kept: Kept::default(),
             poly: Polygon::default(),
             sorted: Sorted::default(),
             mapping: mapped::Mapping::default(),
@@ -475,7 +475,7 @@ impl Renderer {
                 sorted: &mut self.sorted,
                 mapping: &mut self.mapping,
                 verts: &mut self.verts,
-                more: &mut self.more,
+                kept: &mut self.kept,
                 acc: &mut self.acc,
             },
             times: &mut self.times,
@@ -557,7 +557,7 @@ impl Renderer {
         for (i, mesh) in scene.meshes.iter().enumerate() {
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
-            painter.more.clear();
+            painter.kept.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
             let cull = opts.cull.unwrap_or(mesh.cull);
             painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
@@ -569,15 +569,20 @@ impl Renderer {
                 cull,
             };
             // Borrowed out of the painter for the loop, and put back.
-            let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
+            let (verts, kept) = (std::mem::take(painter.verts), std::mem::take(painter.kept));
             if p.faces.run {
-                let v = Verts::new((&verts, &more), (positions, normals), &transforms, stage);
+                let v = Verts::new(
+                    (&verts, kept.all()),
+                    (positions, normals),
+                    &transforms,
+                    stage,
+                );
                 painter.faces(stage, &faces, v, Pass::Opaque);
             }
             if p.edges.run {
                 painter.edges(stage, mesh, positions, &transforms, opts.wire);
             }
-            (*painter.verts, *painter.more) = (verts, more);
+            (*painter.verts, *painter.kept) = (verts, kept);
             times.triangles += lap();
         }
         painter.loose(scene, opts, stage, vp, turn);
@@ -590,7 +595,7 @@ impl Renderer {
             let mesh = &scene.meshes[i];
             let transforms = Transforms::new(vp, turn * mesh.model);
             painter.verts.clear();
-            painter.more.clear();
+            painter.kept.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
             let cull = opts.cull.unwrap_or(mesh.cull);
             // Counted once, in the first pass (as bands, which keep every
@@ -604,10 +609,15 @@ impl Renderer {
                 transforms: &transforms,
                 cull,
             };
-            let (verts, more) = (std::mem::take(painter.verts), std::mem::take(painter.more));
-            let v = Verts::new((&verts, &more), (positions, normals), &transforms, stage);
+            let (verts, kept) = (std::mem::take(painter.verts), std::mem::take(painter.kept));
+            let v = Verts::new(
+                (&verts, kept.all()),
+                (positions, normals),
+                &transforms,
+                stage,
+            );
             painter.faces(stage, &faces, v, Pass::Blend);
-            (*painter.verts, *painter.more) = (verts, more);
+            (*painter.verts, *painter.kept) = (verts, kept);
         }
         times.triangles += lap();
     }
@@ -665,11 +675,16 @@ mod tests {
         let draw = |opts: &RenderOptions| {
             let mut r = Renderer::new();
             let frame = r.render(&scene, opts).clone();
-            (r.verts.len(), r.more.len(), frame)
+            let kept = r.kept.marks();
+            (r.verts.len(), kept[0], kept[1], frame)
         };
         assert_eq!(
-            (size_of::<Vert>(), size_of::<More>()),
-            (16, 52),
+            (
+                size_of::<Vert>(),
+                size_of::<vertex::Deep>(),
+                size_of::<vertex::More>()
+            ),
+            (16, 20, 52),
             "the sizes the docs say"
         );
         // Lit, culled at the back, matte, inside the view, of more
@@ -682,32 +697,41 @@ mod tests {
         };
         let grid = lean.glyphs.grid(lean.cols, lean.rows);
         assert!(n > Plan::DEFER_PER_SAMPLE * (grid.width * grid.height) as usize);
-        let (verts, more, plain) = draw(&lean);
-        assert_eq!((verts, more), (n, 0));
-        // Of fewer vertices a sample: kept.
-        let (verts, more, _) = draw(&RenderOptions {
+        let (verts, deep, rest, plain) = draw(&lean);
+        assert_eq!((verts, deep, rest), (n, 0, 0));
+        // Of fewer vertices a sample: their depth and light kept, all a
+        // lean face reads.
+        let near = RenderOptions {
             cols: 80,
             rows: 24,
             ..lean
-        });
-        assert_eq!((verts, more), (n, n));
+        };
+        let (verts, deep, rest, _) = draw(&near);
+        assert_eq!((verts, deep, rest), (n, n, 0));
         // A rim reads each corner's normal; both sides drawn, the back's.
         let rim = RenderOptions {
             rim: Some(Rgb::BLACK),
             ..lean
         };
-        assert_eq!(draw(&rim), (n, n, plain.clone()));
+        assert_eq!(draw(&rim), (n, n, n, plain.clone()));
         let both = RenderOptions {
             cull: Some(crate::scene::Cull::None),
             ..lean
         };
-        assert_eq!(draw(&both), (n, n, plain.clone()));
+        assert_eq!(draw(&both), (n, n, n, plain.clone()));
         // The full pipeline keeps them, and draws the same.
         let full = RenderOptions {
             pipeline: crate::options::Pipeline::Full,
             ..lean
         };
-        assert_eq!(draw(&full), (n, n, plain));
+        assert_eq!(draw(&full), (n, n, n, plain));
+        // Near, the frame is the one the full pipeline draws, which keeps
+        // them all.
+        let near_full = RenderOptions {
+            pipeline: crate::options::Pipeline::Full,
+            ..near
+        };
+        assert_eq!(draw(&near).3, draw(&near_full).3);
     }
 
     /// `--explain` says, mesh by mesh, whether the corners' depth and light
@@ -742,6 +766,6 @@ mod tests {
             )),
             "{near}"
         );
-        assert!(near.contains("68 bytes a vertex kept"), "{near}");
+        assert!(near.contains("36 bytes a vertex kept"), "{near}");
     }
 }

@@ -79,6 +79,7 @@ impl FrameStats {
             self.raster.dropped_out_of_range += r.dropped_out_of_range;
             self.raster.dropped_degenerate += r.dropped_degenerate;
             self.raster.culled += r.culled;
+            self.raster.found_empty += r.found_empty;
         }
         self.lighting_evaluations += band.lighting_evaluations;
         self.glowing_triangles += band.glowing_triangles;

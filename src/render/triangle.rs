@@ -23,13 +23,14 @@
 
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
-use super::vertex::{BAD_NORMAL, More, PLANES, Transforms, V, Verts};
+use super::vertex::keeps::{ALL, DEEP, FOUND};
+use super::vertex::{BAD_NORMAL, Deep, PLANES, Transforms, V, Verts};
 use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
 use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
-use crate::options::Highlights;
-use crate::options::RenderOptions;
+use crate::options::{Highlights, RenderOptions};
+use crate::plan::Extras;
 use crate::raster::{
     self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup, SnappedTriangle,
 };
@@ -136,10 +137,12 @@ impl Painter<'_> {
             } else {
                 // A shining run keeps its extras (`Plan::vertex_extras`).
                 let run = (lean, texture, run_color, diffuse);
-                match (self.surface.shiny, verts.lazy()) {
-                    (true, _) => self.run_faces::<true, false>(stage, f, verts, faces, run),
-                    (false, true) => self.run_faces::<false, true>(stage, f, verts, faces, run),
-                    (false, false) => self.run_faces::<false, false>(stage, f, verts, faces, run),
+                let (s, keep) = (stage, verts.kept.keep());
+                match (self.surface.shiny, keep) {
+                    (true, _) => self.run_faces::<true, ALL>(s, f, verts, faces, run),
+                    (false, FOUND) => self.run_faces::<false, FOUND>(s, f, verts, faces, run),
+                    (false, DEEP) => self.run_faces::<false, DEEP>(s, f, verts, faces, run),
+                    (false, _) => self.run_faces::<false, ALL>(s, f, verts, faces, run),
                 }
             }
             *self.sorted = sorted;
@@ -147,12 +150,11 @@ impl Painter<'_> {
     }
 
     /// Draws one run's faces: `SHINY` says whether they go through the
-    /// specular fill (the surface's `shiny`, as a constant), `LAZY`
-    /// whether their corners' depth and light are found at set-up
-    /// ([`Verts::lazy`]).
+    /// specular fill (the surface's `shiny`, as a constant), `KEEP` what
+    /// their corners keep (`keeps`: with none, depth and light found here).
     #[inline(never)]
     #[allow(clippy::type_complexity)]
-    fn run_faces<const SHINY: bool, const LAZY: bool>(
+    fn run_faces<const SHINY: bool, const KEEP: u8>(
         &mut self,
         stage: &Stage<'_>,
         f: &Faces<'_>,
@@ -161,8 +163,9 @@ impl Painter<'_> {
         (lean, texture, run_color, diffuse): (bool, Option<(&Texture, Sampler)>, Vec3A, f32),
     ) {
         let mesh = f.mesh;
+        let verts = verts.trimmed::<KEEP>();
         // Where the corners' depth and light are found, when not kept.
-        let mut scratch = More::SCRATCH;
+        let mut scratch = Deep::SCRATCH;
         for face in faces {
             let v = face.map(|i| &verts.core[i as usize]);
             let inside = v[0].code | v[1].code | v[2].code == 0;
@@ -172,9 +175,14 @@ impl Painter<'_> {
                 None => [run_color; 3],
             };
             if inside && lean {
-                // Culled or without area: rejected before anything
-                // else, as its set-up would reject it (snapped, so in
-                // range).
+                // No sample centre in its box (from the keys): nothing drawn,
+                // whatever its area or winding; told first, as most common.
+                if CentreKey::box_is_empty(v.map(|v| v.key)) {
+                    self.stats.raster.found_empty += 1;
+                    continue;
+                }
+                // Then culled or without area: rejected as its set-up
+                // would reject it (snapped, so in range).
                 let t = match SnappedTriangle::in_range(v.map(|v| v.fixed()), f.cull) {
                     Ok(t) => t,
                     Err(r) => {
@@ -183,25 +191,19 @@ impl Painter<'_> {
                     }
                 };
                 self.stats.raster.triangles_drawn += 1;
-                // No sample centre in its box, known from its vertices'
-                // keys: nothing more to count. The colours are read
-                // only if it covers a sample.
-                if !CentreKey::box_is_empty(v.map(|v| v.key)) {
-                    let v = verts.of_as::<LAZY>(*face, &mut scratch);
-                    self.count_lazy(stage, &verts);
-                    // A shining run's normals and positions, found only
-                    // for a triangle that covers a sample.
-                    let shine = |order: [usize; 3]| {
-                        let model = Model {
-                            positions: f.positions,
-                            face: order.map(|k| face[k]),
-                            mvp: &f.transforms.mvp64,
-                            world: &f.transforms.model,
-                        };
-                        corners(SHINY, stage, order.map(|k| v[k]), &model)
+                let v = verts.of_as::<KEEP>(*face, &mut scratch);
+                self.count_lazy(stage, &verts);
+                // A shining run's normals and positions, found only here.
+                let shine = |order: [usize; 3]| {
+                    let model = Model {
+                        positions: f.positions,
+                        face: order.map(|k| face[k]),
+                        mvp: &f.transforms.mvp64,
+                        world: &f.transforms.model,
                     };
-                    self.inside_triangle(stage, v, (base, shine), &t);
-                }
+                    corners(SHINY, stage, order.map(|k| v[k]), &model)
+                };
+                self.inside_triangle(stage, v, (base, shine), &t);
                 continue;
             }
             let base = base();
@@ -220,7 +222,7 @@ impl Painter<'_> {
                 world: &f.transforms.model,
             };
             self.count_lazy(stage, &verts);
-            let v = verts.of_as::<LAZY>(*face, &mut scratch);
+            let v = verts.of_as::<KEEP>(*face, &mut scratch);
             self.triangle::<SHINY, false>(stage, v, base, f.cull, model, tex);
         }
     }
@@ -246,14 +248,14 @@ impl Painter<'_> {
             let [a, b, c] = tri.vertices;
             let normal = transform::face_normal(a, b, c);
             self.verts.clear();
-            self.more.clear();
+            self.kept.clear();
             let vertices = (&tri.vertices[..], &[normal; 3][..]);
-            self.vertex_stage(stage, &loose, vertices, loose_tests, true);
-            let (verts, more) = (std::mem::take(self.verts), std::mem::take(self.more));
-            let v = Verts::new((&verts, &more), vertices, &loose, stage);
+            self.vertex_stage(stage, &loose, vertices, loose_tests, Extras::All);
+            let (verts, kept) = (std::mem::take(self.verts), std::mem::take(self.kept));
+            let v = Verts::new((&verts, kept.all()), vertices, &loose, stage);
             self.triangle::<false, false>(
                 stage,
-                v.of([0, 1, 2], &mut { More::SCRATCH }),
+                v.of([0, 1, 2], &mut { Deep::SCRATCH }),
                 tri.color
                     .at_vertices()
                     .map(|c| Lin::from_srgb(c).to_lanes()),
@@ -270,7 +272,7 @@ impl Painter<'_> {
                     uv: [Vec2::ZERO; 3],
                 }),
             );
-            (*self.verts, *self.more) = (verts, more);
+            (*self.verts, *self.kept) = (verts, kept);
         }
     }
 

@@ -12,11 +12,13 @@
 //! A face that covers a sample also reads its depth, `1/w` and light
 //! ([`Deep`]); some faces read its world position, normal and unsnapped
 //! position (flat shading, falling-off lights, rims, highlights,
-//! textures, alpha, maps, the general and clip paths and back faces).
-//! Those go, with the [`Deep`], to a second buffer ([`More`], 52 bytes)
-//! for a mesh the plan says may read them or that has few vertices for the
-//! frame's samples (`Plan::vertex_extras`), or one with a vertex off the
-//! common path. A large lit, culled, matte model seen small keeps
+//! textures, alpha, maps, the general and clip paths and back faces:
+//! ([`Rest`]). Those go, with the [`Deep`], to two more buffers ([`Kept`]:
+//! 20 and 32 bytes a vertex) for a mesh the plan says may read them, or
+//! one with a vertex off the common path; a lit, culled, matte mesh inside
+//! the view with few vertices for the frame's samples keeps the [`Deep`]
+//! alone, all its faces read (`Plan::vertex_extras`, [`crate::plan::Extras`]).
+//! A large lit, culled, matte model seen small keeps
 //! 16 bytes a vertex, and the [`Deep`] of the corners of a face with a
 //! sample in its box is found again at set-up ([`Lazy`], by the very
 //! function the stage uses, so the bits are the same): most of its
@@ -29,6 +31,7 @@ use glam::{DMat4, Mat3, Mat4, Vec3};
 
 use super::{Painter, Stage, vertex_lanes};
 use crate::fixed::{Fixed, FixedPoint};
+use crate::plan::Extras;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
@@ -106,18 +109,13 @@ pub(super) struct Deep {
     pub(super) inv_w: f32,
 }
 
-/// What some scenes' faces read of a vertex beyond [`Vert`]: its
-/// [`Deep`], world position, normal and unsnapped screen position (52
-/// bytes). Kept, in a buffer beside the vertices, for a mesh whose faces
-/// may read it ([`crate::Plan::vertex_extras`], or a vertex off the common
-/// path), and not otherwise: a lit, culled, matte mesh inside the view
-/// (the common large model) keeps 16 bytes a vertex, and the [`Deep`] of
-/// the corners of a face with a sample in its box is found again at set-up
-/// ([`Lazy`]).
+/// What a face reads of a vertex beyond [`Vert`] and its [`Deep`]: its
+/// world position, normal and unsnapped screen position (32 bytes), read
+/// only by some scenes' faces (flat shading, falling-off lights, rims,
+/// highlights, textures, alpha, maps, the general and clip paths and back
+/// faces).
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct More {
-    /// Depth, `1/w` and light (inside every plane only).
-    pub(super) deep: Deep,
+pub(super) struct Rest {
     /// Position in the turned world, where lights live (flat shading, and
     /// point and spot lights, only: zero otherwise).
     pub(super) world: Vec3,
@@ -129,14 +127,125 @@ pub(super) struct More {
     pub(super) xy: [f32; 2],
 }
 
+impl Rest {
+    /// Where a face that reads none of it finds it: NaN.
+    const NAN: Rest = Rest {
+        world: Vec3::NAN,
+        normal: Vec3::NAN,
+        xy: [f32::NAN; 2],
+    };
+}
+
+/// What the vertex stage finds of a vertex beyond [`Vert`]: its [`Deep`]
+/// and its [`Rest`] (52 bytes), kept as the plan says
+/// ([`crate::Plan::vertex_extras`], or all of it for a mesh with a vertex
+/// off the common path), in [`Kept`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct More {
+    /// Depth, `1/w` and light (inside every plane only).
+    pub(super) deep: Deep,
+    /// World position, normal and unsnapped position.
+    pub(super) rest: Rest,
+}
+
+/// The extras the vertex stage keeps, in two buffers beside the vertices:
+/// each kept vertex's [`Deep`], and where the plan says faces may read
+/// them, its [`Rest`] too (a lit, culled, matte mesh inside the view keeps
+/// 20 bytes a vertex here, or none where the corners' [`Deep`] is found
+/// again at set-up).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Kept {
+    pub(super) deep: Vec<Deep>,
+    pub(super) rest: Vec<Rest>,
+}
+
+impl Kept {
+    /// Empty, keeping the memory.
+    pub(super) fn clear(&mut self) {
+        self.deep.clear();
+        self.rest.clear();
+    }
+
+    /// How many of each are kept (where a mesh's begin or end).
+    pub(super) fn marks(&self) -> [usize; 2] {
+        [self.deep.len(), self.rest.len()]
+    }
+
+    /// Those kept between two [`Kept::marks`].
+    pub(super) fn between(&self, from: [usize; 2], to: [usize; 2]) -> KeptRef<'_> {
+        KeptRef {
+            deep: &self.deep[from[0]..to[0]],
+            rest: &self.rest[from[1]..to[1]],
+        }
+    }
+
+    /// All of them.
+    pub(super) fn all(&self) -> KeptRef<'_> {
+        self.between([0; 2], self.marks())
+    }
+
+    /// Appends `m`, its [`Rest`] too if `rest`.
+    #[inline(always)]
+    pub(super) fn push(&mut self, m: &More, rest: bool) {
+        self.deep.push(m.deep);
+        if rest {
+            self.rest.push(m.rest);
+        }
+    }
+}
+
+/// One mesh's kept extras ([`Kept`]): every vertex's [`Deep`] or none,
+/// and every vertex's [`Rest`] or none.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct KeptRef<'a> {
+    pub(super) deep: &'a [Deep],
+    pub(super) rest: &'a [Rest],
+}
+
+impl KeptRef<'_> {
+    /// What is kept, as [`keeps`] names it (for `Verts::of_as`).
+    #[inline(always)]
+    pub(super) fn keep(&self) -> u8 {
+        match self.extras() {
+            Extras::Found => keeps::FOUND,
+            Extras::Deep => keeps::DEEP,
+            Extras::All => keeps::ALL,
+        }
+    }
+
+    /// What is kept, as the plan names it.
+    #[inline(always)]
+    pub(super) fn extras(&self) -> Extras {
+        if self.deep.is_empty() {
+            Extras::Found
+        } else if self.rest.is_empty() {
+            Extras::Deep
+        } else {
+            Extras::All
+        }
+    }
+}
+
+/// [`Verts::of_as`]'s modes, one for each [`Extras`] (a const generic
+/// cannot be an enum on stable).
+pub(super) mod keeps {
+    /// [`crate::plan::Extras::Found`].
+    pub(in crate::render) const FOUND: u8 = 0;
+    /// [`crate::plan::Extras::Deep`].
+    pub(in crate::render) const DEEP: u8 = 1;
+    /// [`crate::plan::Extras::All`].
+    pub(in crate::render) const ALL: u8 = 2;
+}
+
 /// A vertex as the triangle stage reads it: its [`Vert`] (its fields read
-/// through `Deref`) and its [`More`], kept or, where not, its [`Deep`]
-/// found again into a face's scratch (whose other fields are NaN: the
-/// plan reads none of them there, [`crate::Plan::vertex_extras`]).
+/// through `Deref`), its [`Deep`] kept or found again into a face's
+/// scratch, and its [`Rest`] kept or, where the plan reads none of it
+/// ([`crate::Plan::vertex_extras`]), NaN.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct V<'a> {
     at: &'a Vert,
-    more: &'a More,
+    deep: &'a Deep,
+    rest: &'a Rest,
 }
 
 impl std::ops::Deref for V<'_> {
@@ -151,40 +260,35 @@ impl V<'_> {
     /// Depth, `1/w` and light.
     #[inline(always)]
     pub(super) fn deep(&self) -> &Deep {
-        &self.more.deep
+        self.deep
     }
 
-    #[inline(always)]
-    fn more(&self) -> &More {
-        self.more
-    }
-
-    /// [`More::world`].
+    /// [`Rest::world`].
     #[inline(always)]
     pub(super) fn world(&self) -> Vec3 {
-        self.more().world
+        self.rest.world
     }
 
-    /// [`More::normal`].
+    /// [`Rest::normal`].
     #[inline(always)]
     pub(super) fn normal(&self) -> Vec3 {
-        self.more().normal
+        self.rest.normal
     }
 
-    /// [`More::xy`].
+    /// [`Rest::xy`].
     #[inline(always)]
     pub(super) fn xy(&self) -> [f32; 2] {
-        self.more().xy
+        self.rest.xy
     }
 }
 
 /// One mesh's vertices after the vertex stage: every vertex's [`Vert`],
-/// and every vertex's [`More`] or none (then each corner's [`Deep`] is
-/// found again from `lazy`).
+/// and what it keeps of the rest ([`KeptRef`]; where no [`Deep`], each
+/// corner's is found again from `lazy`).
 #[derive(Clone, Copy)]
 pub(super) struct Verts<'a> {
     pub(super) core: &'a [Vert],
-    pub(super) more: &'a [More],
+    pub(super) kept: KeptRef<'a>,
     pub(super) lazy: Lazy<'a>,
 }
 
@@ -203,18 +307,13 @@ pub(super) struct Lazy<'a> {
     pub(super) stage: &'a Stage<'a>,
 }
 
-impl More {
-    /// A face's scratch for extras not kept ([`Verts::of`]): NaN but for
-    /// the [`Deep`] found into it.
-    pub(super) const SCRATCH: [More; 3] = [More {
-        deep: Deep {
-            light: Vec3::ZERO,
-            z: 0.0,
-            inv_w: 0.0,
-        },
-        world: Vec3::NAN,
-        normal: Vec3::NAN,
-        xy: [f32::NAN; 2],
+impl Deep {
+    /// A face's scratch for the [`Deep`] of corners not kept
+    /// ([`Verts::of`]).
+    pub(super) const SCRATCH: [Deep; 3] = [Deep {
+        light: Vec3::ZERO,
+        z: 0.0,
+        inv_w: 0.0,
     }; 3];
 }
 
@@ -222,10 +321,10 @@ impl Lazy<'_> {
     /// The [`Deep`] of `face`'s corners, into `scratch` (out of line: the
     /// face loop of a mesh that keeps its extras stays as short as it was).
     #[inline(never)]
-    fn deep3(&self, face: [u32; 3], scratch: &mut [More; 3]) {
+    fn deep3(&self, face: [u32; 3], scratch: &mut [Deep; 3]) {
         for (m, i) in scratch.iter_mut().zip(face) {
             let i = i as usize;
-            m.deep = deep(
+            *m = deep(
                 self.stage,
                 self.transforms,
                 self.positions[i],
@@ -239,14 +338,14 @@ impl<'a> Verts<'a> {
     /// A mesh's vertices after the vertex stage, which read `vertices`
     /// (positions and normals) through `transforms`.
     pub(super) fn new(
-        (core, more): (&'a [Vert], &'a [More]),
+        (core, kept): (&'a [Vert], KeptRef<'a>),
         (positions, normals): (&'a [Vec3], &'a [Vec3]),
         transforms: &'a Transforms,
         stage: &'a Stage<'a>,
     ) -> Verts<'a> {
         Verts {
             core,
-            more,
+            kept,
             lazy: Lazy {
                 positions,
                 normals,
@@ -259,52 +358,76 @@ impl<'a> Verts<'a> {
     /// The corners of `face`, their [`Deep`] found into `scratch` where
     /// it is not kept.
     #[inline(always)]
-    pub(super) fn of<'s>(&self, face: [u32; 3], scratch: &'s mut [More; 3]) -> [V<'s>; 3]
+    pub(super) fn of<'s>(&self, face: [u32; 3], scratch: &'s mut [Deep; 3]) -> [V<'s>; 3]
     where
         'a: 's,
     {
-        if self.lazy() {
-            self.of_as::<true>(face, scratch)
-        } else {
-            self.of_as::<false>(face, scratch)
+        match self.kept.extras() {
+            Extras::Found => self.of_as::<{ keeps::FOUND }>(face, scratch),
+            Extras::Deep => self.of_as::<{ keeps::DEEP }>(face, scratch),
+            Extras::All => self.of_as::<{ keeps::ALL }>(face, scratch),
         }
     }
 
-    /// [`Verts::of`] where `LAZY` is [`Verts::lazy`], known where the face
-    /// loop is compiled (one loop for each: a loop over kept vertices
-    /// carries no trace of finding them again).
+    /// [`Verts::of`] where `KEEP` is what is kept ([`keeps`], of
+    /// [`KeptRef::extras`]), known where the face loop is compiled (one
+    /// loop for each: a loop over kept vertices carries no trace of
+    /// finding them again).
     #[inline(always)]
-    pub(super) fn of_as<'s, const LAZY: bool>(
+    pub(super) fn of_as<'s, const KEEP: u8>(
         &self,
         face: [u32; 3],
-        scratch: &'s mut [More; 3],
+        scratch: &'s mut [Deep; 3],
     ) -> [V<'s>; 3]
     where
         'a: 's,
     {
         // Written out, not `map`ped: the face loop is large enough that
         // `array::map` is not always inlined into it.
-        if LAZY {
+        if KEEP == keeps::FOUND {
             self.lazy.deep3(face, scratch);
-            let scratch: &'s [More; 3] = scratch;
+            let scratch: &'s [Deep; 3] = scratch;
             let v = |k: usize| V {
                 at: &self.core[face[k] as usize],
-                more: &scratch[k],
+                deep: &scratch[k],
+                rest: &Rest::NAN,
             };
             return [v(0), v(1), v(2)];
         }
         let v = |i: u32| V {
             at: &self.core[i as usize],
-            more: &self.more[i as usize],
+            deep: &self.kept.deep[i as usize],
+            rest: if KEEP == keeps::ALL {
+                &self.kept.rest[i as usize]
+            } else {
+                &Rest::NAN
+            },
         };
         [v(face[0]), v(face[1]), v(face[2])]
+    }
+
+    /// The same, each buffer `KEEP` reads cut to the vertices' count (as
+    /// it is, or the vertex stage is wrong: then this panics), once a run:
+    /// an index that passes the face loop's check on [`Verts::core`] then
+    /// needs none on the others.
+    #[inline(always)]
+    pub(super) fn trimmed<const KEEP: u8>(self) -> Verts<'a> {
+        let n = self.core.len();
+        let mut v = self;
+        if KEEP != keeps::FOUND {
+            v.kept.deep = &self.kept.deep[..n];
+        }
+        if KEEP == keeps::ALL {
+            v.kept.rest = &self.kept.rest[..n];
+        }
+        v
     }
 
     /// Whether the corners' [`Deep`] is found at set-up (lit there, for
     /// the counts).
     #[inline(always)]
     pub(super) fn lazy(&self) -> bool {
-        self.more.is_empty()
+        self.kept.deep.is_empty()
     }
 }
 
@@ -350,37 +473,45 @@ impl Painter<'_> {
     }
 
     /// Transforms `positions` (with `normals`), appending them to
-    /// `self.verts`, and their extras to `self.more` where `keep` says, or
-    /// where a vertex is off the common path all the same (outside a clip
-    /// plane, or taking the f64 path: its faces take the clip path, which
-    /// reads them); then the stage runs again, keeping them (rare: `keep`
-    /// holds wherever clip tests run).
+    /// `self.verts`, and their extras to `self.kept` as `keep` says, or
+    /// all of them where a vertex is off the common path all the same
+    /// (outside a clip plane, or taking the f64 path: its faces take the
+    /// clip path, which reads them); then the stage runs again, keeping
+    /// them (rare: all are kept wherever clip tests run).
     pub(super) fn vertex_stage(
         &mut self,
         stage: &Stage<'_>,
         t: &Transforms,
         (positions, normals): (&[Vec3], &[Vec3]),
         clip_tests: bool,
-        keep: bool,
+        keep: Extras,
     ) {
-        let start = (self.verts.len(), self.more.len());
-        let more = keep.then_some(&mut *self.more);
-        let mut done =
-            vertex_lanes::vertices(stage, t, (positions, normals), clip_tests, self.verts, more);
-        if !keep && done.off_path > 0 {
+        let start = (self.verts.len(), self.kept.marks());
+        let mut done = vertex_lanes::vertices(
+            stage,
+            t,
+            (positions, normals),
+            clip_tests,
+            self.verts,
+            (self.kept, keep),
+        );
+        if keep != Extras::All && done.off_path > 0 {
             self.verts.truncate(start.0);
+            self.kept.deep.truncate(start.1[0]);
             done = vertex_lanes::vertices(
                 stage,
                 t,
                 (positions, normals),
                 clip_tests,
                 self.verts,
-                Some(self.more),
+                (self.kept, Extras::All),
             );
         }
-        debug_assert!(
-            self.more.len() == start.1 || self.more.len() - start.1 == self.verts.len() - start.0
-        );
+        debug_assert!({
+            let n = self.verts.len() - start.0;
+            let kept = self.kept.marks();
+            (0..2).all(|k| kept[k] == start.1[k] || kept[k] - start.1[k] == n)
+        });
         self.stats.vertices += done.vertices;
         self.stats.lighting_evaluations += done.lit;
         self.stats.clip_tests += done.clip_tested;
@@ -478,9 +609,11 @@ pub(super) fn vertex(
             light,
             ..Deep::default()
         },
-        world,
-        normal,
-        xy: [0.0; 2],
+        rest: Rest {
+            world,
+            normal,
+            xy: [0.0; 2],
+        },
     };
     let mut v = Vert {
         code,
@@ -490,8 +623,8 @@ pub(super) fn vertex(
         let (inv_w, z) = depth(clip);
         more.deep.inv_w = inv_w;
         more.deep.z = z;
-        more.xy = stage.viewport.apply(clip.x * inv_w, clip.y * inv_w);
-        match FixedPoint::snap(more.xy) {
+        more.rest.xy = stage.viewport.apply(clip.x * inv_w, clip.y * inv_w);
+        match FixedPoint::snap(more.rest.xy) {
             Some(f) => {
                 v.set_fixed(f);
                 v.key = CentreKey::of(f);

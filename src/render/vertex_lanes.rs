@@ -35,16 +35,17 @@
 use glam::{Vec3, Vec4};
 
 use super::Stage;
-use super::vertex::{Deep, More, Transforms, Vert, VertexWork, vertex};
+use super::vertex::{Deep, Kept, More, Rest, Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
+use crate::plan::Extras;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
 use crate::transform;
 
 /// Appends the vertex stage's result for each of `positions` with its
-/// normal, in order, to `out` (and their extras to `more`, if given): what
-/// `vertex` gives for each; returns what it did, counted from the paths it
-/// took.
+/// normal, in order, to `out` (and their extras to `kept`, as much of them
+/// as `keep` says): what `vertex` gives for each; returns what it did,
+/// counted from the paths it took.
 #[inline(always)]
 pub(super) fn vertices(
     stage: &Stage<'_>,
@@ -52,7 +53,7 @@ pub(super) fn vertices(
     (positions, normals): (&[Vec3], &[Vec3]),
     clip_tests: bool,
     out: &mut Vec<Vert>,
-    mut more: Option<&mut Vec<More>>,
+    (kept, keep): (&mut Kept, Extras),
 ) -> VertexWork {
     let n = positions.len().min(normals.len());
     let (positions, normals) = (&positions[..n], &normals[..n]);
@@ -60,7 +61,7 @@ pub(super) fn vertices(
     // `vertex` and the lanes light a vertex exactly when shading is smooth,
     // and test it exactly when `clip_tests` says.
     // Without extras kept, the light is found at set-up (`Lazy`).
-    let keep = more.is_some();
+    let (rest, keep) = (keep == Extras::All, keep != Extras::Found);
     let mut work = VertexWork {
         vertices: n as u64,
         lit: if shading == Shading::Smooth && keep {
@@ -71,24 +72,27 @@ pub(super) fn vertices(
         clip_tested: if clip_tests { n as u64 } else { 0 },
         off_path: 0,
     };
-    if let Some(m) = more.as_deref_mut() {
-        m.reserve(n);
+    if keep {
+        kept.deep.reserve(n);
+    }
+    if rest {
+        kept.rest.reserve(n);
     }
     out.reserve(n);
     let mut off_path = 0;
-    let mut one = |out: &mut Vec<Vert>, more: Option<&mut Vec<More>>, p: Vec3, n: Vec3| {
+    let mut one = |out: &mut Vec<Vert>, kept: &mut Kept, p: Vec3, n: Vec3| {
         let (v, m) = vertex(stage, t, p, n, clip_tests);
         off_path += (v.code != 0) as u64;
         out.push(v);
-        if let Some(more) = more {
-            more.push(m);
+        if keep {
+            kept.push(&m, rest);
         }
     };
     if n < 4 || shading == Shading::Flat || stage.plan.falloff.run {
         // A loose triangle's three vertices, flat shading, or lights whose
         // light depends on where a vertex is.
         for (&p, &n) in positions.iter().zip(normals) {
-            one(out, more.as_deref_mut(), p, n);
+            one(out, kept, p, n);
         }
         work.off_path = off_path;
         return work;
@@ -99,20 +103,23 @@ pub(super) fn vertices(
         match four(stage, t, p, nn, clip_tests, smooth && keep) {
             Some((v, m)) => {
                 out.extend_from_slice(&v);
-                if let Some(more) = more.as_deref_mut() {
-                    more.extend_from_slice(&m);
+                if keep {
+                    kept.deep.extend(m.each_ref().map(|m| m.deep));
+                }
+                if rest {
+                    kept.rest.extend(m.each_ref().map(|m| m.rest));
                 }
             }
             None => {
                 for (&p, &n) in p.iter().zip(nn) {
-                    one(out, more.as_deref_mut(), p, n);
+                    one(out, kept, p, n);
                 }
             }
         }
     }
     let start = n - n % 4;
     for (&p, &n) in positions[start..].iter().zip(&normals[start..]) {
-        one(out, more.as_deref_mut(), p, n);
+        one(out, kept, p, n);
     }
     work.off_path = off_path;
     work
@@ -187,9 +194,11 @@ fn four(
             z: zs[i],
             inv_w: ws[i],
         },
-        world: Vec3::ZERO,
-        normal: Vec3::new(n0[i], n1[i], n2[i]),
-        xy: [xs[i], ys[i]],
+        rest: Rest {
+            world: Vec3::ZERO,
+            normal: Vec3::new(n0[i], n1[i], n2[i]),
+            xy: [xs[i], ys[i]],
+        },
     };
     Some((
         [vert(0), vert(1), vert(2), vert(3)],
@@ -279,11 +288,11 @@ mod tests {
         let f = |x: f32| x.to_bits() as u64;
         let mut b = vec![v.code as u64, v.fixed().x.0 as u64, v.fixed().y.0 as u64];
         b.extend(
-            [m.world, m.normal, m.deep.light]
+            [m.rest.world, m.rest.normal, m.deep.light]
                 .iter()
                 .flat_map(|v| v.to_array().map(f)),
         );
-        b.extend([m.xy[0], m.xy[1], m.deep.z, m.deep.inv_w].map(f));
+        b.extend([m.rest.xy[0], m.rest.xy[1], m.deep.z, m.deep.inv_w].map(f));
         b
     }
 
@@ -380,25 +389,37 @@ mod tests {
             (cols, rows) in (1u16..300, 1u16..100),
         ) {
             let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices_in.into_iter().unzip();
-            let (mut four, mut more, mut one) = (Vec::new(), Vec::new(), Vec::new());
+            let (mut four, mut kept, mut one) = (Vec::new(), Kept::default(), Vec::new());
+            let mut deep = Kept::default();
             with_stage(shading, cols, rows, turn, |stage, t| {
                 let vs = (&positions[..], &normals[..]);
-                vertices(stage, t, vs, clip_tests, &mut four, Some(&mut more));
+                vertices(stage, t, vs, clip_tests, &mut four, (&mut kept, Extras::All));
                 one.extend(
                     positions.iter().zip(&normals).map(|(&p, &n)| vertex(stage, t, p, n, clip_tests)),
                 );
-                // Without extras kept, the same vertices.
-                let mut alone = Vec::new();
-                vertices(stage, t, vs, clip_tests, &mut alone, None);
-                assert_eq!(
-                    alone.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>(),
-                    four.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>()
-                );
+                // With less kept, the same vertices, and the same depth
+                // and light where those are kept.
+                let verts = |v: &[Vert]| v.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>();
+                let (mut alone, mut lean) = (Vec::new(), Vec::new());
+                let mut none = Kept::default();
+                vertices(stage, t, vs, clip_tests, &mut alone, (&mut none, Extras::Found));
+                vertices(stage, t, vs, clip_tests, &mut lean, (&mut deep, Extras::Deep));
+                assert_eq!(verts(&alone), verts(&four));
+                assert_eq!(verts(&lean), verts(&four));
+                assert_eq!((none.deep.len(), none.rest.len(), deep.rest.len()), (0, 0, 0));
             });
             prop_assert_eq!(four.len(), one.len());
-            prop_assert_eq!(more.len(), one.len());
-            for (i, ((a, m), (b, n))) in four.iter().zip(&more).zip(&one).enumerate() {
-                prop_assert_eq!(bits((a, m)), bits((b, n)), "vertex {}: {:?} {:?}", i, a, b);
+            prop_assert_eq!(kept.deep.len(), one.len());
+            prop_assert_eq!(kept.rest.len(), one.len());
+            let deep_bits = |d: &[Deep]| {
+                d.iter()
+                    .flat_map(|d| [d.light.x, d.light.y, d.light.z, d.z, d.inv_w].map(f32::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            prop_assert_eq!(deep_bits(&deep.deep), deep_bits(&kept.deep));
+            let more = kept.deep.iter().zip(&kept.rest).map(|(&deep, &rest)| More { deep, rest });
+            for (i, ((a, m), (b, n))) in four.iter().zip(more).zip(&one).enumerate() {
+                prop_assert_eq!(bits((a, &m)), bits((b, n)), "vertex {}: {:?} {:?}", i, a, b);
             }
         }
     }
