@@ -10,6 +10,7 @@
 //! welded positions and each position's number of corners.
 
 use glam::Vec3;
+use wide::u32x8;
 
 use super::mesh::*;
 
@@ -171,7 +172,8 @@ pub(super) struct Topology {
     /// of loading) or read.
     pub(super) ids: Option<Vec<u32>>,
     /// The entries around welded position `p` are
-    /// `list[start[p]..start[p + 1]]`.
+    /// `list[start[p]..start[p + 1]]`; eight more entries follow the last,
+    /// so that any list can be read eight at a time.
     start: Vec<u32>,
     list: Vec<u32>,
     listing: Listing,
@@ -263,7 +265,9 @@ fn corners_by_position(
     for p in 0..welded {
         start[p + 1] += start[p];
     }
-    let mut list = vec![0u32; faces.len() * 3];
+    // Eight more entries: a list is read eight at a time (see
+    // `Topology::closed`).
+    let mut list = vec![0u32; faces.len() * 3 + 8];
     for (f, face) in faces.iter().enumerate() {
         let w = [ids.of(face[0]), ids.of(face[1]), ids.of(face[2])];
         for k in 0..3 {
@@ -354,9 +358,9 @@ impl Topology {
     /// (Then the edges form a set that is its own reverse, which is what
     /// the words say.) Only edges to a higher position need looking up the
     /// other way (see the code). A list of up to 8 (every position of most
-    /// meshes) is checked pair by pair and searched in SIMD lanes, without
-    /// branches; one of up to 16 is sorted on the stack and scanned; a
-    /// longer one is sorted in place and searched by halves.
+    /// meshes) is read as eight SIMD lanes, its own pairs compared and the
+    /// lists it leads to searched without branches; a longer one is sorted
+    /// in place and searched by halves.
     pub(super) fn closed(&mut self, faces: &[[u32; 3]]) -> bool {
         assert_eq!(self.listing, Listing::Next);
         if faces.is_empty() {
@@ -368,40 +372,52 @@ impl Topology {
         }
         for p in 0..self.welded() {
             let range = self.range(p);
-            if range.len() > SMALL {
+            if range.len() > 8 {
                 self.list[range].sort_unstable();
             }
         }
-        let list = &self.list;
-        let row = |p: usize| &list[self.start[p] as usize..self.start[p + 1] as usize];
+        let (start, list) = (&self.start, &self.list);
+        // The list around `p`: its range, and its first eight entries in
+        // lanes, those past its end replaced by ids no position has, each
+        // its own (the list has eight entries past the last list to read).
+        let row8 = |p: usize| {
+            let (s, e) = (start[p] as usize, start[p + 1] as usize);
+            let w: [u32; 8] = list[s..s + 8].try_into().expect("eight");
+            let n = u32x8::splat((e - s).min(8) as u32);
+            (s..e, LANE.simd_lt(n).select(u32x8::new(w), PAD))
+        };
         (0..self.welded()).all(|p| {
-            let next = row(p);
+            let (range, v) = row8(p);
             let p = p as u32;
-            let distinct = if next.len() <= 8 {
-                distinct8(next, p)
-            } else if next.len() <= SMALL {
-                let mut v = [0u32; SMALL];
-                v[..next.len()].copy_from_slice(next);
-                let v = &mut v[..next.len()];
-                v.sort_unstable();
-                v.windows(2).all(|w| w[0] != w[1]) && !v.contains(&p)
-            } else {
-                next.windows(2).all(|w| w[0] != w[1]) && next.binary_search(&p).is_err()
-            };
-            // Only edges up (to a higher position) are looked for the other
-            // way. Each corner is an edge out of its position and one into
-            // it, so at every position as many edges leave as arrive, and
-            // so do the edges without their reverse: if there are any, they
-            // go round in cycles, and a cycle goes up somewhere.
-            distinct
-                && next.iter().filter(|&&q| q > p).all(|&q| {
-                    let back = row(q as usize);
-                    if back.len() <= SMALL {
-                        back.contains(&p)
-                    } else {
-                        back.binary_search(&p).is_ok()
+            if range.len() <= 8 {
+                if !distinct8(v, p) {
+                    return false;
+                }
+                // Only edges up (to a higher position) are looked for the
+                // other way. Each corner is an edge out of its position and
+                // one into it, so at every position as many edges leave as
+                // arrive, and so do the edges without their reverse: if
+                // there are any, they go round in cycles, and a cycle goes
+                // up somewhere.
+                let mut up = v.simd_gt(u32x8::splat(p)).to_bitmask() & ((1 << range.len()) - 1);
+                let v = v.to_array();
+                while up != 0 {
+                    let i = up.trailing_zeros() as usize;
+                    up &= up - 1;
+                    if !leads_back(start, list, v[i], p) {
+                        return false;
                     }
-                })
+                }
+                true
+            } else {
+                let next = &list[range];
+                next.windows(2).all(|w| w[0] != w[1])
+                    && next.binary_search(&p).is_err()
+                    && next
+                        .iter()
+                        .filter(|&&q| q > p)
+                        .all(|&q| leads_back(start, list, q, p))
+            }
         })
     }
 
@@ -425,25 +441,49 @@ impl Topology {
     }
 }
 
-/// Lists around a position up to this long are checked on the stack.
-const SMALL: usize = 16;
+/// Ids no position has (see [`Topology::closed`]), each its own, for the
+/// lanes past the end of a list of up to eight.
+const PAD: u32x8 = u32x8::new([
+    u32::MAX,
+    u32::MAX - 1,
+    u32::MAX - 2,
+    u32::MAX - 3,
+    u32::MAX - 4,
+    u32::MAX - 5,
+    u32::MAX - 6,
+    u32::MAX - 7,
+]);
 
-/// Whether the up to eight ids of `list` differ from each other and from
-/// `p`: every pair compared, without branches (in SIMD lanes, as the
-/// compiler lays them out), the slots past the list holding ids no
-/// position has, each its own (`u32::MAX - slot`).
+/// Each lane's number.
+const LANE: u32x8 = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+
+/// Whether an edge leads from `q` to `p` (see [`Topology::closed`]): in a
+/// list of up to eight, all eight lanes compared at once and those past
+/// the list's end masked off.
 #[inline(always)]
-fn distinct8(list: &[u32], p: u32) -> bool {
-    let mut v: [u32; 8] = std::array::from_fn(|i| u32::MAX - i as u32);
-    v[..list.len()].copy_from_slice(list);
-    let mut same = 0u32;
-    for i in 0..8 {
-        same |= (v[i] == p) as u32;
-        for j in i + 1..8 {
-            same |= (v[i] == v[j]) as u32;
-        }
+fn leads_back(start: &[u32], list: &[u32], q: u32, p: u32) -> bool {
+    let (s, e) = (start[q as usize] as usize, start[q as usize + 1] as usize);
+    if e - s <= 8 {
+        let w: [u32; 8] = list[s..s + 8].try_into().expect("eight");
+        u32x8::new(w).simd_eq(u32x8::splat(p)).to_bitmask() & ((1 << (e - s)) - 1) != 0
+    } else {
+        list[s..e].binary_search(&p).is_ok()
     }
-    same == 0
+}
+
+/// Whether the eight ids of `v` differ from each other and from `p`,
+/// without branches, in SIMD lanes (the `wide` crate: SSE2 where the
+/// target has it): each compared with all eight, the matches counted lane
+/// by lane; each matches itself, so eight matches in all say no two are
+/// the same.
+#[inline(always)]
+fn distinct8(v: u32x8, p: u32) -> bool {
+    let mut matches = u32x8::ZERO;
+    for x in v.to_array() {
+        // A match is all ones: −1.
+        matches -= u32x8::splat(x).simd_eq(v);
+    }
+    matches.reduce_add() == 8 && !v.simd_eq(u32x8::splat(p)).any()
 }
 
 /// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
@@ -494,4 +534,81 @@ pub(super) fn convex(g: &Geometry) -> bool {
         }
         sum <= full
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Closedness as the words say it, from every directed edge sorted:
+    /// none from a position to itself, none twice, each with its reverse.
+    fn closed_by_edges(topo: &Topology, faces: &[[u32; 3]]) -> bool {
+        let mut edges: Vec<(u32, u32)> = faces
+            .iter()
+            .flat_map(|f| {
+                let w = f.map(|v| topo.id(v));
+                [(w[0], w[1]), (w[1], w[2]), (w[2], w[0])]
+            })
+            .collect();
+        edges.sort_unstable();
+        !faces.is_empty()
+            && edges.iter().all(|&(p, q)| p != q)
+            && edges.windows(2).all(|w| w[0] != w[1])
+            && edges
+                .iter()
+                .all(|&(p, q)| edges.binary_search(&(q, p)).is_ok())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// A double cone of `sides` sides (apexes with fans of up to 23
+        /// faces, past the eight compared in lanes), some of its vertices
+        /// doubled (welded back), its faces edited: `closed` agrees with
+        /// the edges, and the untouched cone is closed.
+        #[test]
+        fn closedness_is_what_the_edges_say(
+            sides in 3u32..24,
+            copies in proptest::collection::vec(0u32..26, 0..6),
+            edits in proptest::collection::vec((0u8..5, 0usize..100, 0u32..26), 0..4),
+        ) {
+            let n = sides;
+            let mut positions: Vec<Vec3> = (0..n)
+                .map(|i| Vec3::new(i as f32, (i * i) as f32, 1.0))
+                .collect();
+            positions.extend([Vec3::Y * -5.0, Vec3::Y * 500.0]);
+            let mut faces: Vec<[u32; 3]> = (0..n)
+                .flat_map(|i| [[i, n, (i + 1) % n], [(i + 1) % n, n + 1, i]])
+                .collect();
+            // Vertices doubled: a copy at the same position, which the
+            // faces' first corners at the original then use.
+            for c in copies {
+                let v = c % (n + 2);
+                positions.push(positions[v as usize]);
+                let copy = positions.len() as u32 - 1;
+                for f in faces.iter_mut() {
+                    if f[0] == v {
+                        f[0] = copy;
+                    }
+                }
+            }
+            let mut topo = Topology::new(&positions, &faces, Listing::Next);
+            prop_assert!(topo.closed(&faces));
+            let len = faces.len();
+            for (kind, at, v) in edits {
+                let i = at % faces.len().max(1);
+                match kind {
+                    0 if !faces.is_empty() => { faces.remove(i); }
+                    1 if !faces.is_empty() => faces[i].swap(1, 2),
+                    2 if !faces.is_empty() => { let f = faces[i]; faces.extend([f, [f[0], f[2], f[1]]]); }
+                    3 if !faces.is_empty() => faces[i][0] = v % positions.len() as u32,
+                    _ if !faces.is_empty() => faces[i].rotate_left(1),
+                    _ => {}
+                }
+            }
+            let mut topo = Topology::new(&positions, &faces, Listing::Next);
+            prop_assert_eq!(topo.closed(&faces), closed_by_edges(&topo, &faces), "{} faces of {}", faces.len(), len);
+        }
+    }
 }
