@@ -472,12 +472,25 @@ pub(super) fn smooth_normals(
     let at = |c: u32| id(faces[(c / 3) as usize][(c % 3) as usize]);
     let mut creased_corners: Vec<u32> = Vec::new();
     if state.contains(&CREASED) {
-        for (c, &v) in faces.iter().flatten().enumerate() {
-            if creased(id(v)) {
-                creased_corners.push(c as u32);
+        // By a counting sort: each creased position's first slot, from the
+        // sizes of the fans before it; then the corners in order, each to
+        // its position's next slot.
+        let mut next = vec![0u32; topo.welded()];
+        let mut total = 0u32;
+        for (p, slot) in next.iter_mut().enumerate() {
+            *slot = total;
+            if creased(p) {
+                total += topo.fan(p) as u32;
             }
         }
-        creased_corners.sort_by_key(|&c| at(c));
+        creased_corners = vec![0; total as usize];
+        for (c, &v) in faces.iter().flatten().enumerate() {
+            let p = id(v);
+            if creased(p) {
+                creased_corners[next[p] as usize] = c as u32;
+                next[p] += 1;
+            }
+        }
     }
     let mut splits = Vec::new();
     // The faces around one creased position: unit normal and the angle there.
