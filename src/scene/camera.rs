@@ -48,22 +48,39 @@ impl Fit {
         use glam::Vec4;
         // Along each axis, unnormalised (only the order matters), in four
         // groups of four lanes (the last three lanes padding), so that the
-        // comparisons go four at a time.
+        // comparisons go four at a time: each lane `(x·a + y·b) + z·c` with
+        // a, b, c in {−1, 0, 1}, the sums a lane at a time in that order
+        // (so the same as adding the coordinates themselves, but for the
+        // sign of a zero, which no comparison below tells apart).
+        const A: [Vec4; 4] = [
+            Vec4::new(1.0, 0.0, 0.0, 1.0),
+            Vec4::new(1.0, 1.0, 1.0, 0.0),
+            Vec4::new(0.0, 1.0, 1.0, 1.0),
+            Vec4::new(-1.0, 0.0, 0.0, 0.0),
+        ];
+        const B: [Vec4; 4] = [
+            Vec4::new(0.0, 1.0, 0.0, 1.0),
+            Vec4::new(-1.0, 0.0, 0.0, 1.0),
+            Vec4::new(1.0, 1.0, 1.0, -1.0),
+            Vec4::new(1.0, 0.0, 0.0, 0.0),
+        ];
+        const C: [Vec4; 4] = [
+            Vec4::new(0.0, 0.0, 1.0, 0.0),
+            Vec4::new(0.0, 1.0, -1.0, 1.0),
+            Vec4::new(-1.0, 1.0, -1.0, 1.0),
+            Vec4::new(1.0, 0.0, 0.0, 0.0),
+        ];
         let along = |p: Vec3| -> [Vec4; 4] {
-            [
-                Vec4::new(p.x, p.y, p.z, p.x + p.y),
-                Vec4::new(p.x - p.y, p.x + p.z, p.x - p.z, p.y + p.z),
-                Vec4::new(p.y - p.z, p.x + p.y + p.z, p.x + p.y - p.z, p.x - p.y + p.z),
-                Vec4::new(-p.x + p.y + p.z, 0.0, 0.0, 0.0),
-            ]
+            let (x, y, z) = (Vec4::splat(p.x), Vec4::splat(p.y), Vec4::splat(p.z));
+            std::array::from_fn(|k| (x * A[k] + y * B[k]) + z * C[k])
         };
         let (mut lo, mut hi) = ([Vec4::INFINITY; 4], [Vec4::NEG_INFINITY; 4]);
         // Where each extreme is: the point's index, its bits kept in an
         // f32 lane (a select moves bits, it does no arithmetic). Each starts
         // at the first finite point (the first point where none is): a
         // finite point's extent can be infinite (1e38 + 3e38 overflows),
-        // and where every finite point's is, the first is the extreme, though
-        // no comparison with ±∞ moves it there.
+        // and where every finite point's extent is, the first is the
+        // extreme, though no comparison with ±∞ moves it there.
         let first = points.iter().position(|p| p.is_finite()).unwrap_or(0);
         let start = Vec4::splat(f32::from_bits(first as u32));
         let (mut lo_at, mut hi_at) = ([start; 4], [start; 4]);
@@ -74,9 +91,13 @@ impl Fit {
             let at = Vec4::splat(f32::from_bits(i as u32));
             for (k, s) in along(p).into_iter().enumerate() {
                 let (below, above) = (s.cmplt(lo[k]), s.cmpgt(hi[k]));
-                lo[k] = Vec4::select(below, s, lo[k]);
+                // SSE's `min` and `max` keep the second where the first is
+                // not strictly beyond it (no extent is NaN: a finite
+                // point's sums overflow only one way): the selects by
+                // `below` and `above`, in one operation each.
+                lo[k] = s.min(lo[k]);
                 lo_at[k] = Vec4::select(below, at, lo_at[k]);
-                hi[k] = Vec4::select(above, s, hi[k]);
+                hi[k] = s.max(hi[k]);
                 hi_at[k] = Vec4::select(above, at, hi_at[k]);
             }
         }
