@@ -841,7 +841,7 @@ mod tests {
     #[test]
     fn closedness_holds_at_positions_of_many_faces() {
         // A double cone of 40 sides: each apex has 40 faces around it, more
-        // than the fans checked on the stack.
+        // than the fans compared in SIMD lanes.
         let n = 40u32;
         let mut positions: Vec<Vec3> = (0..n)
             .map(|i| {
@@ -881,7 +881,7 @@ mod tests {
         pinched.extend([[0, 0, 1], [1, 0, 0]]);
         assert!(!Geometry::new("pinched", p, pinched).closed);
         // The same where every position of the doubled faces has more
-        // faces around it than are sorted on the stack: the apexes of three
+        // faces around it than are compared in SIMD lanes: the apexes of three
         // closed pyramids of 17 sides, and a triangle between them, both
         // sides, twice.
         let mut p = vec![Vec3::ZERO, Vec3::X * 9.0, Vec3::Y * 9.0];

@@ -8,6 +8,12 @@
 //! table of welded positions is kept: the passes that would read one are
 //! compiled for both cases ([`Welded`]). The normals (`normals.rs`) read the
 //! welded positions and each position's number of corners.
+//!
+//! Closedness reads a list of up to eight (every position of most meshes)
+//! as eight SIMD lanes, whatever its length, with the lanes past its end
+//! masked: eight entries of slack after the last list, 32 bytes, buy
+//! compares without branches or copies (what loading costs is in
+//! docs/figures.md, "Memory, loading and start-up").
 
 use glam::Vec3;
 use wide::u32x8;
