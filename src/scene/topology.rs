@@ -388,9 +388,8 @@ impl Topology {
         // its own (the list has eight entries past the last list to read).
         let row8 = |p: usize| {
             let (s, e) = (start[p] as usize, start[p + 1] as usize);
-            let w: [u32; 8] = list[s..s + 8].try_into().expect("eight");
             let n = u32x8::splat((e - s).min(8) as u32);
-            (s..e, LANE.simd_lt(n).select(u32x8::new(w), PAD))
+            (s..e, LANE.simd_lt(n).select(eight(list, s), PAD))
         };
         (0..self.welded()).all(|p| {
             let (range, v) = row8(p);
@@ -463,6 +462,13 @@ const PAD: u32x8 = u32x8::new([
 /// Each lane's number.
 const LANE: u32x8 = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
 
+/// The eight entries of `list` from `s` (past a list's end when it is
+/// shorter: the list array has eight entries of slack).
+#[inline(always)]
+fn eight(list: &[u32], s: usize) -> u32x8 {
+    u32x8::new(list[s..s + 8].try_into().expect("eight entries of slack"))
+}
+
 /// Whether an edge leads from `q` to `p` (see [`Topology::closed`]): in a
 /// list of up to eight, all eight lanes compared at once and those past
 /// the list's end masked off.
@@ -470,8 +476,7 @@ const LANE: u32x8 = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
 fn leads_back(start: &[u32], list: &[u32], q: u32, p: u32) -> bool {
     let (s, e) = (start[q as usize] as usize, start[q as usize + 1] as usize);
     if e - s <= 8 {
-        let w: [u32; 8] = list[s..s + 8].try_into().expect("eight");
-        u32x8::new(w).simd_eq(u32x8::splat(p)).to_bitmask() & ((1 << (e - s)) - 1) != 0
+        eight(list, s).simd_eq(u32x8::splat(p)).to_bitmask() & ((1 << (e - s)) - 1) != 0
     } else {
         list[s..e].binary_search(&p).is_ok()
     }
