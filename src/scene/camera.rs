@@ -301,6 +301,7 @@ impl Camera {
     /// round about its axis fills 90 %, a long one less in any one view.
     /// Otherwise the camera as it is.
     pub fn resolved(&self, aspect: f32) -> Camera {
+        const SWEPT: usize = 16 * Fit::POINTS;
         let (Some(fit), Projection::Perspective { fov_y, .. }) = (self.fit, self.projection) else {
             return Camera { fit: None, ..*self };
         };
@@ -313,26 +314,33 @@ impl Camera {
         let t = (fov_y.to_radians() / 2.0).tan() * Fit::FILL;
         let (kx, ky) = (t * aspect.max(1e-6), t);
         // The outline turned every way about y (as `spin` turns it), 16
-        // steps a turn: the framing holds for every frame.
-        // Turned once here, and read by every pass below.
-        let mut points = [Vec3::ZERO; 16 * Fit::POINTS];
-        for (k, turned) in points.chunks_exact_mut(Fit::POINTS).enumerate() {
+        // steps a turn: the framing holds for every frame. Each point's
+        // depth along `back`, its height along `up`, and the distance its
+        // width needs are found once here; the passes below change only
+        // the lift, and fold the same values in the same order as a pass
+        // over the points themselves would.
+        let mut depth = [0.0f32; SWEPT];
+        let mut height = [0.0f32; SWEPT];
+        let mut wide = [0.0f32; SWEPT];
+        for (k, turned) in depth.chunks_exact_mut(Fit::POINTS).enumerate() {
             let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
-            for (t, &p) in turned.iter_mut().zip(&fit.points) {
-                *t = turn * p - self.target;
+            for (j, (z, &p)) in turned.iter_mut().zip(&fit.points).enumerate() {
+                let p = turn * p - self.target;
+                let i = k * Fit::POINTS + j;
+                *z = p.dot(back);
+                height[i] = p.dot(up);
+                wide[i] = *z + p.dot(right).abs() / kx;
             }
         }
-        let swept = || points.iter().copied();
+        let points = || depth.iter().zip(&height).zip(&wide);
         // A point p at distance d projects to x / (d − z), which must stay
         // within kx (and y within ky): d ≥ z + |x| / kx. Seen from above
         // (or below) the projection is lopsided, so the view is also moved
         // up or down by `lift`, to centre it (not sideways: the turn's axis
         // stays in the middle).
         let fits = |lift: f32| {
-            swept().fold(0.0f32, |d, p| {
-                let z = p.dot(back);
-                d.max(z + p.dot(right).abs() / kx)
-                    .max(z + (p.dot(up) - lift).abs() / ky)
+            points().fold(0.0f32, |d, ((&z, &y), &w)| {
+                d.max(w).max(z + (y - lift).abs() / ky)
             })
         };
         let mut lift = 0.0f32;
@@ -340,8 +348,8 @@ impl Camera {
         for _ in 0..4 {
             // Where the projection's top and bottom are at this distance,
             // as heights at the target's depth.
-            let (lo, hi) = swept().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-                let y = (p.dot(up) - lift) * d / (d - p.dot(back));
+            let (lo, hi) = points().fold((f32::MAX, f32::MIN), |(lo, hi), ((&z, &y), _)| {
+                let y = (y - lift) * d / (d - z);
                 (lo.min(y), hi.max(y))
             });
             if !(lo.is_finite() && hi.is_finite()) {
@@ -525,6 +533,78 @@ mod tests {
                 got.iter().map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>(),
                 want.iter().map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>()
             );
+        }
+        /// A framed camera's distance and lift are what the passes over
+        /// the outline turned 16 ways about y give, each pass over every
+        /// turned point in order, as the framing is defined (depths,
+        /// heights and widths found from the point at each pass): the same
+        /// bits, for outlines and views of any shape, seen from anywhere.
+        #[test]
+        fn framing_folds_every_turned_point_as_defined(
+            raw in proptest::collection::vec((-40i16..40, -40i16..40, -40i16..40), 1..30),
+            eye in (-20i16..20, -20i16..20, -20i16..20),
+            aspect in 0.05f32..20.0,
+        ) {
+            let points: Vec<Vec3> = raw
+                .iter()
+                .map(|&(x, y, z)| Vec3::new(x as f32, y as f32, z as f32) * 0.37)
+                .collect();
+            let camera = Camera {
+                eye: Vec3::new(eye.0 as f32, eye.1 as f32, eye.2 as f32 + 0.5),
+                fit: Some(Fit::of(&points)),
+                ..Camera::default()
+            };
+            let fit = camera.fit.unwrap();
+            let Projection::Perspective { fov_y, .. } = camera.projection else {
+                unreachable!("the default camera is a perspective one")
+            };
+            // The definition, point by point.
+            let offset = camera.eye - camera.target;
+            let back = offset / offset.length();
+            let right = back.cross(camera.up).normalize_or_zero();
+            let right = if right == Vec3::ZERO { Vec3::X } else { right };
+            let up = right.cross(back);
+            let t = (fov_y.to_radians() / 2.0).tan() * Fit::FILL;
+            let (kx, ky) = (t * aspect.max(1e-6), t);
+            let swept: Vec<Vec3> = (0..16)
+                .flat_map(|k| {
+                    let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
+                    fit.points.map(|p| turn * p - camera.target)
+                })
+                .collect();
+            let fits = |lift: f32| {
+                swept.iter().fold(0.0f32, |d, p| {
+                    let z = p.dot(back);
+                    d.max(z + p.dot(right).abs() / kx)
+                        .max(z + (p.dot(up) - lift).abs() / ky)
+                })
+            };
+            let (mut lift, mut d) = (0.0f32, fits(0.0));
+            for _ in 0..4 {
+                let (lo, hi) = swept.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                    let y = (p.dot(up) - lift) * d / (d - p.dot(back));
+                    (lo.min(y), hi.max(y))
+                });
+                if !(lo.is_finite() && hi.is_finite()) {
+                    break;
+                }
+                lift += (lo + hi) / 2.0;
+                d = fits(lift);
+            }
+            let (d, lift) = if d.is_finite() && d > 0.0 && lift.is_finite() {
+                (d, lift)
+            } else {
+                (1.0, 0.0)
+            };
+            let target = camera.target + up * lift;
+            let want = Camera {
+                eye: target + back * d * offset.length(),
+                target,
+                fit: None,
+                ..camera
+            };
+            let got = camera.resolved(aspect);
+            proptest::prop_assert!(got.same_bits(&want), "{:?} against {:?}", got, want);
         }
     }
 
