@@ -302,6 +302,10 @@ impl Sums<'_> {
 /// against its position's mean, which marks the few positions with a crease
 /// (or a face of no area) for the per-position pass over their corners
 /// alone; then each vertex given its position's mean.
+// Out of line: the inliner took it into `Geometry::compute_normals` after
+// unrelated changes elsewhere in the crate, where it cost more (the
+// normals row of docs/figures.md).
+#[inline(never)]
 pub(super) fn smooth_normals(
     topo: &Topology,
     positions: &[Vec3],
