@@ -173,7 +173,7 @@ pub struct Plan {
     poses: Vec<bool>,
     /// Per mesh: whether it has so many vertices for the frame's samples
     /// ([`Plan::DEFER_PER_SAMPLE`]) that its corners' depth and light are found
-    /// at set-up, where a face has a sample in its box, rather than by the
+    /// at set-up, where a face covers a sample, rather than by the
     /// vertex stage for every vertex (see [`Plan::vertex_extras`]).
     defers: Vec<bool>,
     /// How many bands of rows the frame is drawn in, one thread each.
@@ -205,8 +205,8 @@ impl fmt::Display for Bands {
 /// the same whichever.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Extras {
-    /// Nothing: the depth, `1/w` and light of the corners of a face with a
-    /// sample in its box are found again at set-up (a large model seen
+    /// Nothing: the depth, `1/w` and light of the corners of a face that
+    /// covers a sample are found again at set-up (a large model seen
     /// small).
     Found,
     /// Depth, `1/w` and light (20 bytes), all that a lean face reads: a
@@ -272,11 +272,13 @@ impl Plan {
     /// found at set-up rather than kept by the vertex stage
     /// ([`Plan::vertex_extras`]): found again, a corner costs about four times
     /// what a vertex costs in the vertex stage's lanes, and each vertex is the
-    /// corner of about six faces, but a face is set up only where it has a
-    /// sample in its box. By callgrind at 200×60 half blocks (24,000
-    /// samples): a torus of 100,000 triangles (50,000 vertices) costs 47 %
-    /// more found at set-up, one of 1M (500,000) 3 % less.
-    pub const DEFER_PER_SAMPLE: usize = 16;
+    /// corner of about six faces, but only a face that covers a sample has
+    /// its corners found. By callgrind at 200×60 half blocks (24,000
+    /// samples, `examples/profile_scene`): a torus of 300,000 triangles
+    /// (6 vertices a sample) costs 6 % more a frame found at set-up, one of
+    /// 600,000 (12 a sample) 5 % less, one of 1M (21 a sample) 11 % less;
+    /// and found, a vertex keeps 16 bytes rather than 36.
+    pub const DEFER_PER_SAMPLE: usize = 8;
 
     /// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
     /// view-projection for this frame, `turn` the scene's turn and
@@ -538,7 +540,7 @@ impl Plan {
 
     /// Whether the depth, `1/w` and light of mesh `i`'s vertices (culled
     /// as `cull`) are found again at set-up, for the corners of each face
-    /// with a sample in its box, rather than kept by the vertex stage for
+    /// that covers a sample, rather than kept by the vertex stage for
     /// every vertex (16 bytes a vertex rather than 36 or 68), and why.
     /// Found again only where no face may read a vertex's world position,
     /// normal or unsnapped position (flat shading, lights that fall off, a
@@ -584,12 +586,12 @@ impl Plan {
         } else if !self.defers.get(i).copied().unwrap_or(false) {
             (
                 Extras::Deep,
-                "at most 16 vertices a sample: most vertices are corners of a face that covers one",
+                "at most 8 vertices a sample: most vertices are corners of a face that covers one",
             )
         } else {
             (
                 Extras::Found,
-                "more than 16 vertices a sample: only the corners of a face with a sample in its box are lit, at set-up",
+                "more than 8 vertices a sample: only the corners of a face that covers a sample are lit, at set-up",
             )
         }
     }

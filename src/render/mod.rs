@@ -24,6 +24,7 @@
 mod aa;
 mod bands;
 mod explain;
+mod lean;
 mod mapped;
 mod stats;
 mod triangle;

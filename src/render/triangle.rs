@@ -32,7 +32,7 @@ use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
 use crate::options::{Highlights, RenderOptions};
 use crate::plan::Extras;
 use crate::raster::{
-    self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SmallSetup, SnappedTriangle,
+    self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SnappedTriangle,
 };
 use crate::scene::{AlphaMode, Cull, Mesh, Scene};
 use crate::shade::Shading;
@@ -169,11 +169,7 @@ impl Painter<'_> {
         for face in faces {
             let v = face.map(|i| &verts.core[i as usize]);
             let inside = v[0].code | v[1].code | v[2].code == 0;
-            let base = || match &mesh.colors {
-                Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
-                Some(c) => face.map(|i| c[i as usize].to_lanes()),
-                None => [run_color; 3],
-            };
+            let base = || base_colors(mesh, face, run_color, diffuse);
             if inside && lean {
                 // No sample centre in its box (from the keys): nothing drawn,
                 // whatever its area or winding; told first, as most common.
@@ -191,6 +187,19 @@ impl Painter<'_> {
                     }
                 };
                 self.stats.raster.triangles_drawn += 1;
+                if KEEP == FOUND {
+                    // Its corners found (and lit) only if it covers a
+                    // sample; a shining run keeps them all.
+                    debug_assert!(!SHINY);
+                    self.lean_found(
+                        stage,
+                        f,
+                        (&verts, face, &mut scratch),
+                        (run_color, diffuse),
+                        &t,
+                    );
+                    continue;
+                }
                 let v = verts.of_as::<KEEP>(*face, &mut scratch);
                 self.count_lazy(stage, &verts);
                 // A shining run's normals and positions, found only here.
@@ -476,57 +485,6 @@ impl Painter<'_> {
         }
     }
 
-    /// What a triangle inside every clip plane without a texture takes on
-    /// the plan's lean path ([`crate::Plan::lean`]), once it is accepted
-    /// and counted as drawn: set it up, and light and fill it only if it
-    /// covers a sample.
-    #[inline(always)]
-    pub(super) fn inside_triangle(
-        &mut self,
-        stage: &Stage<'_>,
-        v: [V<'_>; 3],
-        (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn([usize; 3]) -> Shining),
-        t: &SnappedTriangle,
-    ) {
-        let (grid, band) = (self.fb.grid(), self.fb.band());
-        match SmallSetup::of(t, grid, band) {
-            Some(s) => self.inside_fill(stage, v, (&base, &shine), &s),
-            None => {
-                let s = Setup::of(t, grid, band);
-                self.inside_fill(stage, v, (&base, &shine), &s);
-            }
-        }
-    }
-
-    /// Lights and fills a set-up triangle of [`Painter::inside_triangle`]
-    /// if it covers a sample; counts its box's samples as tested if not.
-    #[inline(always)]
-    pub(super) fn inside_fill<C: Coverage>(
-        &mut self,
-        stage: &Stage<'_>,
-        v: [V<'_>; 3],
-        (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn([usize; 3]) -> Shining),
-        s: &C,
-    ) {
-        if !s.covers_any() {
-            self.stats.raster.samples_tested += s.bbox_samples();
-            return;
-        }
-        let color = self.shade(stage, v, base(), !s.ccw());
-        let a = Attributes::new(
-            s.order(),
-            s.inv_area(),
-            [v.map(|v| v.deep().z), v.map(|v| v.deep().inv_w)],
-            color,
-            stage.plan.perspective.run,
-        );
-        let flat = !stage.plan.interpolates(&color);
-        match shine(s.order()) {
-            Some(corners) => self.fill_shiny(s, &a, flat, (None, corners), stage),
-            None => self.fill_colour(s, &a, flat, stage),
-        }
-    }
-
     /// The triangle's colour at each vertex. `back`: seen from behind, so
     /// lit on its other side (two-sided lighting).
     /// Colours are linear light in [0, 65535], rounded to whole steps, so
@@ -706,7 +664,7 @@ impl Painter<'_> {
     /// [`Painter::fill`] of a triangle of a shining run (with its texture,
     /// if any, and its corners' normals and positions), counted.
     #[inline(always)]
-    fn fill_shiny<C: Coverage>(
+    pub(super) fn fill_shiny<C: Coverage>(
         &mut self,
         setup: &C,
         a: &Attributes,
@@ -741,6 +699,22 @@ impl Painter<'_> {
     ) {
         let done = self.sink(stage).colour(setup, a, flat);
         self.stats.count_fill(done);
+    }
+}
+
+/// A face's base colours: its corners' own (times the run's diffuse
+/// share), or the run's.
+#[inline(always)]
+pub(super) fn base_colors(
+    mesh: &Mesh,
+    face: &[u32; 3],
+    run_color: Vec3A,
+    diffuse: f32,
+) -> [Vec3A; 3] {
+    match &mesh.colors {
+        Some(c) if diffuse != 1.0 => face.map(|i| c[i as usize].to_lanes() * diffuse),
+        Some(c) => face.map(|i| c[i as usize].to_lanes()),
+        None => [run_color; 3],
     }
 }
 

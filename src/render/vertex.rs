@@ -19,8 +19,8 @@
 //! the view with few vertices for the frame's samples keeps the [`Deep`]
 //! alone, all its faces read (`Plan::vertex_extras`, [`crate::plan::Extras`]).
 //! A large lit, culled, matte model seen small keeps
-//! 16 bytes a vertex, and the [`Deep`] of the corners of a face with a
-//! sample in its box is found again at set-up ([`Lazy`], by the very
+//! 16 bytes a vertex, and the [`Deep`] of the corners of a face that
+//! covers a sample is found again at set-up ([`Lazy`], by the very
 //! function the stage uses, so the bits are the same): most of its
 //! vertices are never the corner of such a face, so finding it there costs
 //! less than finding it for every vertex, where there are many more
