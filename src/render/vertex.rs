@@ -320,8 +320,17 @@ impl Deep {
 impl Lazy<'_> {
     /// The [`Deep`] of `face`'s corners, into `scratch` (out of line: the
     /// face loop of a mesh that keeps its extras stays as short as it was).
+    /// Three at once in lanes where they are the common case (the fourth
+    /// lane a copy of the third).
     #[inline(never)]
     fn deep3(&self, face: [u32; 3], scratch: &mut [Deep; 3]) {
+        let [a, b, c] = face.map(|i| i as usize);
+        let p = [a, b, c, c].map(|i| self.positions[i]);
+        let n = [a, b, c, c].map(|i| self.normals[i]);
+        if let Some([d0, d1, d2, _]) = vertex_lanes::deep4(self.stage, self.transforms, &p, &n) {
+            *scratch = [d0, d1, d2];
+            return;
+        }
         for (m, i) in scratch.iter_mut().zip(face) {
             let i = i as usize;
             *m = deep(

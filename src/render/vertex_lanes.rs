@@ -206,6 +206,43 @@ fn four(
     ))
 }
 
+/// The [`super::vertex::deep`] of four vertices (positions `p`, normals
+/// `n`), in lanes: the operations [`four`] does for their depth, `1/w` and
+/// light, so the same bits; `None` where a lane is not the common case
+/// (a normal [`directions`] refuses, or lights that fall off), for the
+/// caller to find one at a time.
+#[inline(always)]
+pub(super) fn deep4(
+    stage: &Stage<'_>,
+    t: &Transforms,
+    p: &[Vec3; 4],
+    n: &[Vec3; 4],
+) -> Option<[Deep; 4]> {
+    if stage.plan.falloff.run {
+        return None;
+    }
+    let (px, py, pz) = (lanes(p, 0), lanes(p, 1), lanes(p, 2));
+    let m = &t.mvp;
+    let s = Vec4::splat;
+    let clip =
+        |c: usize| s(m.x_axis[c]) * px + s(m.y_axis[c]) * py + s(m.z_axis[c]) * pz + s(m.w_axis[c]);
+    let inv_w = Vec4::ONE / clip(3);
+    let z = clip(2) * inv_w;
+    let [l0, l1, l2] = if stage.plan.shading == Shading::Smooth {
+        let unit = directions(&t.normal, lanes(n, 0), lanes(n, 1), lanes(n, 2))?;
+        stage.lights.lambert4(unit)
+    } else {
+        [Vec4::ZERO; 3]
+    };
+    let (zs, ws) = (z.to_array(), inv_w.to_array());
+    let (l0, l1, l2) = (l0.to_array(), l1.to_array(), l2.to_array());
+    Some(std::array::from_fn(|i| Deep {
+        light: Vec3::new(l0[i], l1[i], l2[i]),
+        z: zs[i],
+        inv_w: ws[i],
+    }))
+}
+
 /// `transform::direction(k * n)` for four normals in lanes, or `None` when
 /// one of them is not finite, or zero or subnormal at its largest.
 #[inline(always)]
@@ -254,7 +291,7 @@ mod tests {
     use crate::options::RenderOptions;
     use crate::plan::Plan;
     use crate::render::Eye;
-    use crate::render::vertex::Transforms;
+    use crate::render::vertex::{Transforms, deep};
     use crate::scene::{Scene, Shape};
     use crate::shade::Lights;
     use crate::transform::Viewport;
@@ -421,6 +458,36 @@ mod tests {
             for (i, ((a, m), (b, n))) in four.iter().zip(more).zip(&one).enumerate() {
                 prop_assert_eq!(bits((a, &m)), bits((b, n)), "vertex {}: {:?} {:?}", i, a, b);
             }
+        }
+    }
+
+    proptest! {
+        /// The depth, `1/w` and light found again at set-up four at a time
+        /// ([`deep4`], for a mesh whose vertex stage keeps none) are each
+        /// vertex's own ([`deep`]), bit for bit, wherever the lanes take
+        /// them; and ordinary vertices do take them.
+        #[test]
+        fn deep_found_four_at_a_time_is_one_at_a_time(
+            vertices_in in prop::collection::vec((vec3(coord()), vec3(normal())), 4),
+            shading in prop::sample::select(vec![Shading::Smooth, Shading::None]),
+            turn in vec3(-180f32..180.0),
+            ordinary: bool,
+        ) {
+            let (mut p, mut n): (Vec<Vec3>, Vec<Vec3>) = vertices_in.into_iter().unzip();
+            if ordinary {
+                // Inside the cube, normals of ordinary size.
+                p.iter_mut().for_each(|p| *p = p.clamp(Vec3::splat(-1.0), Vec3::splat(1.0)));
+                n.iter_mut().for_each(|n| *n = Vec3::new(0.25, -0.5, 0.75) + n.clamp(Vec3::splat(-0.2), Vec3::splat(0.2)));
+            }
+            let (p, n): ([Vec3; 4], [Vec3; 4]) = (p.try_into().unwrap(), n.try_into().unwrap());
+            let deep_bits = |d: &Deep| [d.light.x, d.light.y, d.light.z, d.z, d.inv_w].map(f32::to_bits);
+            with_stage(shading, 80, 24, turn, |stage, t| {
+                let lanes = deep4(stage, t, &p, &n);
+                assert!(lanes.is_some() || !ordinary, "ordinary vertices take the lanes");
+                for (i, d) in lanes.iter().flatten().enumerate() {
+                    assert_eq!(deep_bits(d), deep_bits(&deep(stage, t, p[i], n[i])), "vertex {i}");
+                }
+            });
         }
     }
 
