@@ -21,7 +21,7 @@
 //! A large lit, culled, matte model seen small keeps
 //! 16 bytes a vertex, and the [`Deep`] of the corners of a face that
 //! covers a sample is found again at set-up ([`Lazy`], by the very
-//! function the stage uses, so the bits are the same): most of its
+//! operations the stage uses, so the bits are the same): most of its
 //! vertices are never the corner of such a face, so finding it there costs
 //! less than finding it for every vertex, where there are many more
 //! vertices than samples (and more where there are fewer: the plan
@@ -297,8 +297,9 @@ pub(super) struct Verts<'a> {
 /// many more vertices than the faces that cover a sample have corners
 /// (a large model seen small), finding it for those corners alone costs
 /// less than finding it for every vertex and keeping it: the vertex
-/// stage keeps 16 bytes a vertex, not 36. The same function finds it both
-/// ways ([`deep`]), so the bits are the same.
+/// stage keeps 16 bytes a vertex, not 36. The same operations find it both
+/// ways ([`deep`] one at a time, `vertex_lanes::deep4` in lanes, as the
+/// stage itself does), so the bits are the same.
 #[derive(Clone, Copy)]
 pub(super) struct Lazy<'a> {
     pub(super) positions: &'a [Vec3],
