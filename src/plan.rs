@@ -274,11 +274,11 @@ impl Plan {
     /// what a vertex costs in the vertex stage's lanes, and each vertex is the
     /// corner of about six faces, but only a face that covers a sample has
     /// its corners found. By callgrind at 200×60 half blocks (24,000
-    /// samples, `examples/profile_scene`): a torus of 300,000 triangles
-    /// (6 vertices a sample) costs 6 % more a frame found at set-up, one of
-    /// 600,000 (12 a sample) 5 % less, one of 1M (21 a sample) 11 % less;
-    /// and found, a vertex keeps 16 bytes rather than 36.
-    pub const DEFER_PER_SAMPLE: usize = 8;
+    /// samples, `examples/profile_scene`): a torus of 100,000 triangles
+    /// (2 vertices a sample) costs 14 % more a frame found at set-up, one
+    /// of 300,000 (6 a sample) 1 % less, of 600,000 (12) 9 % less, of 1M
+    /// (21) 14 % less; and found, a vertex keeps 16 bytes rather than 36.
+    pub const DEFER_PER_SAMPLE: usize = 6;
 
     /// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
     /// view-projection for this frame, `turn` the scene's turn and
@@ -586,12 +586,12 @@ impl Plan {
         } else if !self.defers.get(i).copied().unwrap_or(false) {
             (
                 Extras::Deep,
-                "at most 8 vertices a sample: most vertices are corners of a face that covers one",
+                "at most 6 vertices a sample: most vertices are corners of a face that covers one",
             )
         } else {
             (
                 Extras::Found,
-                "more than 8 vertices a sample: only the corners of a face that covers a sample are lit, at set-up",
+                "more than 6 vertices a sample: only the corners of a face that covers a sample are lit, at set-up",
             )
         }
     }
