@@ -210,8 +210,11 @@ fn four(
 /// `n`), in lanes: the operations [`four`] does for their depth, `1/w` and
 /// light, so the same bits; `None` where a lane is not the common case
 /// (a normal [`directions`] refuses, or lights that fall off), for the
-/// caller to find one at a time.
-#[inline(always)]
+/// caller to find one at a time. Out of line: inlined into
+/// `Lazy::deep3`, the compiler laid out the face loops of meshes that keep
+/// their extras otherwise, and a Tux frame (which finds none) cost 2 %
+/// more (callgrind, `examples/profile_scene`).
+#[inline(never)]
 pub(super) fn deep4(
     stage: &Stage<'_>,
     t: &Transforms,
