@@ -184,23 +184,16 @@ pub(super) fn clamped_box(extent: &[i64; 4], grid: Grid, band: Band) -> [i64; 4]
 /// the vertex order they follow: `edges[k]` is opposite vertex `order[k]`.
 #[inline(always)]
 pub(super) fn oriented(p: &[FixedPoint; 3], ccw: bool) -> ([Edge; 3], [usize; 3]) {
-    let order = set_up_order(p);
-    (edges(&order.map(|i| p[i]), ccw), order)
-}
-
-/// The vertex order a set-up follows: from the lowest vertex (then
-/// leftmost), so that ABC, BCA and CAB are one and the same triangle to
-/// everything after, and a frame does not depend on which vertex a file
-/// lists first. A rotation: the edges are the same directed edges in
-/// another order, so it covers the same samples whatever the order. The
-/// first of the lowest (then leftmost), as `min_by_key` would find it, in
-/// two comparisons.
-#[inline(always)]
-pub(super) fn set_up_order(p: &[FixedPoint; 3]) -> [usize; 3] {
+    // Start from the lowest vertex (then leftmost): ABC, BCA and CAB are
+    // then one and the same triangle to everything below, so a frame does
+    // not depend on which vertex a file lists first. The first of the
+    // lowest (then leftmost), as `min_by_key` would find it, in two
+    // comparisons.
     let below = |a: usize, b: usize| (p[a].y.0, p[a].x.0) < (p[b].y.0, p[b].x.0);
     let r = if below(1, 0) { 1 } else { 0 };
     let r = if below(2, r) { 2 } else { r };
-    [r, (r + 1) % 3, (r + 2) % 3]
+    let order = [r, (r + 1) % 3, (r + 2) % 3];
+    (edges(&order.map(|i| p[i]), ccw), order)
 }
 
 /// The edges of a triangle whose vertices are in set-up order: edge `i`

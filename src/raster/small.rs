@@ -21,8 +21,6 @@ pub const SMALL_BOX: u64 = 8;
 pub(crate) struct SmallSetup {
     /// The vertices in `order`.
     pub(super) p: [FixedPoint; 3],
-    /// The set-up's vertex order; as listed for a triangle that covers no
-    /// sample (never filled, so the order is never read).
     pub(super) order: [u8; 3],
     pub(super) ccw: bool,
     pub(super) area2: i64,
@@ -66,10 +64,7 @@ impl SmallSetup {
         if n as u64 > SMALL_BOX {
             return None;
         }
-        // Which samples it covers, tested along its edges as listed: the
-        // set-up's order (a rotation) covers the same, and is found only
-        // for a triangle that covers one.
-        let edges = edges(&p, ccw);
+        let (edges, order) = oriented(&p, ccw);
         let accepts = |x: i64, y: i64| {
             let (px, py) = (x * ONE + ONE / 2, y * ONE + ONE / 2);
             edges.iter().all(|e| e.at(px, py) >= e.min)
@@ -88,11 +83,6 @@ impl SmallSetup {
                 }
             }
             covered
-        };
-        let order = if covered == 0 {
-            [0, 1, 2]
-        } else {
-            set_up_order(&p)
         };
         Some(SmallSetup {
             p: order.map(|i| p[i]),
