@@ -13,9 +13,18 @@
 //! general reader, which also places every error. The property test below
 //! holds the two readers to the same models and the same errors.
 //!
-//! The bytes after the buffer's unread ones are NUL (`file::SLACK` of
-//! them), and no item takes a NUL, so every 8-byte look ahead stays inside
-//! the window and a line that is cut off is never taken.
+//! The two commonest shapes are tried first, each with no loop over
+//! gaps: a `v` or `vn` line of three short numbers after single spaces
+//! (each number and the byte after it from one 16-byte look), and a face
+//! of three or four bare position indices (`f 1 2 3 4`, each index and
+//! the byte after it from one 8-byte look), added without the corner
+//! list. Any other line of the kinds above goes the general way of this
+//! module; the property test holds both ways to the general reader.
+//!
+//! The bytes after the buffer's unread ones are NUL (`file::SLACK`, 16, of
+//! them), and no item takes a NUL, so every look ahead (8 bytes past a
+//! byte read, or 16 from one) stays inside the window and a line that is
+//! cut off is never taken.
 
 use glam::{Vec2, Vec3};
 
@@ -116,6 +125,67 @@ impl Scan<'_> {
         self.long_decimal(neg)
     }
 
+    /// The usual number, `[-]digits.digits` or `[-]digits` of up to 8
+    /// bytes after its sign, and the byte after them, all from one 16-byte
+    /// look (the window's slack is 16): the number [`Scan::decimal`] reads
+    /// where that byte is not a digit (where it is, the number goes on,
+    /// and the caller must not take it); `None` (the position unchanged)
+    /// for any other.
+    #[inline(always)]
+    fn short_decimal(&mut self) -> Option<(f32, u8)> {
+        let chunk = self.w.get(self.i..)?.first_chunk::<16>()?;
+        let neg = chunk[0] == b'-';
+        // The number's bytes from the first after its sign.
+        let rest = &chunk[neg as usize..neg as usize + 9];
+        let (t, not_digit) = digit_bytes(*rest.first_chunk::<8>()?);
+        // Where the first byte that is not a digit is (8: none).
+        let d = (not_digit.trailing_zeros() / 8) as usize;
+        let (m, decimals, end) = if d < 8 && (t >> (8 * d)) as u8 == b'.' ^ b'0' {
+            // The second (8: none), its byte exact as the point does not carry.
+            let e = ((not_digit & (not_digit - 1)).trailing_zeros() / 8) as usize;
+            if e == 1 {
+                return None;
+            }
+            // The digits after the point moved down over it.
+            let low = (1u64 << (8 * d)) - 1;
+            (
+                digits_value((t & low) | ((t >> 8) & !low), e - 1),
+                e - d - 1,
+                e,
+            )
+        } else if (1..8).contains(&d) {
+            (digits_value(t, d), 0, d)
+        } else {
+            return None;
+        };
+        self.i += neg as usize + end;
+        Some((exact_decimal(m, decimals, neg), rest[end]))
+    }
+
+    /// The three numbers of a usual `v` or `vn` line, each after one space
+    /// and the last before the line's end, each read by
+    /// [`Scan::short_decimal`]: `None` (the position unchanged) for any
+    /// other line, for [`Scan::decimals`] to read.
+    #[inline(always)]
+    fn three(&mut self) -> Option<[f32; 3]> {
+        let mut s = Scan {
+            w: self.w,
+            i: self.i,
+        };
+        // Unrolled (as a loop it is not), the separators told at the end:
+        // a number read past a wrong one is read in vain, not wrongly.
+        let (x, a) = s.short_decimal()?;
+        s.i += 1;
+        let (y, b) = s.short_decimal()?;
+        s.i += 1;
+        let (z, c) = s.short_decimal()?;
+        if (a, b, c) != (b' ', b' ', b'\n') {
+            return None;
+        }
+        self.i = s.i + 1;
+        Some([x, y, z])
+    }
+
     /// [`Scan::decimal`] for one of more than 8 bytes (after its sign).
     #[inline(never)]
     fn long_decimal(&mut self, neg: bool) -> Option<f32> {
@@ -193,14 +263,20 @@ impl Reader<'_> {
         }
         match kind {
             b'v' => {
-                let ([x, y, z], _) = s.decimals::<3>(3)?;
+                let [x, y, z] = match s.three() {
+                    Some(v) => v,
+                    None => s.decimals::<3>(3)?.0,
+                };
                 if self.pos.len() == MAX_VERTICES {
                     return None;
                 }
                 self.position(Vec3::new(x, y, z), None, n);
             }
             b'n' => {
-                let (v, _) = s.decimals::<3>(3)?;
+                let v = match s.three() {
+                    Some(v) => v,
+                    None => s.decimals::<3>(3)?.0,
+                };
                 self.vn.push(Vec3::from(v));
             }
             b't' => {
@@ -211,11 +287,58 @@ impl Reader<'_> {
                 self.vt.push(Vec2::new(u, 1.0 - v));
             }
             _ => {
-                self.fast_corners(&mut s)?;
-                self.add_face();
+                if !self.fast_plain_face(&mut s) {
+                    self.fast_corners(&mut s)?;
+                    self.add_face();
+                }
             }
         }
         Some(s.i)
+    }
+
+    /// A face of three or four corners that name positions alone, each
+    /// after one space and the last before the line's end (`f 1 2 3 4`),
+    /// read from one 8-byte look a corner (the index and the byte after
+    /// it) and added ([`Reader::add_plain_face`]): `true`, the position
+    /// then past the line. `false` (nothing read or changed) for any other
+    /// face, which [`Reader::fast_corners`] then reads.
+    #[inline]
+    fn fast_plain_face(&mut self, s: &mut Scan) -> bool {
+        let count = self.pos.len() as u64;
+        let mut v = [0u32; 4];
+        let mut i = s.i;
+        for k in 0..4 {
+            let Some(&chunk) = s.w.get(i..).and_then(|w| w.first_chunk::<8>()) else {
+                return false;
+            };
+            let (t, not_digit) = digit_bytes(chunk);
+            let d = (not_digit.trailing_zeros() / 8) as usize;
+            if d == 0 || d == 8 {
+                return false;
+            }
+            // From 1 to the positions so far.
+            let x = digits_value(t, d).wrapping_sub(1);
+            if x >= count {
+                return false;
+            }
+            v[k] = x as u32;
+            i += d + 1;
+            match (t >> (8 * d)) as u8 ^ b'0' {
+                b' ' => {}
+                b'\n' if k == 2 => {
+                    s.i = i;
+                    self.add_plain_face([v[0], v[1], v[2]]);
+                    return true;
+                }
+                b'\n' if k == 3 => {
+                    s.i = i;
+                    self.add_plain_face(v);
+                    return true;
+                }
+                _ => return false,
+            }
+        }
+        false
     }
 
     /// A face's corners into `corners`, to the line's end, if every one is

@@ -424,11 +424,7 @@ impl<'a> Reader<'a> {
             }
             [a, b, c, d] => {
                 let ids = self.corner_ids([a, b, c, d]);
-                let at = |[v, ..]: [u32; 3]| self.pos[v as usize];
-                if let Some(d) = polygon::quad([at(a), at(b), at(c), at(d)]) {
-                    let [a, b, c, e] = [d, d + 1, d + 2, (d + 3) % 4].map(|k| ids[k]);
-                    self.triangles.extend([[a, b, c], [a, c, e]]);
-                } else {
+                if !self.split_quad(ids, [a[0], b[0], c[0], d[0]]) {
                     self.ids.clear();
                     self.ids.extend(ids);
                     self.cut_face();
@@ -445,6 +441,47 @@ impl<'a> Reader<'a> {
             self.ids.push(id);
         }
         self.cut_face();
+    }
+
+    /// A quad of vertices `ids` at positions `v`, cut along the diagonal
+    /// that [`polygon::quad`] finds; `false` (nothing added) for one it
+    /// leaves to the polygon triangulator.
+    #[inline(always)]
+    fn split_quad(&mut self, ids: [u32; 4], v: [u32; 4]) -> bool {
+        let at = |k: usize| self.pos[v[k] as usize];
+        let Some(d) = polygon::quad([at(0), at(1), at(2), at(3)]) else {
+            return false;
+        };
+        // Written out: `map` and `extend` here are calls that are not
+        // inlined.
+        let (a, b, c, e) = (ids[d], ids[d + 1], ids[d + 2], ids[(d + 3) % 4]);
+        self.triangles.push([a, b, c]);
+        self.triangles.push([a, c, e]);
+        true
+    }
+
+    /// [`Reader::add_face`] for a triangle or quad whose corners name
+    /// positions `v` alone (`f 1 2 3`, the fast path's commonest line):
+    /// the same checks and triangles, without the corner list.
+    #[inline(always)]
+    pub(super) fn add_plain_face<const N: usize>(&mut self, v: [u32; N]) {
+        if self.any_bad && v.iter().any(|&v| !self.pos[v as usize].is_finite()) {
+            self.dropped_faces += 1;
+            return;
+        }
+        // No corner names a normal.
+        self.all_normals = false;
+        if let Ok(t) = <[u32; 3]>::try_from(&v[..]) {
+            self.triangles.push(t);
+        } else if let Ok(q) = <[u32; 4]>::try_from(&v[..])
+            && !self.split_quad(q, q)
+        {
+            self.corners.clear();
+            self.corners.extend(q.map(|v| [v, NONE, NONE]));
+            self.ids.clear();
+            self.ids.extend(q);
+            self.cut_face();
+        }
     }
 
     /// [`Reader::vertex`] for each of a face's corners (`v`, `vt`, `vn`),
