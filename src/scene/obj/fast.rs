@@ -249,6 +249,21 @@ impl Reader<'_> {
     /// the general reader to read.
     #[inline]
     pub(super) fn fast_line(&mut self, window: &[u8], n: usize) -> Option<usize> {
+        // The two commonest shapes, told by their first two bytes; any
+        // other line of theirs goes the general way below.
+        let mut s = Scan { w: window, i: 2 };
+        match window.first_chunk::<2>()? {
+            b"v " => {
+                if let Some(p) = s.three()
+                    && self.pos.len() < MAX_VERTICES
+                {
+                    self.position(Vec3::from(p), None, n);
+                    return Some(s.i);
+                }
+            }
+            b"f " if self.fast_plain_face(&mut s) => return Some(s.i),
+            _ => {}
+        }
         let key = *window.first_chunk::<3>()?;
         let (skip, kind) = match key {
             [b'v', b, _] if gap(b) => (1, b'v'),

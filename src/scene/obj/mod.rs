@@ -452,11 +452,10 @@ impl<'a> Reader<'a> {
         let Some(d) = polygon::quad([at(0), at(1), at(2), at(3)]) else {
             return false;
         };
-        // Written out: `map` and `extend` here are calls that are not
-        // inlined.
+        // Written out: `map` and `extend` of an array here are calls that
+        // are not inlined.
         let (a, b, c, e) = (ids[d], ids[d + 1], ids[d + 2], ids[(d + 3) % 4]);
-        self.triangles.push([a, b, c]);
-        self.triangles.push([a, c, e]);
+        self.triangles.extend_from_slice(&[[a, b, c], [a, c, e]]);
         true
     }
 
