@@ -86,15 +86,24 @@ fn folded(n: DVec3, m: DVec3) -> bool {
 ///   surface stays closed; the even-odd cut would add a vertex on two of
 ///   them and open it.
 ///
+pub fn quad(p: [Vec3; 4]) -> Option<usize> {
+    quad_at(&p, [0, 1, 2, 3])
+}
+
+/// [`quad`] of the quad whose corners are `positions[v[k]]`, read from
+/// where they are (a reader cuts its quads with no copy of the corners).
+/// Panics if an index is out of range.
+///
 /// Out of line: a quad is cut once, at load, and inlined into the OBJ
 /// reader it saved less there (0.35 instructions a byte) than the
 /// program's face loop lost by how the compiler then laid it out (0.5 %
 /// of a Tux frame through `spin`, by callgrind).
 #[inline(never)]
-pub fn quad(p: [Vec3; 4]) -> Option<usize> {
+pub fn quad_at(positions: &[Vec3], v: [u32; 4]) -> Option<usize> {
     // In SIMD lanes: the same operations on each coordinate, and the dot
     // products summed in the same order, so the same bits as `Vec3`'s.
-    let p = p.map(Vec3A::from);
+    let at = |k: usize| Vec3A::from(positions[v[k] as usize]);
+    let p = [at(0), at(1), at(2), at(3)];
     let facing = |a: usize, b: usize, d: usize| (p[b] - p[a]).cross(p[d] - p[a]);
     let (n, m) = (facing(0, 1, 2), facing(0, 2, 3));
     if n.dot(m) > 0.0 {

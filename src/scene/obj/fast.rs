@@ -126,7 +126,7 @@ impl Scan<'_> {
     }
 
     /// The usual number, `[-]digits.digits` or `[-]digits` of up to 8
-    /// bytes after its sign, and the byte after them, all from one 16-byte
+    /// bytes after its sign with a digit first, and the byte after them, all from one 16-byte
     /// look (the window's slack is 16): the number [`Scan::decimal`] reads
     /// where that byte is not a digit (where it is, the number goes on,
     /// and the caller must not take it); `None` (the position unchanged)
@@ -138,14 +138,15 @@ impl Scan<'_> {
         // The number's bytes from the first after its sign.
         let rest = &chunk[neg as usize..neg as usize + 9];
         let (t, not_digit) = digit_bytes(*rest.first_chunk::<8>()?);
-        // Where the first byte that is not a digit is (8: none).
+        // Where the first byte that is not a digit is: at least one digit
+        // before it (`.5` goes the general way), and not 8.
         let d = (not_digit.trailing_zeros() / 8) as usize;
-        let (m, decimals, end) = if d < 8 && (t >> (8 * d)) as u8 == b'.' ^ b'0' {
+        if !(1..8).contains(&d) {
+            return None;
+        }
+        let (m, decimals, end) = if (t >> (8 * d)) as u8 == b'.' ^ b'0' {
             // The second (8: none), its byte exact as the point does not carry.
             let e = ((not_digit & (not_digit - 1)).trailing_zeros() / 8) as usize;
-            if e == 1 {
-                return None;
-            }
             // The digits after the point moved down over it.
             let low = (1u64 << (8 * d)) - 1;
             (
@@ -153,13 +154,13 @@ impl Scan<'_> {
                 e - d - 1,
                 e,
             )
-        } else if (1..8).contains(&d) {
-            (digits_value(t, d), 0, d)
         } else {
-            return None;
+            (digits_value(t, d), 0, d)
         };
         self.i += neg as usize + end;
-        Some((exact_decimal(m, decimals, neg), rest[end]))
+        // At most 6 decimals (the `& 7` changes nothing; it spares the
+        // powers' table a bounds check).
+        Some((exact_decimal(m, decimals & 7, neg), rest[end]))
     }
 
     /// The three numbers of a usual `v` or `vn` line, each after one space
@@ -257,7 +258,8 @@ impl Reader<'_> {
                 if let Some(p) = s.three()
                     && self.pos.len() < MAX_VERTICES
                 {
-                    self.position(Vec3::from(p), None, n);
+                    // Short numbers are finite.
+                    self.finite_position(Vec3::from(p), None);
                     return Some(s.i);
                 }
             }
@@ -317,7 +319,7 @@ impl Reader<'_> {
     /// it) and added ([`Reader::add_plain_face`]): `true`, the position
     /// then past the line. `false` (nothing read or changed) for any other
     /// face, which [`Reader::fast_corners`] then reads.
-    #[inline]
+    #[inline(always)]
     fn fast_plain_face(&mut self, s: &mut Scan) -> bool {
         let count = self.pos.len() as u64;
         let mut v = [0u32; 4];

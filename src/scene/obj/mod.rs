@@ -344,6 +344,12 @@ impl<'a> Reader<'a> {
             self.bad_pos.push(n as u32);
             self.any_bad = true;
         }
+        self.finite_position(p, color);
+    }
+
+    /// [`Reader::position`] for one known to be finite.
+    #[inline(always)]
+    pub(super) fn finite_position(&mut self, p: Vec3, color: Option<Lin>) {
         if let Some(c) = color {
             // Vertices before the first coloured one were white.
             self.colors.resize(self.pos.len(), Lin::WHITE);
@@ -448,8 +454,7 @@ impl<'a> Reader<'a> {
     /// leaves to the polygon triangulator.
     #[inline(always)]
     fn split_quad(&mut self, ids: [u32; 4], v: [u32; 4]) -> bool {
-        let at = |k: usize| self.pos[v[k] as usize];
-        let Some(d) = polygon::quad([at(0), at(1), at(2), at(3)]) else {
+        let Some(d) = polygon::quad_at(&self.pos, v) else {
             return false;
         };
         // Written out: `map` and `extend` of an array here are calls that
