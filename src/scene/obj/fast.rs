@@ -13,18 +13,22 @@
 //! general reader, which also places every error. The property test below
 //! holds the two readers to the same models and the same errors.
 //!
-//! The two commonest shapes are tried first, each with no loop over
+//! The two commonest shapes are tried first, unrolled, with no loop over
 //! gaps: a `v` or `vn` line of three short numbers after single spaces
-//! (each number and the byte after it from one 16-byte look), and a face
-//! of three or four bare position indices (`f 1 2 3 4`, each index and
-//! the byte after it from one 8-byte look), added without the corner
-//! list. Any other line of the kinds above goes the general way of this
-//! module; the property test holds both ways to the general reader.
+//! (each number and the byte after it from one look at 9 bytes), and a
+//! face of three or four bare position indices (`f 1 2 3 4`, each index
+//! and the byte after it from one 8-byte look), added without the corner
+//! list. Each takes the line's first 48 or 40 bytes as one fixed-size
+//! array, which holds every byte it may look at (a line of those shapes
+//! is at most 32 bytes long), so that the looks need no bounds checks of
+//! their own; a line with fewer bytes left in the window (the last few of
+//! a buffer), or of any other shape, goes the general way of this module.
+//! What parsing costs a byte is in docs/figures.md ("Memory, loading and
+//! start-up"); the property test holds both ways to the general reader.
 //!
 //! The bytes after the buffer's unread ones are NUL (`file::SLACK`, 16, of
-//! them), and no item takes a NUL, so every look ahead (8 bytes past a
-//! byte read, or 16 from one) stays inside the window and a line that is
-//! cut off is never taken.
+//! them), and no item takes a NUL, so every 8-byte look ahead stays
+//! inside the window and a line that is cut off is never taken.
 
 use glam::{Vec2, Vec3};
 
@@ -125,65 +129,23 @@ impl Scan<'_> {
         self.long_decimal(neg)
     }
 
-    /// The usual number, `[-]digits.digits` or `[-]digits` of up to 8
-    /// bytes after its sign with a digit first, and the byte after them, all from one 16-byte
-    /// look (the window's slack is 16): the number [`Scan::decimal`] reads
-    /// where that byte is not a digit (where it is, the number goes on,
-    /// and the caller must not take it); `None` (the position unchanged)
-    /// for any other.
-    #[inline(always)]
-    fn short_decimal(&mut self) -> Option<(f32, u8)> {
-        let chunk = self.w.get(self.i..)?.first_chunk::<16>()?;
-        let neg = chunk[0] == b'-';
-        // The number's bytes from the first after its sign.
-        let rest = &chunk[neg as usize..neg as usize + 9];
-        let (t, not_digit) = digit_bytes(*rest.first_chunk::<8>()?);
-        // Where the first byte that is not a digit is: at least one digit
-        // before it (`.5` goes the general way), and not 8.
-        let d = (not_digit.trailing_zeros() / 8) as usize;
-        if !(1..8).contains(&d) {
-            return None;
-        }
-        let (m, decimals, end) = if (t >> (8 * d)) as u8 == b'.' ^ b'0' {
-            // The second (8: none), its byte exact as the point does not carry.
-            let e = ((not_digit & (not_digit - 1)).trailing_zeros() / 8) as usize;
-            // The digits after the point moved down over it.
-            let low = (1u64 << (8 * d)) - 1;
-            (
-                digits_value((t & low) | ((t >> 8) & !low), e - 1),
-                e - d - 1,
-                e,
-            )
-        } else {
-            (digits_value(t, d), 0, d)
-        };
-        self.i += neg as usize + end;
-        // At most 6 decimals (the `& 7` changes nothing; it spares the
-        // powers' table a bounds check).
-        Some((exact_decimal(m, decimals & 7, neg), rest[end]))
-    }
-
     /// The three numbers of a usual `v` or `vn` line, each after one space
-    /// and the last before the line's end, each read by
-    /// [`Scan::short_decimal`]: `None` (the position unchanged) for any
-    /// other line, for [`Scan::decimals`] to read.
+    /// and the last before the line's end, each read by [`short_decimal`]
+    /// from the 48 bytes at the position (a line of three such numbers has
+    /// at most 32): `None` (the position unchanged) for any other line, or
+    /// one too near the window's end, for [`Scan::decimals`] to read.
     #[inline(always)]
     fn three(&mut self) -> Option<[f32; 3]> {
-        let mut s = Scan {
-            w: self.w,
-            i: self.i,
-        };
+        let line = self.w.get(self.i..)?.first_chunk::<48>()?;
         // Unrolled (as a loop it is not), the separators told at the end:
         // a number read past a wrong one is read in vain, not wrongly.
-        let (x, a) = s.short_decimal()?;
-        s.i += 1;
-        let (y, b) = s.short_decimal()?;
-        s.i += 1;
-        let (z, c) = s.short_decimal()?;
+        let (x, a, at) = short_decimal(line, 0)?;
+        let (y, b, at) = short_decimal(line, at)?;
+        let (z, c, at) = short_decimal(line, at)?;
         if (a, b, c) != (b' ', b' ', b'\n') {
             return None;
         }
-        self.i = s.i + 1;
+        self.i += at;
         Some([x, y, z])
     }
 
@@ -229,6 +191,59 @@ impl Scan<'_> {
         self.i += n;
         (i >= 1 && i <= count as u64).then(|| i as u32 - 1)
     }
+}
+
+/// The usual number at `at` in `line`, `[-]digits.digits` or `[-]digits`
+/// of up to 8 bytes after its sign with a digit first, read from one look
+/// at the 9 bytes after its sign: the number [`Scan::decimal`] reads where
+/// the byte after it is not a digit (where it is, the number goes on, and
+/// the caller must not take it), that byte, and the position past it;
+/// `None` for any other. Called at positions of at most 20, so every index
+/// stays inside the 48 bytes.
+#[inline(always)]
+fn short_decimal(line: &[u8; 48], at: usize) -> Option<(f32, u8, usize)> {
+    let neg = line[at] == b'-';
+    // The number's bytes from the first after its sign.
+    let rest = line.get(at + neg as usize..)?.first_chunk::<9>()?;
+    let (t, not_digit) = digit_bytes(*rest.first_chunk::<8>()?);
+    // Where the first byte that is not a digit is: at least one digit
+    // before it (`.5` goes the general way), and not 8.
+    let d = (not_digit.trailing_zeros() / 8) as usize;
+    if !(1..8).contains(&d) {
+        return None;
+    }
+    let (m, decimals, end) = if (t >> (8 * d)) as u8 == b'.' ^ b'0' {
+        // The second (8: none), its byte exact as the point does not carry.
+        let e = ((not_digit & (not_digit - 1)).trailing_zeros() / 8) as usize;
+        // The digits after the point moved down over it.
+        let low = (1u64 << (8 * d)) - 1;
+        (
+            digits_value((t & low) | ((t >> 8) & !low), e - 1),
+            e - d - 1,
+            e,
+        )
+    } else {
+        (digits_value(t, d), 0, d)
+    };
+    // At most 6 decimals (the `& 7` changes nothing; it spares the powers'
+    // table a bounds check).
+    let value = exact_decimal(m, decimals & 7, neg);
+    Some((value, rest[end], at + neg as usize + end + 1))
+}
+
+/// A face corner at `at` in `line` that names a position alone (1 to 7
+/// digits, from 1 to `count`), read from one 8-byte look: the position
+/// (from 0), the byte after it and the position past that byte. Called at
+/// positions of at most 24, so every index stays inside the 40 bytes.
+#[inline(always)]
+fn plain_corner(line: &[u8; 40], at: usize, count: u64) -> Option<(u32, u8, usize)> {
+    let (t, not_digit) = digit_bytes(*line.get(at..)?.first_chunk::<8>()?);
+    let d = (not_digit.trailing_zeros() / 8) as usize;
+    if d == 0 || d == 8 {
+        return None;
+    }
+    let x = digits_value(t, d).wrapping_sub(1);
+    (x < count).then_some((x as u32, (t >> (8 * d)) as u8 ^ b'0', at + d + 1))
 }
 
 impl Reader<'_> {
@@ -315,47 +330,40 @@ impl Reader<'_> {
 
     /// A face of three or four corners that name positions alone, each
     /// after one space and the last before the line's end (`f 1 2 3 4`),
-    /// read from one 8-byte look a corner (the index and the byte after
-    /// it) and added ([`Reader::add_plain_face`]): `true`, the position
-    /// then past the line. `false` (nothing read or changed) for any other
-    /// face, which [`Reader::fast_corners`] then reads.
+    /// read by [`plain_corner`] from the 40 bytes at the position (such a
+    /// line has at most 32) and added ([`Reader::add_plain_face`]): `true`,
+    /// the position then past the line. `false` (nothing read or changed)
+    /// for any other face, or one too near the window's end, which
+    /// [`Reader::fast_corners`] then reads.
     #[inline(always)]
     fn fast_plain_face(&mut self, s: &mut Scan) -> bool {
+        let Some(line) = s.w.get(s.i..).and_then(|w| w.first_chunk::<40>()) else {
+            return false;
+        };
         let count = self.pos.len() as u64;
-        let mut v = [0u32; 4];
-        let mut i = s.i;
-        for k in 0..4 {
-            let Some(&chunk) = s.w.get(i..).and_then(|w| w.first_chunk::<8>()) else {
-                return false;
-            };
-            let (t, not_digit) = digit_bytes(chunk);
-            let d = (not_digit.trailing_zeros() / 8) as usize;
-            if d == 0 || d == 8 {
-                return false;
+        // Unrolled (as a loop it is not), the separators told after: a
+        // corner read past a wrong one is read in vain, not wrongly.
+        let Some((a, b' ', at)) = plain_corner(line, 0, count) else {
+            return false;
+        };
+        let Some((b, b' ', at)) = plain_corner(line, at, count) else {
+            return false;
+        };
+        match plain_corner(line, at, count) {
+            Some((c, b'\n', at)) => {
+                self.add_plain_face([a, b, c]);
+                s.i += at;
             }
-            // From 1 to the positions so far.
-            let x = digits_value(t, d).wrapping_sub(1);
-            if x >= count {
-                return false;
+            Some((c, b' ', at)) => {
+                let Some((d, b'\n', at)) = plain_corner(line, at, count) else {
+                    return false;
+                };
+                self.add_plain_face([a, b, c, d]);
+                s.i += at;
             }
-            v[k] = x as u32;
-            i += d + 1;
-            match (t >> (8 * d)) as u8 ^ b'0' {
-                b' ' => {}
-                b'\n' if k == 2 => {
-                    s.i = i;
-                    self.add_plain_face([v[0], v[1], v[2]]);
-                    return true;
-                }
-                b'\n' if k == 3 => {
-                    s.i = i;
-                    self.add_plain_face(v);
-                    return true;
-                }
-                _ => return false,
-            }
+            _ => return false,
         }
-        false
+        true
     }
 
     /// A face's corners into `corners`, to the line's end, if every one is
@@ -449,8 +457,10 @@ mod tests {
         }
     }
 
-    /// How many lines of `src` the fast path takes.
-    fn fast_lines(src: &[u8]) -> usize {
+    /// How many lines of `src` the fast path takes, each read from a
+    /// window that holds it, `after` (as the following lines would be)
+    /// and the NUL slack.
+    fn fast_lines(src: &[u8], after: &[u8]) -> usize {
         let options = LoadOptions::default();
         let mut r = Reader::new("t.obj", Path::new("."), &options);
         for line in ["v 0 0 0", "v 1 0 0", "v 0 1 0", "vt 0 0", "vn 0 0 1"] {
@@ -459,6 +469,7 @@ mod tests {
         let mut n = 0;
         for line in src.split_inclusive(|&b| b == b'\n') {
             let mut window = line.to_vec();
+            window.extend(after);
             window.extend([0; crate::scene::file::SLACK]);
             n += r.fast_line(&window, 2).is_some() as usize;
         }
@@ -625,11 +636,18 @@ mod tests {
         let taken = b"v 1.349972 0.004398 -0.000000\nv -12.5 7 0.125\nvn 0.6265 -0.7116 0.3180\n\
             vt 0.742686 0.551393\nvt 0.5 0.5 0\nf 1 2 3\nf 1/1 2/1 3/1\nf 1//1 2//1 3//1 \r\n\
             f 1/1/1 2/1/1 3/1/1 1/1/1\nf\t1  2\t3\nv 1234567.8 -0.0000001 1.\n";
-        assert_eq!(fast_lines(taken), 11);
+        // Alone in their window, and with the lines after them (where the
+        // commonest shapes take their own way).
+        let later = b"f 1 2 3\n".repeat(8);
+        for after in [&b""[..], &later] {
+            assert_eq!(fast_lines(taken, after), 11);
+        }
         let left =
             b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
-            v 1 2\nvn 1 2\nvt 1\nf -1 2 3\nf 1 2\nf 1 2 9\nf 1/ 2 3\nf 1/1/ 2 3\nf 0 1 2\nf 1//2 2//1 3//1\nf 1/2 2/1 3/1\n\
-            vx 1 2 3\n v 1 2 3\nv 1 2 3";
-        assert_eq!(fast_lines(left), 0);
+            v 1 2\nvn 1 2\nvt 1\nf -1 2 3\nf 1 2\nf 1 2 9\nf 1 2 4\nf 4 1 2 3\nf 1/ 2 3\nf 1/1/ 2 3\nf 0 1 2\n\
+            f 1//2 2//1 3//1\nf 1/2 2/1 3/1\nf 1 2 3 4 5 6 7 8 9\nvx 1 2 3\n v 1 2 3\nv 1 2 3";
+        for after in [&b""[..], &later] {
+            assert_eq!(fast_lines(left, after), 0);
+        }
     }
 }

@@ -24,13 +24,15 @@
 //! is split only where its texture coordinates differ. `l` and `p`
 //! (lines and points) are not faces: they are skipped and counted, and a
 //! file of nothing else has no faces. Other statements (`o`, `g`, `s`, …)
-//! are ignored. Polygons are cut into triangles by the polygon triangulator (`polygon.rs`).
+//! are ignored. A face's corners become vertices and triangles in `faces.rs`;
+//! polygons are cut by the polygon triangulator (`polygon.rs`).
 //!
 //! Normals come from the file when every corner names one; otherwise they
 //! are computed (see [`Geometry::compute_normals`](super::Geometry::compute_normals)). A vertex that is not a finite number
 //! is not an error, but the faces that use it are not drawn, and the loader
 //! says so.
 
+mod faces;
 mod fast;
 mod mtl;
 
@@ -407,134 +409,6 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// The face whose corners are in `corners` (resolved, at least 3, `vt`
-    /// kept only where textured): its vertices found or made, cut into
-    /// triangles; not drawn if a corner is not finite.
-    fn add_face(&mut self) {
-        if self.any_bad {
-            let bad = |&[v, _, vn]: &[u32; 3]| {
-                !self.pos[v as usize].is_finite()
-                    || (vn != NONE && !self.vn[vn as usize].is_finite())
-            };
-            if self.corners.iter().any(bad) {
-                self.dropped_faces += 1;
-                return;
-            }
-        }
-        // Triangles and quads (nearly every face) on the stack.
-        match self.corners[..] {
-            [a, b, c] => {
-                let t = self.corner_ids([a, b, c]);
-                self.triangles.push(t);
-                return;
-            }
-            [a, b, c, d] => {
-                let ids = self.corner_ids([a, b, c, d]);
-                if !self.split_quad(ids, [a[0], b[0], c[0], d[0]]) {
-                    self.ids.clear();
-                    self.ids.extend(ids);
-                    self.cut_face();
-                }
-                return;
-            }
-            _ => {}
-        }
-        self.ids.clear();
-        for k in 0..self.corners.len() {
-            let [v, vt, vn] = self.corners[k];
-            self.all_normals &= vn != NONE;
-            let id = self.vertex(v, vt, vn);
-            self.ids.push(id);
-        }
-        self.cut_face();
-    }
-
-    /// A quad of vertices `ids` at positions `v`, cut along the diagonal
-    /// that [`polygon::quad`] finds; `false` (nothing added) for one it
-    /// leaves to the polygon triangulator.
-    #[inline(always)]
-    fn split_quad(&mut self, ids: [u32; 4], v: [u32; 4]) -> bool {
-        let Some(d) = polygon::quad_at(&self.pos, v) else {
-            return false;
-        };
-        // Written out: `map` and `extend` of an array here are calls that
-        // are not inlined.
-        let (a, b, c, e) = (ids[d], ids[d + 1], ids[d + 2], ids[(d + 3) % 4]);
-        self.triangles.extend_from_slice(&[[a, b, c], [a, c, e]]);
-        true
-    }
-
-    /// [`Reader::add_face`] for a triangle or quad whose corners name
-    /// positions `v` alone (`f 1 2 3`, the fast path's commonest line):
-    /// the same checks and triangles, without the corner list.
-    #[inline(always)]
-    pub(super) fn add_plain_face<const N: usize>(&mut self, v: [u32; N]) {
-        if self.any_bad && v.iter().any(|&v| !self.pos[v as usize].is_finite()) {
-            self.dropped_faces += 1;
-            return;
-        }
-        // No corner names a normal.
-        self.all_normals = false;
-        if let Ok(t) = <[u32; 3]>::try_from(&v[..]) {
-            self.triangles.push(t);
-        } else if let Ok(q) = <[u32; 4]>::try_from(&v[..])
-            && !self.split_quad(q, q)
-        {
-            self.corners.clear();
-            self.corners.extend(q.map(|v| [v, NONE, NONE]));
-            self.ids.clear();
-            self.ids.extend(q);
-            self.cut_face();
-        }
-    }
-
-    /// [`Reader::vertex`] for each of a face's corners (`v`, `vt`, `vn`),
-    /// noting whether every one names a normal; at once where none names
-    /// either (then each vertex is its `v`). A loop, not `map`: `map` here
-    /// is a call that is not inlined, 70 instructions a quad.
-    #[inline(always)]
-    fn corner_ids<const N: usize>(&mut self, corners: [[u32; 3]; N]) -> [u32; N] {
-        let mut ids = [0; N];
-        // NONE is the largest u32, so the largest `vn` is NONE where one is,
-        // and every `vt` and `vn` ANDed together is NONE where all are.
-        let (mut most_vn, mut all) = (0, NONE);
-        for k in 0..N {
-            let [v, vt, vn] = corners[k];
-            ids[k] = v;
-            most_vn = most_vn.max(vn);
-            all &= vt & vn;
-        }
-        self.all_normals &= most_vn != NONE;
-        if all != NONE {
-            for k in 0..N {
-                let [v, vt, vn] = corners[k];
-                ids[k] = self.vertex(v, vt, vn);
-            }
-        }
-        ids
-    }
-
-    /// The face in `corners`, its vertices in `ids`, cut by the polygon
-    /// triangulator.
-    fn cut_face(&mut self) {
-        let corners = std::mem::take(&mut self.corners);
-        let ids = std::mem::take(&mut self.ids);
-        self.corner_pos.clear();
-        self.corner_pos
-            .extend(corners.iter().map(|&[v, ..]| self.pos[v as usize]));
-        self.cut.clear();
-        self.cutter.triangulate(&self.corner_pos, &mut self.cut);
-        for tri in std::mem::take(&mut self.cut) {
-            let t = tri.map(|p| match p {
-                Point::Corner(i) => ids[i as usize],
-                Point::Between { a, b, t } => self.between(&corners, a as usize, b as usize, t),
-            });
-            self.triangles.push(t);
-        }
-        self.corners = corners;
-        self.ids = ids;
-    }
-
     /// The error for a face corner that is not `v[/[vt][/vn]]`.
     fn bad_corner(&self, line: &[u8], n: usize, w: &[u8], col: usize) -> Error {
         let parts = w.split(|&b| b == b'/').count();
@@ -544,46 +418,6 @@ impl<'a> Reader<'a> {
             format!("face vertex {:?} is not an index", lossy(w))
         };
         self.at_byte(line, n, col, message)
-    }
-
-    /// The output vertex of a corner: the `v` itself, unless the `v` was
-    /// first used with another texture coordinate or normal.
-    #[inline(always)]
-    fn vertex(&mut self, v: u32, vt: u32, vn: u32) -> u32 {
-        if vt == NONE && vn == NONE {
-            return v;
-        }
-        let attr = attrs(vt, vn);
-        match self.attr_of.get_mut(v as usize) {
-            Some(first) if *first == attr => v,
-            Some(first) if *first == UNSET => {
-                *first = attr;
-                v
-            }
-            _ => self.other_vertex(v, attr),
-        }
-    }
-
-    /// [`Reader::vertex`] when the list of first attributes is short or
-    /// the `v` was first used with others.
-    #[inline(never)]
-    fn other_vertex(&mut self, v: u32, attr: u64) -> u32 {
-        if self.attr_of.len() <= v as usize {
-            self.attr_of.resize(self.pos.len(), UNSET);
-        }
-        let first = &mut self.attr_of[v as usize];
-        if *first == UNSET {
-            *first = attr;
-        }
-        if *first == attr {
-            return v;
-        }
-        let next = self.extra.len() as u32;
-        let id = *self.extra_ids.entry((v, attr)).or_insert(next);
-        if id == next {
-            self.extra.push((v, attr));
-        }
-        EXTRA | id
     }
 
     /// The texture a material's `map_Kd` names, decoded the first time a
@@ -620,33 +454,6 @@ impl<'a> Reader<'a> {
             self.unread_textures += 1;
             Ok(None)
         }
-    }
-
-    /// A vertex made on the edge between corners `a` and `b`.
-    fn between(&mut self, corners: &[[u32; 3]], a: usize, b: usize, t: f32) -> u32 {
-        let ([va, ta, na], [vb, tb, nb]) = (corners[a], corners[b]);
-        let p = self.pos[va as usize].lerp(self.pos[vb as usize], t);
-        let color = if self.colors.is_empty() {
-            Lin::WHITE
-        } else {
-            let (ca, cb) = (
-                self.colors[va as usize].to_f32(),
-                self.colors[vb as usize].to_f32(),
-            );
-            Lin::from_f32(std::array::from_fn(|k| ca[k] + (cb[k] - ca[k]) * t))
-        };
-        let normal = if na != NONE && nb != NONE {
-            self.vn[na as usize].lerp(self.vn[nb as usize], t)
-        } else {
-            Vec3::Z
-        };
-        let uv = if ta != NONE && tb != NONE {
-            self.vt[ta as usize].lerp(self.vt[tb as usize], t)
-        } else {
-            Vec2::ZERO
-        };
-        self.made.push((p, color, normal, uv));
-        MADE | (self.made.len() as u32 - 1)
     }
 
     /// `mtllib a.mtl b.mtl`: each file read in turn (or, if the names do
