@@ -88,8 +88,18 @@ impl Fit {
             if !p.is_finite() {
                 continue;
             }
+            let s = along(p);
+            // Most points move no extreme: told first, for all sixteen
+            // lanes at once, and passed by (then the steps below would
+            // change nothing).
+            let beyond = (0..4).fold(glam::BVec4A::FALSE, |m, k| {
+                m | s[k].cmplt(lo[k]) | s[k].cmpgt(hi[k])
+            });
+            if !beyond.any() {
+                continue;
+            }
             let at = Vec4::splat(f32::from_bits(i as u32));
-            for (k, s) in along(p).into_iter().enumerate() {
+            for (k, s) in s.into_iter().enumerate() {
                 let (below, above) = (s.cmplt(lo[k]), s.cmpgt(hi[k]));
                 // SSE's `min` and `max` keep the second where the first is
                 // not strictly beyond it (no extent is NaN: a finite

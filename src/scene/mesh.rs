@@ -57,7 +57,7 @@
 
 use std::sync::{Arc, OnceLock};
 
-use glam::{DVec3, Mat4, Vec2, Vec3, Vec4};
+use glam::{DVec3, Mat4, Vec2, Vec3, Vec3A, Vec4};
 use rustc_hash::FxHashMap;
 
 use super::anim::{Pose, Rig};
@@ -419,16 +419,18 @@ impl Geometry {
     /// f64: any f32 positions, from subnormal to f32's largest, neither
     /// overflow nor underflow here. `None` without a finite position.
     pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
-        let mut finite = self.positions.iter().filter(|p| p.is_finite());
-        let first = finite.next()?.as_dvec3();
-        let (lo, hi) = finite.fold((first, first), |(lo, hi), p| {
-            (lo.min(p.as_dvec3()), hi.max(p.as_dvec3()))
-        });
-        let centre = lo * 0.5 + hi * 0.5;
-        let radius = self
-            .positions
-            .iter()
-            .filter(|p| p.is_finite())
+        // In f32 lanes: which positions are finite, and the box (the least
+        // and the greatest of finite f32s are the same numbers in f64).
+        let finite = || {
+            self.positions
+                .iter()
+                .map(|&p| Vec3A::from(p))
+                .filter(|p| p.is_finite())
+        };
+        let first = finite().next()?;
+        let (lo, hi) = finite().fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        let centre = lo.as_dvec3() * 0.5 + hi.as_dvec3() * 0.5;
+        let radius = finite()
             .map(|p| p.as_dvec3().distance(centre))
             .fold(0.0f64, f64::max);
         Some((centre, radius))
@@ -771,12 +773,16 @@ impl Light {
 /// The bounding box `[min, max]` of `positions`; `None` when one is not
 /// finite, or there are none.
 fn bounds(positions: &[Vec3]) -> Option<[Vec3; 2]> {
-    let finite = !positions.is_empty() && positions.iter().all(|p| p.is_finite());
-    finite.then(|| {
-        let lo = positions.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
-        let hi = positions.iter().fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
-        [lo, hi]
-    })
+    // One pass in f32 lanes; its box is kept only where every position is
+    // finite (then the lanes' `min` and `max` are exact).
+    let (lo, hi, finite) = positions.iter().fold(
+        (Vec3A::INFINITY, Vec3A::NEG_INFINITY, true),
+        |(lo, hi, finite), &p| {
+            let p = Vec3A::from(p);
+            (lo.min(p), hi.max(p), finite & p.is_finite())
+        },
+    );
+    (finite && !positions.is_empty()).then(|| [lo.into(), hi.into()])
 }
 
 #[cfg(test)]
