@@ -19,33 +19,15 @@ impl Reader<'_> {
     /// kept only where textured): its vertices found or made, cut into
     /// triangles; not drawn if a corner is not finite.
     pub(super) fn add_face(&mut self) {
-        if self.any_bad {
-            let bad = |&[v, _, vn]: &[u32; 3]| {
-                !self.pos[v as usize].is_finite()
-                    || (vn != NONE && !self.vn[vn as usize].is_finite())
-            };
-            if self.corners.iter().any(bad) {
-                self.dropped_faces += 1;
-                return;
-            }
-        }
         // Triangles and quads (nearly every face) on the stack.
         match self.corners[..] {
-            [a, b, c] => {
-                let t = self.corner_ids([a, b, c]);
-                self.triangles.push(t);
-                return;
-            }
-            [a, b, c, d] => {
-                let ids = self.corner_ids([a, b, c, d]);
-                if !self.split_quad(ids, [a[0], b[0], c[0], d[0]]) {
-                    self.ids.clear();
-                    self.ids.extend(ids);
-                    self.cut_face();
-                }
-                return;
-            }
+            [a, b, c] => return self.add_small_face([a, b, c]),
+            [a, b, c, d] => return self.add_small_face([a, b, c, d]),
             _ => {}
+        }
+        if self.any_bad && self.corners.iter().any(|&c| self.not_finite(c)) {
+            self.dropped_faces += 1;
+            return;
         }
         self.ids.clear();
         for k in 0..self.corners.len() {
@@ -55,6 +37,41 @@ impl Reader<'_> {
             self.ids.push(id);
         }
         self.cut_face();
+    }
+
+    /// Whether corner `[v, vt, vn]`'s position or normal is not finite.
+    #[inline(always)]
+    fn not_finite(&self, [v, _, vn]: [u32; 3]) -> bool {
+        !self.pos[v as usize].is_finite() || (vn != NONE && !self.vn[vn as usize].is_finite())
+    }
+
+    /// [`Reader::add_face`] for a triangle or a quad, its corners given
+    /// (the corner list is filled only if the polygon triangulator must
+    /// cut it).
+    #[inline(always)]
+    pub(super) fn add_small_face<const N: usize>(&mut self, corners: [[u32; 3]; N]) {
+        if self.any_bad && corners.iter().any(|&c| self.not_finite(c)) {
+            self.dropped_faces += 1;
+            return;
+        }
+        let ids = self.corner_ids(corners);
+        if let Ok(t) = <[u32; 3]>::try_from(&ids[..]) {
+            self.triangles.push(t);
+            return;
+        }
+        let mut v = [0; 4];
+        let mut q = [0; 4];
+        for k in 0..N.min(4) {
+            v[k] = corners[k][0];
+            q[k] = ids[k];
+        }
+        if !self.split_quad(q, v) {
+            self.corners.clear();
+            self.corners.extend_from_slice(&corners);
+            self.ids.clear();
+            self.ids.extend(q);
+            self.cut_face();
+        }
     }
 
     /// A quad of vertices `ids` at positions `v`, cut along the diagonal

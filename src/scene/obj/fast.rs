@@ -6,23 +6,28 @@
 //! It is a shortcut, never a second reading: a line is taken only when it
 //! is exactly what the general reader ([`Reader::statement`]) would read
 //! the same way, and its effect is made by the same code (a `v` through
-//! `Reader::position`, a face through `Reader::add_face`). Whatever else it
+//! `Reader::position`, or past its finiteness test for a short number,
+//! which is finite; a face through `Reader::add_face`, or its part for a
+//! triangle or quad). Whatever else it
 //! meets (a sign `+`, an exponent, eight digits in a row, a comment, a
 //! negative or out-of-range index, a `v` with colours, a line that the
 //! buffer has not yet read to its end) it hands back, untouched, to the
 //! general reader, which also places every error. The property test below
 //! holds the two readers to the same models and the same errors.
 //!
-//! The two commonest shapes are tried first, unrolled, with no loop over
-//! gaps: a `v` or `vn` line of three short numbers after single spaces
-//! (each number and the byte after it from one look at 9 bytes), and a
-//! face of three or four bare position indices (`f 1 2 3 4`, each index
-//! and the byte after it from one 8-byte look), added without the corner
-//! list. Each takes the line's first 48 or 40 bytes as one fixed-size
-//! array, which holds every byte it may look at (a line of those shapes
-//! is at most 32 bytes long), so that the looks need no bounds checks of
-//! their own; a line with fewer bytes left in the window (the last few of
-//! a buffer), or of any other shape, goes the general way of this module.
+//! The commonest shapes are tried first, with no loop over gaps: a `v`,
+//! `vn` or `vt` line of short numbers after single spaces (each number and
+//! the byte after it from one look at 9 bytes), and a face of three or
+//! four corners that are all bare position indices (`f 1 2 3 4`) or all
+//! `v/vt/vn` (`f 1/1/1 2/2/2 3/3/3`, as most exporters write), each index
+//! and the byte after it from one 8-byte look, added without the corner
+//! list. Each takes the line's first bytes as one fixed-size array that
+//! holds every byte it may look at (48 for numbers, 40 or 100 for faces:
+//! more than such a line can have), so that the looks need no bounds
+//! checks of their own; a line with fewer bytes left in the window (the
+//! last few of a buffer), or of any other shape, goes the general way of
+//! this module.
+//!
 //! What parsing costs a byte is in docs/figures.md ("Memory, loading and
 //! start-up"); the property test holds both ways to the general reader.
 //!
@@ -129,24 +134,25 @@ impl Scan<'_> {
         self.long_decimal(neg)
     }
 
-    /// The three numbers of a usual `v` or `vn` line, each after one space
-    /// and the last before the line's end, each read by [`short_decimal`]
-    /// from the 48 bytes at the position (a line of three such numbers has
-    /// at most 32): `None` (the position unchanged) for any other line, or
-    /// one too near the window's end, for [`Scan::decimals`] to read.
+    /// The `N` (2 or 3) numbers of a usual `v`, `vn` or `vt` line, each
+    /// after one space and the last before the line's end, each read by
+    /// [`short_decimal`] from the 48 bytes at the position (a line of three
+    /// such numbers has at most 32): `None` (the position unchanged) for
+    /// any other line, or one too near the window's end, for
+    /// [`Scan::decimals`] to read.
     #[inline(always)]
-    fn three(&mut self) -> Option<[f32; 3]> {
+    fn short<const N: usize>(&mut self) -> Option<[f32; N]> {
         let line = self.w.get(self.i..)?.first_chunk::<48>()?;
-        // Unrolled (as a loop it is not), the separators told at the end:
-        // a number read past a wrong one is read in vain, not wrongly.
-        let (x, a, at) = short_decimal(line, 0)?;
-        let (y, b, at) = short_decimal(line, at)?;
-        let (z, c, at) = short_decimal(line, at)?;
-        if (a, b, c) != (b' ', b' ', b'\n') {
-            return None;
+        let (mut v, mut at) = ([0.0; N], 0);
+        for (k, x) in v.iter_mut().enumerate() {
+            let (value, after, next) = short_decimal(line, at)?;
+            if after != if k + 1 == N { b'\n' } else { b' ' } {
+                return None;
+            }
+            (*x, at) = (value, next);
         }
         self.i += at;
-        Some([x, y, z])
+        Some(v)
     }
 
     /// [`Scan::decimal`] for one of more than 8 bytes (after its sign).
@@ -231,12 +237,12 @@ fn short_decimal(line: &[u8; 48], at: usize) -> Option<(f32, u8, usize)> {
     Some((value, rest[end], at + neg as usize + end + 1))
 }
 
-/// A face corner at `at` in `line` that names a position alone (1 to 7
-/// digits, from 1 to `count`), read from one 8-byte look: the position
-/// (from 0), the byte after it and the position past that byte. Called at
-/// positions of at most 24, so every index stays inside the 40 bytes.
+/// An index at `at` in `line` (1 to 7 digits, from 1 to `count`), read
+/// from one 8-byte look: the index (from 0), the byte after it and the
+/// position past that byte. Called at positions at most 8 bytes short of
+/// the line's end, so every index stays inside it.
 #[inline(always)]
-fn plain_corner(line: &[u8; 40], at: usize, count: u64) -> Option<(u32, u8, usize)> {
+fn plain_corner<const N: usize>(line: &[u8; N], at: usize, count: u64) -> Option<(u32, u8, usize)> {
     let (t, not_digit) = digit_bytes(*line.get(at..)?.first_chunk::<8>()?);
     let d = (not_digit.trailing_zeros() / 8) as usize;
     if d == 0 || d == 8 {
@@ -244,6 +250,22 @@ fn plain_corner(line: &[u8; 40], at: usize, count: u64) -> Option<(u32, u8, usiz
     }
     let x = digits_value(t, d).wrapping_sub(1);
     (x < count).then_some((x as u32, (t >> (8 * d)) as u8 ^ b'0', at + d + 1))
+}
+
+/// A face corner `v/vt/vn` at `at` in `line` (each index as
+/// [`plain_corner`] reads it, within `counts`): the three indices, the byte
+/// after the last and the position past that byte. Called at positions at
+/// most 24 bytes short of the line's end.
+#[inline(always)]
+fn full_corner(line: &[u8; 100], at: usize, counts: [u64; 3]) -> Option<([u32; 3], u8, usize)> {
+    let Some((v, b'/', at)) = plain_corner(line, at, counts[0]) else {
+        return None;
+    };
+    let Some((vt, b'/', at)) = plain_corner(line, at, counts[1]) else {
+        return None;
+    };
+    let (vn, after, at) = plain_corner(line, at, counts[2])?;
+    Some(([v, vt, vn], after, at))
 }
 
 impl Reader<'_> {
@@ -270,7 +292,7 @@ impl Reader<'_> {
         let mut s = Scan { w: window, i: 2 };
         match window.first_chunk::<2>()? {
             b"v " => {
-                if let Some(p) = s.three()
+                if let Some(p) = s.short::<3>()
                     && self.pos.len() < MAX_VERTICES
                 {
                     // Short numbers are finite.
@@ -278,7 +300,9 @@ impl Reader<'_> {
                     return Some(s.i);
                 }
             }
-            b"f " if self.fast_plain_face(&mut s) => return Some(s.i),
+            b"f " if self.fast_plain_face(&mut s) || self.fast_full_face(&mut s) => {
+                return Some(s.i);
+            }
             _ => {}
         }
         let key = *window.first_chunk::<3>()?;
@@ -295,7 +319,7 @@ impl Reader<'_> {
         }
         match kind {
             b'v' => {
-                let [x, y, z] = match s.three() {
+                let [x, y, z] = match s.short::<3>() {
                     Some(v) => v,
                     None => s.decimals::<3>(3)?.0,
                 };
@@ -305,14 +329,20 @@ impl Reader<'_> {
                 self.position(Vec3::new(x, y, z), None, n);
             }
             b'n' => {
-                let v = match s.three() {
+                let v = match s.short::<3>() {
                     Some(v) => v,
                     None => s.decimals::<3>(3)?.0,
                 };
                 self.vn.push(Vec3::from(v));
             }
             b't' => {
-                let ([u, v, _], _) = s.decimals::<3>(2)?;
+                let [u, v] = match s.short::<2>() {
+                    Some(uv) => uv,
+                    None => {
+                        let ([u, v, _], _) = s.decimals::<3>(2)?;
+                        [u, v]
+                    }
+                };
                 if self.vt.len() == MAX_VERTICES {
                     return None;
                 }
@@ -359,6 +389,45 @@ impl Reader<'_> {
                     return false;
                 };
                 self.add_plain_face([a, b, c, d]);
+                s.i += at;
+            }
+            _ => return false,
+        }
+        true
+    }
+    /// A face of three or four corners `v/vt/vn`, each after one space and
+    /// the last before the line's end (`f 1/1/1 2/2/2 3/3/3`, as most
+    /// exporters write a face), read by [`full_corner`] from the 100 bytes
+    /// at the position (such a line has at most 96) and added
+    /// ([`Reader::add_small_face`], with its `vt` only where textured):
+    /// `true`, the position then past the line. `false` (nothing read or
+    /// changed) for any other face, or one too near the window's end.
+    #[inline(always)]
+    fn fast_full_face(&mut self, s: &mut Scan) -> bool {
+        let Some(line) = s.w.get(s.i..).and_then(|w| w.first_chunk::<100>()) else {
+            return false;
+        };
+        let counts = [self.pos.len(), self.vt.len(), self.vn.len()].map(|n| n as u64);
+        // Texture coordinates matter only where a texture is read.
+        let keep =
+            |[v, vt, vn]: [u32; 3], textured: bool| [v, if textured { vt } else { NONE }, vn];
+        let Some((a, b' ', at)) = full_corner(line, 0, counts) else {
+            return false;
+        };
+        let Some((b, b' ', at)) = full_corner(line, at, counts) else {
+            return false;
+        };
+        let t = self.textured;
+        match full_corner(line, at, counts) {
+            Some((c, b'\n', at)) => {
+                self.add_small_face([keep(a, t), keep(b, t), keep(c, t)]);
+                s.i += at;
+            }
+            Some((c, b' ', at)) => {
+                let Some((d, b'\n', at)) = full_corner(line, at, counts) else {
+                    return false;
+                };
+                self.add_small_face([keep(a, t), keep(b, t), keep(c, t), keep(d, t)]);
                 s.i += at;
             }
             _ => return false,
@@ -638,14 +707,15 @@ mod tests {
             f 1/1/1 2/1/1 3/1/1 1/1/1\nf\t1  2\t3\nv 1234567.8 -0.0000001 1.\n";
         // Alone in their window, and with the lines after them (where the
         // commonest shapes take their own way).
-        let later = b"f 1 2 3\n".repeat(8);
+        let later = b"f 1 2 3\n".repeat(16);
         for after in [&b""[..], &later] {
             assert_eq!(fast_lines(taken, after), 11);
         }
         let left =
             b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
             v 1 2\nvn 1 2\nvt 1\nf -1 2 3\nf 1 2\nf 1 2 9\nf 1 2 4\nf 4 1 2 3\nf 1/ 2 3\nf 1/1/ 2 3\nf 0 1 2\n\
-            f 1//2 2//1 3//1\nf 1/2 2/1 3/1\nf 1 2 3 4 5 6 7 8 9\nvx 1 2 3\n v 1 2 3\nv 1 2 3";
+            f 1//2 2//1 3//1\nf 1/2 2/1 3/1\nf 1 2 3 4 5 6 7 8 9\nf 1/2/1 2/1/1 3/1/1\n\
+            f 1/1/2 2/1/1 3/1/1\nf 1/1/1 4/1/1 3/1/1\nvx 1 2 3\n v 1 2 3\nv 1 2 3";
         for after in [&b""[..], &later] {
             assert_eq!(fast_lines(left, after), 0);
         }
