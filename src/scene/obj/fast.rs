@@ -287,8 +287,9 @@ impl Reader<'_> {
     /// the general reader to read.
     #[inline]
     pub(super) fn fast_line(&mut self, window: &[u8], n: usize) -> Option<usize> {
-        // The two commonest shapes, told by their first two bytes; any
-        // other line of theirs goes the general way below.
+        // The commonest shapes of `v` and `f` lines, told by their first
+        // two bytes; any other line of theirs goes the general way below
+        // (which tries none of them again).
         let mut s = Scan { w: window, i: 2 };
         match window.first_chunk::<2>()? {
             b"v " => {
@@ -349,10 +350,8 @@ impl Reader<'_> {
                 self.vt.push(Vec2::new(u, 1.0 - v));
             }
             _ => {
-                if !self.fast_plain_face(&mut s) {
-                    self.fast_corners(&mut s)?;
-                    self.add_face();
-                }
+                self.fast_corners(&mut s)?;
+                self.add_face();
             }
         }
         Some(s.i)
