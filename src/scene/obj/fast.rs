@@ -18,8 +18,9 @@
 //! The commonest shapes are tried first, with no loop over gaps: a `v`,
 //! `vn` or `vt` line of short numbers after single spaces (each number and
 //! the byte after it from one look at 9 bytes), and a face of three or
-//! four corners that are all bare position indices (`f 1 2 3 4`) or all
-//! `v/vt/vn` (`f 1/1/1 2/2/2 3/3/3`, as most exporters write), each index
+//! four corners that are all bare position indices (`f 1 2 3 4`), all
+//! `v/vt/vn` or all `v//vn` (`f 1/1/1 2/2/2 3/3/3`, `f 1//1 2//2 3//3`, as
+//! most exporters write), each index
 //! and the byte after it from one 8-byte look, added without the corner
 //! list. Each takes the line's first bytes as one fixed-size array that
 //! holds every byte it may look at (48 for numbers, 40 or 100 for faces:
@@ -252,16 +253,28 @@ fn plain_corner<const N: usize>(line: &[u8; N], at: usize, count: u64) -> Option
     (x < count).then_some((x as u32, (t >> (8 * d)) as u8 ^ b'0', at + d + 1))
 }
 
-/// A face corner `v/vt/vn` at `at` in `line` (each index as
-/// [`plain_corner`] reads it, within `counts`): the three indices, the byte
-/// after the last and the position past that byte. Called at positions at
-/// most 24 bytes short of the line's end.
+/// A face corner `v/vt/vn` (or, without `VT`, `v//vn`) at `at` in `line`
+/// (each index as [`plain_corner`] reads it, within `counts`): the three
+/// indices (`vt` `NONE` without `VT`), the byte after the last and the
+/// position past that byte. Called at positions at most 24 bytes short of
+/// the line's end.
 #[inline(always)]
-fn full_corner(line: &[u8; 100], at: usize, counts: [u64; 3]) -> Option<([u32; 3], u8, usize)> {
+fn full_corner<const VT: bool>(
+    line: &[u8; 100],
+    at: usize,
+    counts: [u64; 3],
+) -> Option<([u32; 3], u8, usize)> {
     let Some((v, b'/', at)) = plain_corner(line, at, counts[0]) else {
         return None;
     };
-    let Some((vt, b'/', at)) = plain_corner(line, at, counts[1]) else {
+    let (vt, at) = if VT {
+        let Some((vt, b'/', at)) = plain_corner(line, at, counts[1]) else {
+            return None;
+        };
+        (vt, at)
+    } else if line[at] == b'/' {
+        (NONE, at + 1)
+    } else {
         return None;
     };
     let (vn, after, at) = plain_corner(line, at, counts[2])?;
@@ -301,7 +314,11 @@ impl Reader<'_> {
                     return Some(s.i);
                 }
             }
-            b"f " if self.fast_plain_face(&mut s) || self.fast_full_face(&mut s) => {
+            b"f "
+                if self.fast_plain_face(&mut s)
+                    || self.fast_full_face::<true>(&mut s)
+                    || self.fast_full_face::<false>(&mut s) =>
+            {
                 return Some(s.i);
             }
             _ => {}
@@ -394,15 +411,16 @@ impl Reader<'_> {
         }
         true
     }
-    /// A face of three or four corners `v/vt/vn`, each after one space and
-    /// the last before the line's end (`f 1/1/1 2/2/2 3/3/3`, as most
-    /// exporters write a face), read by [`full_corner`] from the 100 bytes
-    /// at the position (such a line has at most 96) and added
+    /// A face of three or four corners `v/vt/vn` (or, without `VT`,
+    /// `v//vn`), each after one space and the last before the line's end
+    /// (`f 1/1/1 2/2/2 3/3/3` or `f 1//1 2//2 3//3`, as most exporters
+    /// write a face), read by [`full_corner`] from the 100 bytes at the
+    /// position (such a line has at most 96) and added
     /// ([`Reader::add_small_face`], with its `vt` only where textured):
     /// `true`, the position then past the line. `false` (nothing read or
     /// changed) for any other face, or one too near the window's end.
     #[inline(always)]
-    fn fast_full_face(&mut self, s: &mut Scan) -> bool {
+    fn fast_full_face<const VT: bool>(&mut self, s: &mut Scan) -> bool {
         let Some(line) = s.w.get(s.i..).and_then(|w| w.first_chunk::<100>()) else {
             return false;
         };
@@ -410,20 +428,20 @@ impl Reader<'_> {
         // Texture coordinates matter only where a texture is read.
         let keep =
             |[v, vt, vn]: [u32; 3], textured: bool| [v, if textured { vt } else { NONE }, vn];
-        let Some((a, b' ', at)) = full_corner(line, 0, counts) else {
+        let Some((a, b' ', at)) = full_corner::<VT>(line, 0, counts) else {
             return false;
         };
-        let Some((b, b' ', at)) = full_corner(line, at, counts) else {
+        let Some((b, b' ', at)) = full_corner::<VT>(line, at, counts) else {
             return false;
         };
         let t = self.textured;
-        match full_corner(line, at, counts) {
+        match full_corner::<VT>(line, at, counts) {
             Some((c, b'\n', at)) => {
                 self.add_small_face([keep(a, t), keep(b, t), keep(c, t)]);
                 s.i += at;
             }
             Some((c, b' ', at)) => {
-                let Some((d, b'\n', at)) = full_corner(line, at, counts) else {
+                let Some((d, b'\n', at)) = full_corner::<VT>(line, at, counts) else {
                     return false;
                 };
                 self.add_small_face([keep(a, t), keep(b, t), keep(c, t), keep(d, t)]);
@@ -699,16 +717,52 @@ mod tests {
         }
     }
 
+    /// Faces of a textured material, read by the general reader and by
+    /// the fast path: the same model (their `v/vt/vn` corners keep their
+    /// `vt`, and `v//vn` corners name none).
+    #[test]
+    fn textured_faces_read_the_same_either_way() {
+        let faces = [
+            "f 1/1/1 2/2/1 3/3/1",
+            "f 1//1 2//1 3//1 4//1",
+            "f 4/4/1 3/3/1 2/2/1",
+        ];
+        let later = b"f 1 2 3\n".repeat(16);
+        let read = |fast: bool| {
+            let options = LoadOptions::default();
+            let mut r = Reader::new("t.obj", Path::new("."), &options);
+            for line in [
+                "v 0 0 0", "v 1 0 0", "v 1 1 0", "v 0 1 0", "vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1",
+                "vn 0 0 1",
+            ] {
+                r.statement(Cursor::new(line.as_bytes()), 1).unwrap();
+            }
+            r.textured = true;
+            for face in faces {
+                if fast {
+                    let mut window = format!("{face}\n").into_bytes();
+                    window.extend(&later);
+                    window.extend([0; crate::scene::file::SLACK]);
+                    assert!(r.fast_line(&window, 2).is_some(), "{face}");
+                } else {
+                    r.statement(Cursor::new(face.as_bytes()), 2).unwrap();
+                }
+            }
+            format!("{:?}", r.finish(3).unwrap())
+        };
+        assert_eq!(read(true), read(false));
+    }
+
     #[test]
     fn the_fast_path_takes_the_common_lines_and_leaves_the_rest() {
         let taken = b"v 1.349972 0.004398 -0.000000\nv -12.5 7 0.125\nvn 0.6265 -0.7116 0.3180\n\
-            vt 0.742686 0.551393\nvt 0.5 0.5 0\nf 1 2 3\nf 1/1 2/1 3/1\nf 1//1 2//1 3//1 \r\n\
+            vt 0.742686 0.551393\nvt 0.5 0.5 0\nf 1 2 3\nf 1/1 2/1 3/1\nf 1//1 2//1 3//1 \r\nf 1//1 2//1 3//1\n\
             f 1/1/1 2/1/1 3/1/1 1/1/1\nf\t1  2\t3\nv 1234567.8 -0.0000001 1.\n";
         // Alone in their window, and with the lines after them (where the
         // commonest shapes take their own way).
         let later = b"f 1 2 3\n".repeat(16);
         for after in [&b""[..], &later] {
-            assert_eq!(fast_lines(taken, after), 11);
+            assert_eq!(fast_lines(taken, after), 12);
         }
         let left =
             b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
