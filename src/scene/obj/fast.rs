@@ -337,7 +337,11 @@ impl Reader<'_> {
         }
         match kind {
             b'v' => {
-                let [x, y, z] = match s.short::<3>() {
+                // Not tried again where it was tried above (`v ` then no
+                // other gap: a `v` with colours, say).
+                let tried = window[1] == b' ' && s.i == 2;
+                let short = if tried { None } else { s.short::<3>() };
+                let [x, y, z] = match short {
                     Some(v) => v,
                     None => s.decimals::<3>(3)?.0,
                 };
