@@ -6,28 +6,27 @@
 //! It is a shortcut, never a second reading: a line is taken only when it
 //! is exactly what the general reader ([`Reader::statement`]) would read
 //! the same way, and its effect is made by the same code (a `v` through
-//! `Reader::position`, or past its finiteness test for a short number,
-//! which is finite; a face through `Reader::add_face`, or its part for a
-//! triangle or quad). Whatever else it
-//! meets (a sign `+`, an exponent, eight digits in a row, a comment, a
-//! negative or out-of-range index, a `v` with colours, a line that the
-//! buffer has not yet read to its end) it hands back, untouched, to the
-//! general reader, which also places every error. The property test below
-//! holds the two readers to the same models and the same errors.
+//! `Reader::position`, or past its finiteness test for short numbers,
+//! which are finite; a face through `Reader::add_face`, or its part for a
+//! triangle or quad). Whatever else it meets (a sign `+`, an exponent,
+//! eight digits in a row, a comment, a negative or out-of-range index, a
+//! line that the buffer has not yet read to its end) it hands back,
+//! untouched, to the general reader, which also places every error. The
+//! property test below holds the two readers to the same models and the
+//! same errors.
 //!
-//! The commonest shapes are tried first, with no loop over gaps: a `v`,
-//! `vn` or `vt` line of short numbers after single spaces (each number and
-//! the byte after it from one look at 9 bytes), and a face of three or
-//! four corners that are all bare position indices (`f 1 2 3 4`), all
-//! `v/vt/vn` or all `v//vn` (`f 1/1/1 2/2/2 3/3/3`, `f 1//1 2//2 3//3`, as
-//! most exporters write), each index
-//! and the byte after it from one 8-byte look, added without the corner
-//! list. Each takes the line's first bytes as one fixed-size array that
-//! holds every byte it may look at (48 for numbers, 40 or 100 for faces:
-//! more than such a line can have), so that the looks need no bounds
-//! checks of their own; a line with fewer bytes left in the window (the
-//! last few of a buffer), or of any other shape, goes the general way of
-//! this module.
+//! The commonest shapes are tried first, with no loop over gaps: a `v`
+//! (also with a colour), `vn` or `vt` line of short numbers after single
+//! spaces (each number and the byte after it from one look at 9 bytes),
+//! and a face of three or four corners that are all bare position indices
+//! (`f 1 2 3 4`), all `v/vt/vn` or all `v//vn` (`f 1/1/1 2/2/2 3/3/3`,
+//! `f 1//1 2//2 3//3`, as most exporters write), each index and the byte
+//! after it from one 8-byte look, added without the corner list. Each
+//! takes the line's first bytes as one fixed-size array that holds every
+//! byte it may look at (48 or 80 for numbers, 40 or 100 for faces: more
+//! than such a line can have), so that the looks need no bounds checks of
+//! their own; a line with fewer bytes left in the window (the last few of
+//! a buffer), or of any other shape, goes the general way of this module.
 //!
 //! What parsing costs a byte is in docs/figures.md ("Memory, loading and
 //! start-up"); the property test holds both ways to the general reader.
@@ -38,7 +37,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{MAX_VERTICES, NONE, Reader};
+use super::{MAX_VERTICES, NONE, Reader, vertex_color};
 use crate::scene::file::{POW10_INT, digit_bytes, digits_value, exact_decimal, short_digits};
 
 /// A position in the buffer's window.
@@ -135,15 +134,16 @@ impl Scan<'_> {
         self.long_decimal(neg)
     }
 
-    /// The `N` (2 or 3) numbers of a usual `v`, `vn` or `vt` line, each
-    /// after one space and the last before the line's end, each read by
-    /// [`short_decimal`] from the 48 bytes at the position (a line of three
-    /// such numbers has at most 32): `None` (the position unchanged) for
-    /// any other line, or one too near the window's end, for
-    /// [`Scan::decimals`] to read.
+    /// The `N` numbers of a usual `v`, `vn` or `vt` line, each after one
+    /// space and the last before the line's end, each read by
+    /// [`short_decimal`] from the `W` bytes at the position (48 for up to
+    /// three such numbers, whose line has at most 32 from there; 80 for
+    /// six, at most 62): `None` (the position unchanged) for any other
+    /// line, or one too near the window's end, for [`Scan::decimals`] to
+    /// read.
     #[inline(always)]
-    fn short<const N: usize>(&mut self) -> Option<[f32; N]> {
-        let line = self.w.get(self.i..)?.first_chunk::<48>()?;
+    fn short<const N: usize, const W: usize>(&mut self) -> Option<[f32; N]> {
+        let line = self.w.get(self.i..)?.first_chunk::<W>()?;
         let (mut v, mut at) = ([0.0; N], 0);
         for (k, x) in v.iter_mut().enumerate() {
             let (value, after, next) = short_decimal(line, at)?;
@@ -205,10 +205,10 @@ impl Scan<'_> {
 /// at the 9 bytes after its sign: the number [`Scan::decimal`] reads where
 /// the byte after it is not a digit (where it is, the number goes on, and
 /// the caller must not take it), that byte, and the position past it;
-/// `None` for any other. Called at positions of at most 20, so every index
-/// stays inside the 48 bytes.
+/// `None` for any other. Called at positions at least 28 bytes short of
+/// the end of `line`, so every index stays inside it.
 #[inline(always)]
-fn short_decimal(line: &[u8; 48], at: usize) -> Option<(f32, u8, usize)> {
+fn short_decimal<const W: usize>(line: &[u8; W], at: usize) -> Option<(f32, u8, usize)> {
     let neg = line[at] == b'-';
     // The number's bytes from the first after its sign.
     let rest = line.get(at + neg as usize..)?.first_chunk::<9>()?;
@@ -306,12 +306,15 @@ impl Reader<'_> {
         let mut s = Scan { w: window, i: 2 };
         match window.first_chunk::<2>()? {
             b"v " => {
-                if let Some(p) = s.short::<3>()
+                if let Some(p) = s.short::<3, 48>()
                     && self.pos.len() < MAX_VERTICES
                 {
                     // Short numbers are finite.
                     self.finite_position(Vec3::from(p), None);
                     return Some(s.i);
+                }
+                if let Some(len) = self.fast_color_vertex(window) {
+                    return Some(len);
                 }
             }
             b"f "
@@ -340,7 +343,7 @@ impl Reader<'_> {
                 // Not tried again where it was tried above (`v ` then no
                 // other gap: a `v` with colours, say).
                 let tried = window[1] == b' ' && s.i == 2;
-                let short = if tried { None } else { s.short::<3>() };
+                let short = if tried { None } else { s.short::<3, 48>() };
                 let [x, y, z] = match short {
                     Some(v) => v,
                     None => s.decimals::<3>(3)?.0,
@@ -351,14 +354,14 @@ impl Reader<'_> {
                 self.position(Vec3::new(x, y, z), None, n);
             }
             b'n' => {
-                let v = match s.short::<3>() {
+                let v = match s.short::<3, 48>() {
                     Some(v) => v,
                     None => s.decimals::<3>(3)?.0,
                 };
                 self.vn.push(Vec3::from(v));
             }
             b't' => {
-                let [u, v] = match s.short::<2>() {
+                let [u, v] = match s.short::<2, 48>() {
                     Some(uv) => uv,
                     None => {
                         let ([u, v, _], _) = s.decimals::<3>(2)?;
@@ -375,6 +378,24 @@ impl Reader<'_> {
                 self.add_face();
             }
         }
+        Some(s.i)
+    }
+
+    /// A `v` line with a colour (`v x y z r g b`, as scans write them), of
+    /// six short numbers after single spaces ([`Scan::short`], from the 80
+    /// bytes at the first: such a line has at most 62): its length, or
+    /// `None` (nothing changed). Out of line, so that the usual `v` line's
+    /// code is laid out as it was (inlined, parsing the torus of
+    /// docs/figures.md cost a twentieth more).
+    #[inline(never)]
+    fn fast_color_vertex(&mut self, window: &[u8]) -> Option<usize> {
+        let mut s = Scan { w: window, i: 2 };
+        let [x, y, z, r, g, b] = s.short::<6, 80>()?;
+        if self.pos.len() == MAX_VERTICES {
+            return None;
+        }
+        // Short numbers are finite, the colour's too.
+        self.finite_position(Vec3::new(x, y, z), Some(vertex_color([r, g, b])));
         Some(s.i)
     }
 
@@ -768,8 +789,12 @@ mod tests {
         for after in [&b""[..], &later] {
             assert_eq!(fast_lines(taken, after), 12);
         }
+        // A `v` with a colour, only where its 80 bytes are in the window.
+        let colored = b"v 1 2 3 1 0 0.5\n";
+        assert_eq!(fast_lines(colored, b""), 0);
+        assert_eq!(fast_lines(colored, &later), 1);
         let left =
-            b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
+            b"v +1 2 3\nv 1e3 2 3\nv 1 2 3 # c\nv 1 2 3 1 0\nv 1 2 3 1 0 0 0\nv 12345678 0 0\nv 0.12345678 0 0\n\
             v 1 2\nvn 1 2\nvt 1\nf -1 2 3\nf 1 2\nf 1 2 9\nf 1 2 4\nf 4 1 2 3\nf 1/ 2 3\nf 1/1/ 2 3\nf 0 1 2\n\
             f 1//2 2//1 3//1\nf 1/2 2/1 3/1\nf 1 2 3 4 5 6 7 8 9\nf 1/2/1 2/1/1 3/1/1\n\
             f 1/1/2 2/1/1 3/1/1\nf 1/1/1 4/1/1 3/1/1\nvx 1 2 3\n v 1 2 3\nv 1 2 3";

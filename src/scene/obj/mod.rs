@@ -53,6 +53,12 @@ use crate::error::{Error, Result};
 use crate::texture::{Sampler, Texture, Wrap};
 use mtl::{Map, Material, mtl};
 
+/// A vertex colour `r g b` as a `v` line gives it: sRGB-encoded, as 8-bit
+/// ones are.
+fn vertex_color(c: [f32; 3]) -> Lin {
+    ColorSpace::Srgb.decode(c)
+}
+
 /// A model read from a file, and what the reader has to tell.
 #[derive(Debug)]
 pub struct Loaded {
@@ -286,8 +292,7 @@ impl<'a> Reader<'a> {
                 if color.is_some_and(|c| c.iter().any(|x| !x.is_finite())) {
                     return Err(self.at(n, 1, "a vertex colour is not a finite number"));
                 }
-                // Vertex colours are sRGB-encoded, as 8-bit ones are.
-                let color = color.map(|c| ColorSpace::Srgb.decode(c));
+                let color = color.map(vertex_color);
                 self.position(Vec3::new(v[0], v[1], v[2]), color, n);
             }
             b"vn" => {
