@@ -359,14 +359,14 @@ impl Topology {
 
     /// Whether every edge is walked exactly once in each direction (closed
     /// and consistently wound), from a [`Listing::Next`] topology, whose
-    /// long lists it sorts in place: no position leads to itself or twice
-    /// to the same position, and each position one leads to leads back.
-    /// (Then the edges form a set that is its own reverse, which is what
-    /// the words say.) Only edges to a higher position need looking up the
-    /// other way (see the code). A list of up to 8 (every position of most
-    /// meshes) is read as eight SIMD lanes, its own pairs compared and the
-    /// lists it leads to searched without branches; a longer one is sorted
-    /// in place and searched by halves.
+    /// long lists it sorts in place: no position leads to itself, and each
+    /// edge to a higher position is walked once that way and at least once
+    /// back (then every edge is walked once each way: see the code). A list
+    /// of up to 8 (every position of most meshes) is read as eight SIMD
+    /// lanes, each edge up counted in it and looked for in the list it
+    /// leads to without branches; a longer one is sorted in place, its
+    /// entries compared with their neighbours and the lists it leads to
+    /// searched by halves.
     pub(super) fn closed(&mut self, faces: &[[u32; 3]]) -> bool {
         assert_eq!(self.listing, Listing::Next);
         if faces.is_empty() {
@@ -395,21 +395,29 @@ impl Topology {
             let (range, v) = row8(p);
             let p = p as u32;
             if range.len() <= 8 {
-                if !distinct8(v, p) {
+                if v.simd_eq(u32x8::splat(p)).any() {
                     return false;
                 }
-                // Only edges up (to a higher position) are looked for the
-                // other way. Each corner is an edge out of its position and
-                // one into it, so at every position as many edges leave as
-                // arrive, and so do the edges without their reverse: if
-                // there are any, they go round in cycles, and a cycle goes
-                // up somewhere.
+                // Only edges up (to a higher position) are looked at: each
+                // walked once, and back at least once. Then every edge is
+                // walked once each way: each corner is an edge out of its
+                // position and one into it, so at every position as many
+                // edges leave as arrive. Counted pair by pair, what is left
+                // once each edge up is matched with one back is edges down
+                // alone, still as many leaving as arriving everywhere:
+                // none, as the highest position such an edge leaves would
+                // have none arriving.
                 let mut up = v.simd_gt(u32x8::splat(p)).to_bitmask() & ((1 << range.len()) - 1);
-                let v = v.to_array();
+                let lanes = v.to_array();
                 while up != 0 {
-                    let i = up.trailing_zeros() as usize;
+                    let i = up.trailing_zeros();
                     up &= up - 1;
-                    if !leads_back(start, list, v[i], p) {
+                    let q = lanes[i as usize];
+                    // Walked once up: no other lane leads to `q` (the lanes
+                    // past the end hold ids no position has).
+                    if v.simd_eq(u32x8::splat(q)).to_bitmask() != 1 << i
+                        || !leads_back(start, list, q, p)
+                    {
                         return false;
                     }
                 }
@@ -469,32 +477,20 @@ fn eight(list: &[u32], s: usize) -> u32x8 {
     u32x8::new(list[s..s + 8].try_into().expect("eight entries of slack"))
 }
 
-/// Whether an edge leads from `q` to `p` (see [`Topology::closed`]): in a
-/// list of up to eight, all eight lanes compared at once and those past
-/// the list's end masked off.
+/// Whether an edge leads from `q` to `p` (see [`Topology::closed`]): in
+/// a list of up to eight, all eight lanes compared at once and those past
+/// the list's end masked off; in a longer one, sorted, by halves.
 #[inline(always)]
 fn leads_back(start: &[u32], list: &[u32], q: u32, p: u32) -> bool {
-    let (s, e) = (start[q as usize] as usize, start[q as usize + 1] as usize);
+    let Some(&[s, e]) = start.get(q as usize..q as usize + 2) else {
+        return false;
+    };
+    let (s, e) = (s as usize, e as usize);
     if e - s <= 8 {
         eight(list, s).simd_eq(u32x8::splat(p)).to_bitmask() & ((1 << (e - s)) - 1) != 0
     } else {
         list[s..e].binary_search(&p).is_ok()
     }
-}
-
-/// Whether the eight ids of `v` differ from each other and from `p`,
-/// without branches, in SIMD lanes (the `wide` crate: SSE2 where the
-/// target has it): each compared with all eight, the matches counted lane
-/// by lane; each matches itself, so eight matches in all say no two are
-/// the same.
-#[inline(always)]
-fn distinct8(v: u32x8, p: u32) -> bool {
-    let mut matches = u32x8::ZERO;
-    for x in v.to_array() {
-        // A match is all ones: −1.
-        matches -= u32x8::splat(x).simd_eq(v);
-    }
-    matches.reduce_add() == 8 && !v.simd_eq(u32x8::splat(p)).any()
 }
 
 /// The exact convexity test of [`Geometry::is_convex`], for a closed mesh
