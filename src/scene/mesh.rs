@@ -35,9 +35,10 @@
 //! dropped once closedness is found, before the normals' tables are made;
 //! the normals read only the welded positions, and list again the corners
 //! of the few positions with a crease). **Closed** (every edge walked once
-//! each way) is that no position leads to itself or twice to one position,
-//! and that each edge up (to a higher position) has its way back: the
-//! lists sorted in place, each edge up looked for in its end's list. A
+//! each way) is that no position leads to itself, and that each edge up
+//! (to a higher position) is walked once and has its way back, looked for
+//! in its end's list: then every edge is walked once each way (see
+//! `Topology::closed`). A
 //! closed mesh's Euler characteristic (V − F/2) says at once whether it
 //! has a sphere's topology. A model that is not closed shows its inside
 //! through the gaps, so it is drawn from both sides by default. **Convex**
