@@ -418,8 +418,11 @@ pub(super) fn smooth_normals(
     big.shrink_to_fit();
     let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
     // Each vertex's normal: +z for one no face uses; not yet set (NaN)
-    // for a creased position's.
-    match (&topo.used, &topo.ids) {
+    // for a creased position's. Narrowed to one `Vec3` a vertex as it
+    // goes: collected in place (the standard library reuses the allocation
+    // of a vector iterated into one of smaller items of the same
+    // alignment), then shrunk to fit.
+    let mut normals: Vec<Vec3> = match (&topo.used, &topo.ids) {
         (Some(used), Some(ids)) => {
             // From the last down (see above: vertex `v` reads position
             // `ids[v] <= v`, not yet overwritten).
@@ -434,32 +437,31 @@ pub(super) fn smooth_normals(
                 };
                 sums[v] = n.extend(0.0).to_array();
             }
+            sums.into_iter().map(xyz).collect()
         }
-        // Each vertex its own position, in place.
-        _ => {
-            for (p, s) in sums.iter_mut().enumerate() {
-                let n = if topo.fan(p) == 0 {
+        // Each vertex its own position.
+        _ => sums
+            .into_iter()
+            .enumerate()
+            .map(|(p, s)| {
+                if topo.fan(p) == 0 {
                     Vec3::Z
                 } else if creased(p) {
                     Vec3::NAN
                 } else {
-                    fix(xyz(*s))
-                };
-                *s = n.extend(0.0).to_array();
-            }
-        }
-    }
-    // Narrowed to one `Vec3` a vertex: collected in place (the standard
-    // library reuses the allocation of a vector iterated into one of
-    // smaller items of the same alignment), then shrunk to fit.
-    let mut normals: Vec<Vec3> = sums.into_iter().map(xyz).collect();
+                    fix(xyz(s))
+                }
+            })
+            .collect(),
+    };
     normals.shrink_to_fit();
     // The corners at creased positions, by position and in order at each
     // (the order the corners around a position are listed in): the
     // per-position pass's, without keeping every position's corners.
     let at = |c: u32| id(faces[(c / 3) as usize][(c % 3) as usize]);
     let mut creased_corners: Vec<u32> = Vec::new();
-    if state.contains(&CREASED) {
+    let any_creased = state.contains(&CREASED);
+    if any_creased {
         // By a counting sort: each creased position's first slot, from the
         // sizes of the fans before it; then the corners in order, each to
         // its position's next slot.
@@ -512,9 +514,11 @@ pub(super) fn smooth_normals(
             }
         }
     }
-    for n in &mut normals {
-        if n.is_nan() {
-            *n = Vec3::Z;
+    if any_creased {
+        for n in &mut normals {
+            if n.is_nan() {
+                *n = Vec3::Z;
+            }
         }
     }
     (normals, splits)
