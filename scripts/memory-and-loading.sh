@@ -7,7 +7,9 @@
 #     --rows 60 --color truecolor`), and per triangle;
 #   * normals at load: callgrind's inclusive count of
 #     `Geometry::compute_normals` (normals, welding, closedness) on the
-#     torus of 1M triangles, per triangle;
+#     torus of 1M triangles, per triangle, and in brackets that of the
+#     normals alone (`normals::smooth_normals`: face normals and angles,
+#     sums, means and the crease test, without the connectivity);
 #   * OBJ parsing: everything `obj::load` does but `Reader::finish` (which
 #     computes the normals), inclusive counts on the same file, per byte;
 #   * a steady Tux frame at 200×60 half blocks, render only
@@ -38,25 +40,28 @@ build() {
 }
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
 peak() { /usr/bin/time -o target/load-cost/time -f '%M' "$@" >/dev/null 2>&1; cat target/load-cost/time; }
-# Inclusive instructions of the function whose name ends in $1, in a
-# callgrind run of the rest. callgrind_annotate lists a function once for
-# each source file its inlined code comes from (with or without the
-# binary's name after it): the largest of these entries is the whole
-# function with its callees; the others are parts of it.
+# Inclusive instructions of the function whose name ends in $1, in the
+# callgrind run of `profile` (target/load-cost/cg.out). callgrind_annotate
+# lists a function once for each source file its inlined code comes from
+# (with or without the binary's name after it): the largest of these
+# entries is the whole function with its callees; the others are parts of
+# it.
+profile() { valgrind --tool=callgrind --callgrind-out-file=target/load-cost/cg.out "$@" >/dev/null 2>&1; }
 inclusive() {
-  local name=$1; shift
-  valgrind --tool=callgrind --callgrind-out-file=target/load-cost/cg.out "$@" >/dev/null 2>&1
   callgrind_annotate --inclusive=yes --threshold=100 target/load-cost/cg.out 2>/dev/null |
-    grep -E "$name( \[[^]]*\])?\$" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
+    grep -E "$1( \[[^]]*\])?\$" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
 }
 row() { # label, directory of binaries
-  local bin=$2/rastty frame tris1 bytes1 normals load finish a b
+  local bin=$2/rastty frame tris1 bytes1 normals smooth load finish a b
   local args=(--cols 200 --rows 60 --color truecolor)
   tris1=1000000
   bytes1=$(stat -c %s "$m1")
-  normals=$(inclusive 'Geometry::compute_normals' "$bin" render "$m1" "${args[@]}")
-  load=$(inclusive 'scene::obj::load' "$bin" render "$m1" "${args[@]}")
-  finish=$(inclusive 'obj::Reader::finish' "$bin" render "$m1" "${args[@]}")
+  profile "$bin" render "$m1" "${args[@]}"
+  normals=$(inclusive 'Geometry::compute_normals')
+  # (Not in builds from before the function had its name.)
+  smooth=$(inclusive 'normals::smooth_normals' || true)
+  load=$(inclusive 'scene::obj::load')
+  finish=$(inclusive 'obj::Reader::finish')
   a=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 10)
   b=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 40)
   frame=$(( (b - a) / 30 ))
@@ -64,15 +69,15 @@ row() { # label, directory of binaries
   tux_kb=$(peak "$bin" render "$tux" "${args[@]}")
   m4_kb=$(peak "$bin" render "$m4" "${args[@]}")
   strip -o target/load-cost/stripped "$bin"
-  printf '| %s | %.1f MiB | %.1f MiB (%d B) | %d | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
+  printf '| %s | %.1f MiB | %.1f MiB (%d B) | %d (%s) | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
     "$(echo "$tux_kb / 1024" | bc -l)" "$(echo "$m4_kb / 1024" | bc -l)" $(( m4_kb * 1024 / 4000000 )) \
-    $(( normals / tris1 )) "$(echo "($load - $finish) / $bytes1" | bc -l)" \
+    $(( normals / tris1 )) "$([ -n "$smooth" ] && echo $(( smooth / tris1 )) || echo –)" "$(echo "($load - $finish) / $bytes1" | bc -l)" \
     "$(echo "$frame / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render cube) / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render tests/models/teapot.obj "${args[@]}") / 1000000" | bc -l)" \
     "$(echo "$(stat -c %s "$bin") / 1000000" | bc -l)" "$(echo "$(stat -c %s target/load-cost/stripped) / 1000000" | bc -l)"
 }
-printf '| build | peak memory, Tux | peak memory, torus 4M (a triangle) | normals at load, a triangle | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
+printf '| build | peak memory, Tux | peak memory, torus 4M (a triangle) | normals at load, a triangle (the normals alone) | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
 printf '|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
 if [ $# -gt 0 ]; then
   row "$1" "$(build "$1")"
