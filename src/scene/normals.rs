@@ -169,7 +169,7 @@ pub(super) struct Weights4 {
 /// it): each step of one face runs on four faces' numbers in one SIMD
 /// operation, where [`face_weights`] fills three lanes of four and
 /// shuffles them for its cross and dot products.
-#[inline]
+#[inline(always)]
 pub(super) fn face_weights4([a, b, c]: Corners4) -> Weights4 {
     let sub = |p: [Vec4; 3], q: [Vec4; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
     let (ab, bc, ca) = (sub(b, a), sub(c, b), sub(a, c));
@@ -401,6 +401,7 @@ pub(super) fn smooth_normals(
         }
     }
     let creased = |p: usize| state[p] == CREASED;
+    let any_creased = state.contains(&CREASED);
     let fix = |n: Vec3| {
         if n == Vec3::ZERO || !n.is_finite() {
             Vec3::Z
@@ -439,19 +440,14 @@ pub(super) fn smooth_normals(
             }
             sums.into_iter().map(xyz).collect()
         }
-        // Each vertex its own position.
+        // Each vertex its own position: one that no face uses has a sum
+        // of zero, so a mean of zero, so +z (its position is never
+        // creased).
+        _ if !any_creased => sums.into_iter().map(|s| fix(xyz(s))).collect(),
         _ => sums
             .into_iter()
             .enumerate()
-            .map(|(p, s)| {
-                if topo.fan(p) == 0 {
-                    Vec3::Z
-                } else if creased(p) {
-                    Vec3::NAN
-                } else {
-                    fix(xyz(s))
-                }
-            })
+            .map(|(p, s)| if creased(p) { Vec3::NAN } else { fix(xyz(s)) })
             .collect(),
     };
     normals.shrink_to_fit();
@@ -460,7 +456,6 @@ pub(super) fn smooth_normals(
     // per-position pass's, without keeping every position's corners.
     let at = |c: u32| id(faces[(c / 3) as usize][(c % 3) as usize]);
     let mut creased_corners: Vec<u32> = Vec::new();
-    let any_creased = state.contains(&CREASED);
     if any_creased {
         // By a counting sort: each creased position's first slot, from the
         // sizes of the fans before it; then the corners in order, each to
@@ -612,7 +607,11 @@ mod tests {
         fn normals_are_the_definition_at_every_corner(
             xyz in prop::collection::vec([coordinate(), coordinate(), coordinate()], 3..16),
             corners in prop::collection::vec([0u32..16, 0u32..16, 0u32..16], 1..24),
-            crease in prop::sample::select(vec![20.0f32, 45.0, 60.0, 89.0, 120.0, 180.0]),
+            // Not an angle two faces of these coordinates can make
+            // exactly (45°, 60°, 90°, 120°, 180° all occur): at exactly
+            // the crease, f32's rounding of the cosines, not the rule,
+            // decides.
+            crease in prop::sample::select(vec![23.0f32, 37.0, 73.0, 101.0, 119.0, 163.0]),
         ) {
             let positions: Vec<Vec3> = xyz.iter().map(|&p| Vec3::from_array(p)).collect();
             let n = positions.len() as u32;
