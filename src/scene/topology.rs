@@ -372,10 +372,6 @@ impl Topology {
         if faces.is_empty() {
             return false;
         }
-        // The padding of short lists must be ids no position has.
-        if self.welded() > (u32::MAX - 8) as usize {
-            return false;
-        }
         for p in 0..self.welded() {
             let range = self.range(p);
             if range.len() > 8 {
@@ -383,19 +379,15 @@ impl Topology {
             }
         }
         let (start, list) = (&self.start, &self.list);
-        // The list around `p`: its range, and its first eight entries in
-        // lanes, those past its end replaced by ids no position has, each
-        // its own (the list has eight entries past the last list to read).
-        let row8 = |p: usize| {
-            let (s, e) = (start[p] as usize, start[p + 1] as usize);
-            let n = u32x8::splat((e - s).min(8) as u32);
-            (s..e, LANE.simd_lt(n).select(eight(list, s), PAD))
-        };
         (0..self.welded()).all(|p| {
-            let (range, v) = row8(p);
+            let range = start[p] as usize..start[p + 1] as usize;
             let p = p as u32;
             if range.len() <= 8 {
-                if v.simd_eq(u32x8::splat(p)).any() {
+                // Its entries in lanes, and which lanes are its (those
+                // past its end belong to the lists after it, or are the
+                // eight entries of slack after the last list).
+                let (v, mine) = (eight(list, range.start), (1u32 << range.len()) - 1);
+                if v.simd_eq(u32x8::splat(p)).to_bitmask() & mine != 0 {
                     return false;
                 }
                 // Only edges up (to a higher position) are looked at: each
@@ -407,15 +399,14 @@ impl Topology {
                 // alone, still as many leaving as arriving everywhere:
                 // none, as the highest position such an edge leaves would
                 // have none arriving.
-                let mut up = v.simd_gt(u32x8::splat(p)).to_bitmask() & ((1 << range.len()) - 1);
+                let mut up = v.simd_gt(u32x8::splat(p)).to_bitmask() & mine;
                 let lanes = v.to_array();
                 while up != 0 {
                     let i = up.trailing_zeros();
                     up &= up - 1;
                     let q = lanes[i as usize];
-                    // Walked once up: no other lane leads to `q` (the lanes
-                    // past the end hold ids no position has).
-                    if v.simd_eq(u32x8::splat(q)).to_bitmask() != 1 << i
+                    // Walked once up: no other of its lanes leads to `q`.
+                    if v.simd_eq(u32x8::splat(q)).to_bitmask() & mine != 1 << i
                         || !leads_back(start, list, q, p)
                     {
                         return false;
@@ -453,22 +444,6 @@ impl Topology {
         })
     }
 }
-
-/// Ids no position has (see [`Topology::closed`]), each its own, for the
-/// lanes past the end of a list of up to eight.
-const PAD: u32x8 = u32x8::new([
-    u32::MAX,
-    u32::MAX - 1,
-    u32::MAX - 2,
-    u32::MAX - 3,
-    u32::MAX - 4,
-    u32::MAX - 5,
-    u32::MAX - 6,
-    u32::MAX - 7,
-]);
-
-/// Each lane's number.
-const LANE: u32x8 = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
 
 /// The eight entries of `list` from `s` (past a list's end when it is
 /// shorter: the list array has eight entries of slack).
