@@ -431,10 +431,13 @@ impl Geometry {
         let first = finite().next()?;
         let (lo, hi) = finite().fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
         let centre = lo.as_dvec3() * 0.5 + hi.as_dvec3() * 0.5;
-        let radius = finite()
-            .map(|p| p.as_dvec3().distance(centre))
-            .fold(0.0f64, f64::max);
-        Some((centre, radius))
+        // The farthest by its squared distance, one root taken: a root
+        // correctly rounded never falls as its argument grows, so the
+        // largest root is the root of the largest (none is NaN).
+        let far = finite()
+            .map(|p| p.as_dvec3().distance_squared(centre))
+            .fold(0.0f64, |far, d| if d > far { d } else { far });
+        Some((centre, far.sqrt()))
     }
 
     /// Centres the positions on the origin and scales them to fit the unit
@@ -445,8 +448,11 @@ impl Geometry {
             return;
         };
         let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
+        // The new bounds found as the positions are moved.
+        let mut b = Bounds::default();
         for p in &mut self.positions {
             *p = ((p.as_dvec3() - centre) * scale).as_vec3();
+            b.add(*p);
         }
         if let Some(rig) = &mut self.rig {
             Arc::make_mut(rig).fitted.push((centre, scale));
@@ -458,7 +464,7 @@ impl Geometry {
         }
         // The same surface, moved and scaled: closedness stands; the bounds
         // and any convexity found are redone.
-        self.bounds = bounds(&self.positions);
+        self.bounds = b.found();
         self.convex = OnceLock::new();
         self.edges = OnceLock::new();
     }
@@ -774,16 +780,45 @@ impl Light {
 /// The bounding box `[min, max]` of `positions`; `None` when one is not
 /// finite, or there are none.
 fn bounds(positions: &[Vec3]) -> Option<[Vec3; 2]> {
-    // One pass in f32 lanes; its box is kept only where every position is
-    // finite (then the lanes' `min` and `max` are exact).
-    let (lo, hi, finite) = positions.iter().fold(
-        (Vec3A::INFINITY, Vec3A::NEG_INFINITY, true),
-        |(lo, hi, finite), &p| {
-            let p = Vec3A::from(p);
-            (lo.min(p), hi.max(p), finite & p.is_finite())
-        },
-    );
-    (finite && !positions.is_empty()).then(|| [lo.into(), hi.into()])
+    let mut b = Bounds::default();
+    positions.iter().for_each(|&p| b.add(p));
+    b.found()
+}
+
+/// The box around positions, found one at a time in f32 lanes; kept only
+/// where every position is finite (then the lanes' `min` and `max` are
+/// exact).
+struct Bounds {
+    lo: Vec3A,
+    hi: Vec3A,
+    finite: bool,
+    any: bool,
+}
+
+impl Default for Bounds {
+    fn default() -> Bounds {
+        Bounds {
+            lo: Vec3A::INFINITY,
+            hi: Vec3A::NEG_INFINITY,
+            finite: true,
+            any: false,
+        }
+    }
+}
+
+impl Bounds {
+    #[inline(always)]
+    fn add(&mut self, p: Vec3) {
+        let p = Vec3A::from(p);
+        (self.lo, self.hi) = (self.lo.min(p), self.hi.max(p));
+        self.finite &= p.is_finite();
+        self.any = true;
+    }
+
+    /// The box, if there were positions and all were finite.
+    fn found(&self) -> Option<[Vec3; 2]> {
+        (self.finite && self.any).then(|| [self.lo.into(), self.hi.into()])
+    }
 }
 
 #[cfg(test)]
