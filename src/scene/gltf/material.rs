@@ -17,7 +17,7 @@ use glam::{Mat4, Vec2, Vec3};
 use super::{Parts, fetch};
 
 use crate::color::Lin;
-use crate::scene::mesh::{Light, LightKind};
+use crate::scene::light::{Light, LightKind};
 use crate::texture::{Filter, Mipmap, Sampler, Wrap};
 
 /// A glTF sampler as rastty's (an unset filter is the best there is).

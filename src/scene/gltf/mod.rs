@@ -56,7 +56,8 @@ use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
 use super::file;
-use super::mesh::{Geometry, Light, MaterialRun};
+use super::light::Light;
+use super::mesh::{Geometry, MaterialRun};
 use super::obj::Loaded;
 use crate::color::Lin;
 use crate::error::{Error, Result};
