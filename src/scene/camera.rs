@@ -60,10 +60,12 @@ impl Extremes {
         }
     }
 
-    /// Each axis's extreme of `v` in all four lanes.
+    /// Each axis's least and greatest extent so far, each in all four
+    /// lanes.
     #[inline(always)]
-    fn splat(&self, v: [Vec4; 4]) -> [Vec4; 13] {
-        std::array::from_fn(|a| Vec4::splat(v[a / 4][a % 4]))
+    fn splats(&self) -> ([Vec4; 13], [Vec4; 13]) {
+        let splat = |v: &[Vec4; 4]| std::array::from_fn(|a| Vec4::splat(v[a / 4][a % 4]));
+        (splat(&self.lo), splat(&self.hi))
     }
 
     /// Point `i`, `p`, in order: the extremes it moves, if any.
@@ -142,10 +144,10 @@ impl Fit {
         // four compared with that axis's extremes so far: most fours move
         // none, and are passed by, as each of their points would be; the
         // others are taken a point at a time. (The extents are the sums
-        // `along` finds, whose products by 0 and ±1 are exact, up to the
-        // sign of a zero, which no comparison tells apart; a point that is
-        // not finite can only send its four the long way.)
-        let (mut lo, mut hi) = (e.splat(e.lo), e.splat(e.hi));
+        // `Extremes::add` finds, whose products by 0 and ±1 are exact, up
+        // to the sign of a zero, which no comparison tells apart; a point
+        // that is not finite can only send its four the long way.)
+        let (mut lo, mut hi) = e.splats();
         let (fours, rest) = points.as_chunks::<4>();
         for (g, four) in fours.iter().enumerate() {
             let m = Mat4::from_cols(
@@ -181,7 +183,7 @@ impl Fit {
             for (j, &p) in four.iter().enumerate() {
                 e.add(g * 4 + j, p);
             }
-            (lo, hi) = (e.splat(e.lo), e.splat(e.hi));
+            (lo, hi) = e.splats();
         }
         for (j, &p) in rest.iter().enumerate() {
             e.add(fours.len() * 4 + j, p);

@@ -420,9 +420,10 @@ pub(super) fn smooth_normals(
     let mean = |p: usize| big[big.partition_point(|&(q, _)| (q as usize) < p)].1;
     // Each vertex's normal: +z for one no face uses; not yet set (NaN)
     // for a creased position's. Narrowed to one `Vec3` a vertex as it
-    // goes: collected in place (the standard library reuses the allocation
-    // of a vector iterated into one of smaller items of the same
-    // alignment), then shrunk to fit.
+    // goes, then shrunk to fit: the standard library collects a vector's
+    // own iterator, mapped to items no larger and of the same alignment,
+    // into the same allocation (an optimisation it does not promise; were
+    // it not made, the peak memory rows of docs/figures.md would show it).
     let mut normals: Vec<Vec3> = match (&topo.used, &topo.ids) {
         (Some(used), Some(ids)) => {
             // From the last down (see above: vertex `v` reads position
