@@ -402,8 +402,10 @@ pub(super) fn smooth_normals(
     }
     let creased = |p: usize| state[p] == CREASED;
     let any_creased = state.contains(&CREASED);
+    // (In lanes: both tests one comparison each.)
     let fix = |n: Vec3| {
-        if n == Vec3::ZERO || !n.is_finite() {
+        let a = Vec3A::from(n);
+        if a.cmpeq(Vec3A::ZERO).all() || !a.is_finite() {
             Vec3::Z
         } else {
             n
