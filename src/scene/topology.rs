@@ -136,11 +136,12 @@ impl PositionSet {
 
 /// One id per distinct position (see [`PositionSet`]), numbered in order
 /// of first appearance, for each position index; and how many there are.
+/// The set holds each distinct position's first index, whose id is then
+/// found among those already given.
 pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
     let mut set = PositionSet::with_capacity(positions.len());
-    // Each id's first position index, to compare against.
-    let mut first: Vec<u32> = Vec::new();
-    let mut ids = Vec::with_capacity(positions.len());
+    let mut ids: Vec<u32> = Vec::with_capacity(positions.len());
+    let mut welded = 0u32;
     let mut keyed = [([0u32; 3], 0u32); 16];
     for (block, chunk) in positions.chunks(16).enumerate() {
         // Touch the slots of the next sixteen first: their cache misses
@@ -153,16 +154,17 @@ pub(super) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
         let keyed = &keyed[..chunk.len()];
         set.touch(keyed);
         for (k, &kh) in keyed.iter().enumerate() {
-            let next = first.len() as u32;
-            let (id, new) =
-                set.get_or_insert_keyed(kh, next, |id| positions[first[id as usize] as usize]);
-            if new {
-                first.push((block * 16 + k) as u32);
-            }
-            ids.push(id);
+            let i = (block * 16 + k) as u32;
+            let (first, new) = set.get_or_insert_keyed(kh, i, |i| positions[i as usize]);
+            ids.push(if new {
+                welded += 1;
+                welded - 1
+            } else {
+                ids[first as usize]
+            });
         }
     }
-    (ids, first.len())
+    (ids, welded as usize)
 }
 
 /// The connectivity of a mesh, built once in linear time and dropped after
