@@ -10,7 +10,7 @@
 
 use glam::Vec3A;
 
-use super::triangle::{Faces, Shining, base_colors};
+use super::triangle::{Faces, Model, base_colors, corners};
 use super::vertex::{Deep, V, Verts, keeps};
 use super::{Painter, Stage};
 use crate::fill::Attributes;
@@ -23,19 +23,25 @@ impl Painter<'_> {
     /// and counted as drawn: set it up, and light and fill it only if it
     /// covers a sample.
     #[inline(always)]
-    pub(super) fn inside_triangle(
+    pub(super) fn inside_triangle<const KEEP: u8>(
         &mut self,
         stage: &Stage<'_>,
-        v: [V<'_>; 3],
-        (base, shine): (impl Fn() -> [Vec3A; 3], impl Fn([usize; 3]) -> Shining),
+        (verts, face, scratch): (&Verts<'_>, &[u32; 3], &mut [Deep; 3]),
+        (base, shine): (impl Fn() -> [Vec3A; 3], Option<Model<'_>>),
         t: &SnappedTriangle,
     ) {
         let (grid, band) = (self.fb.grid(), self.fb.band());
+        // Its corners read only once it covers a sample.
         match SmallSetup::of(t, grid, band) {
-            Some(s) => self.inside_fill(stage, v, (&base, &shine), &s),
+            Some(s) if !s.covers_any() => self.stats.raster.samples_tested += s.bbox_samples(),
+            Some(s) => {
+                let v = verts.of_as::<KEEP>(*face, scratch);
+                self.inside_fill(stage, v, (&base, shine), &s);
+            }
             None => {
                 let s = Setup::of(t, grid, band);
-                self.inside_fill(stage, v, (&base, &shine), &s);
+                let v = verts.of_as::<KEEP>(*face, scratch);
+                self.inside_fill(stage, v, (&base, shine), &s);
             }
         }
     }
@@ -43,11 +49,11 @@ impl Painter<'_> {
     /// Lights and fills a set-up triangle of [`Painter::inside_triangle`]
     /// if it covers a sample; counts its box's samples as tested if not.
     #[inline(always)]
-    pub(super) fn inside_fill<C: Coverage>(
+    pub(super) fn inside_fill<'v, C: Coverage>(
         &mut self,
         stage: &Stage<'_>,
-        v: [V<'_>; 3],
-        (base, shine): (&impl Fn() -> [Vec3A; 3], &impl Fn([usize; 3]) -> Shining),
+        v: [V<'v>; 3],
+        (base, shine): (&impl Fn() -> [Vec3A; 3], Option<Model<'_>>),
         s: &C,
     ) {
         if !s.covers_any() {
@@ -63,7 +69,16 @@ impl Painter<'_> {
             stage.plan.perspective.run,
         );
         let flat = !stage.plan.interpolates(&color);
-        match shine(s.order()) {
+        // A shining run's corners in the set-up's order.
+        let order = s.order();
+        let shining = shine.and_then(|m| {
+            let model = Model {
+                face: order.map(|k| m.face[k]),
+                ..m
+            };
+            corners(true, stage, order.map(|k| v[k]), &model)
+        });
+        match shining {
             Some(corners) => self.fill_shiny(s, &a, flat, (None, corners), stage),
             None => self.fill_colour(s, &a, flat, stage),
         }
@@ -110,6 +125,6 @@ impl Painter<'_> {
         if stage.plan.shading == Shading::Smooth {
             self.stats.lighting_evaluations += 3;
         }
-        self.inside_fill(stage, corners(), (base, &|_| None), s);
+        self.inside_fill(stage, corners(), (base, None), s);
     }
 }

@@ -200,19 +200,21 @@ impl Painter<'_> {
                     );
                     continue;
                 }
-                let v = verts.of_as::<KEEP>(*face, &mut scratch);
                 self.count_lazy(stage, &verts);
-                // A shining run's normals and positions, found only here.
-                let shine = |order: [usize; 3]| {
-                    let model = Model {
-                        positions: f.positions,
-                        face: order.map(|k| face[k]),
-                        mvp: &f.transforms.mvp64,
-                        world: &f.transforms.model,
-                    };
-                    corners(SHINY, stage, order.map(|k| v[k]), &model)
-                };
-                self.inside_triangle(stage, v, (base, shine), &t);
+                // A shining run's normals and positions, found only once
+                // it covers a sample.
+                let shine = SHINY.then_some(Model {
+                    positions: f.positions,
+                    face: *face,
+                    mvp: &f.transforms.mvp64,
+                    world: &f.transforms.model,
+                });
+                self.inside_triangle::<KEEP>(
+                    stage,
+                    (&verts, face, &mut scratch),
+                    (base, shine),
+                    &t,
+                );
                 continue;
             }
             let base = base();
