@@ -59,6 +59,10 @@ pub struct Lights {
     /// positions: [`Lights::lambert_at`]).
     positional: bool,
     len: usize,
+    /// The first four lights' directions towards them (x, y, z) and
+    /// ambient shares, one light a lane, for [`Lights::specular_far4`].
+    towards4: [Vec4; 3],
+    ambient4: Vec4,
     /// The rim light's colour, in the renderer's linear units (0–65535 a
     /// channel), zero for none.
     rim: Vec3A,
@@ -82,6 +86,9 @@ impl Lights {
             l.reach[i] = Reach::of(light);
         }
         l.len = lights.len().min(MAX_LIGHTS);
+        let lane = |f: &dyn Fn(usize) -> f32| Vec4::from_array(std::array::from_fn(f));
+        l.towards4 = [0, 1, 2].map(|c| lane(&|i| l.towards[i][c]));
+        l.ambient4 = lane(&|i| l.ambient[i]);
         l.positional = l.reach[..l.len].iter().any(|r| !matches!(r, Reach::Far));
         l
     }
@@ -219,6 +226,8 @@ impl Lights {
         // positional match per light (their share of 1 folds away).
         if self.positional {
             self.specular_near(n, v, p, f0, a2)
+        } else if self.len <= 4 {
+            self.specular_far4(n, v, f0, a2)
         } else {
             self.specular_from(n, v, f0, a2, |i| (Vec3A::from(self.towards[i]), 1.0))
         }
@@ -229,6 +238,57 @@ impl Lights {
     #[inline(never)]
     fn specular_near(&self, n: Vec3A, v: Vec3A, p: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
         self.specular_from(n, v, f0, a2, |i| self.incident_a(i, p))
+    }
+
+    /// [`Lights::specular_from`] of at most four directional lights, one a
+    /// lane: the same operations on each light's numbers, in the same
+    /// order, so the same bits (a test compares the two); the lights that
+    /// reach the surface are then added in their order, as there. A
+    /// directional light's share of 1 is left out: times 1 is exact.
+    #[inline(always)]
+    fn specular_far4(&self, n: Vec3A, v: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
+        let nv = n.dot(v);
+        let mut sum = Vec3A::ZERO;
+        // Written so that a NaN (a degenerate normal) counts as behind.
+        if nv.is_nan() || nv <= 0.0 {
+            return sum;
+        }
+        let s = Vec4::splat;
+        let [tx, ty, tz] = self.towards4;
+        let (nx, ny, nz) = (s(n.x), s(n.y), s(n.z));
+        // `Vec3A::dot`'s order: (x·x' + y·y') + z·z'.
+        let nl = nx * tx + ny * ty + nz * tz;
+        // A NaN fails the comparison: behind, as there. A lane past the
+        // last light points nowhere (zero), so is never lit.
+        let lit = nl.cmpgt(Vec4::ZERO).bitmask();
+        if lit == 0 {
+            return sum;
+        }
+        // `(l + v).normalize_or_zero()`.
+        let (vx, vy, vz) = (s(v.x), s(v.y), s(v.z));
+        let (hx, hy, hz) = (tx + vx, ty + vy, tz + vz);
+        let rcp = Vec4::ONE / (hx * hx + hy * hy + hz * hz).sqrt();
+        let unit = rcp.is_finite_mask() & rcp.cmpgt(Vec4::ZERO);
+        let h = |c: Vec4| Vec4::select(unit, c * rcp, Vec4::ZERO);
+        let (hx, hy, hz) = (h(hx), h(hy), h(hz));
+        // `Vec4::max` keeps its second operand for a NaN, as `f32::max`
+        // does; a zero's sign is lost below either way.
+        let nh = (nx * hx + ny * hy + nz * hz).max(Vec4::ZERO);
+        let vh = (vx * hx + vy * hy + vz * hz).max(Vec4::ZERO);
+        let k = nh * nh * s(a2 - 1.0) + Vec4::ONE;
+        let pi_d = s(a2) / (k * k);
+        let eye = (nv * nv * (1.0 - a2) + a2).sqrt();
+        let vis = s(0.5) / (nl * s(eye) + s(nv) * (nl * nl * s(1.0 - a2) + s(a2)).sqrt());
+        let m = Vec4::ONE - vh;
+        let m5 = ((m * m) * (m * m) * m).to_array();
+        let share = (pi_d * vis * nl * (Vec4::ONE - self.ambient4)).to_array();
+        for i in 0..self.len {
+            if lit & 1 << i != 0 {
+                let f = f0 + (Vec3A::ONE - f0) * m5[i];
+                sum += self.color[i] * f * share[i];
+            }
+        }
+        sum
     }
 
     /// [`Lights::specular_a`] with `incident` giving each light's unit
@@ -371,6 +431,38 @@ mod tests {
         let n = Vec3::new(60f32.to_radians().sin(), 0.0, 60f32.to_radians().cos());
         let r = l.rim_a(n);
         assert!((r.x - 65535.0 / 8.0).abs() < 0.1, "{r}");
+    }
+
+    proptest::proptest! {
+        /// Up to four directional lights' highlights found one a lane are
+        /// the highlights found one light at a time, bit for bit.
+        #[test]
+        fn specular_in_lanes_is_specular_one_light_at_a_time(
+            d in proptest::collection::vec(
+                (proptest::array::uniform3(-1.0f32..1.0), proptest::array::uniform3(0.0f32..1.0), 0.0f32..0.5),
+                1..=4,
+            ),
+            n in proptest::array::uniform3(-1.0f32..1.0),
+            v in proptest::array::uniform3(-1.0f32..1.0),
+            f0 in proptest::array::uniform3(0.0f32..1.0),
+            roughness in 0.0f32..1.0,
+        ) {
+            let lights: Vec<Light> = d
+                .iter()
+                .map(|&(dir, c, ambient)| Light {
+                    direction: Vec3::from(dir).normalize_or(Vec3::Z),
+                    color: Rgb::new((c[0] * 255.0) as u8, (c[1] * 255.0) as u8, (c[2] * 255.0) as u8),
+                    ambient,
+                    ..Light::default()
+                })
+                .collect();
+            let l = Lights::new(&lights);
+            let (n, v) = (Vec3A::from(n).normalize_or_zero(), Vec3A::from(v).normalize_or_zero());
+            let (f0, a2) = (Vec3A::from(f0), roughness.powi(4));
+            let one_at_a_time = l.specular_from(n, v, f0, a2, |i| (Vec3A::from(l.towards[i]), 1.0));
+            let lanes = l.specular_far4(n, v, f0, a2);
+            proptest::prop_assert_eq!(lanes.to_array().map(f32::to_bits), one_at_a_time.to_array().map(f32::to_bits));
+        }
     }
 
     #[test]
