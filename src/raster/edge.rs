@@ -103,6 +103,11 @@ pub(super) fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool 
 pub(crate) struct CentreKey(u32);
 
 impl CentreKey {
+    /// The key of a vertex outside a clip plane or not snapped: odd on
+    /// both axes, so a face with such a vertex is never told empty (and
+    /// the face loop tells an empty box before it looks at outcodes).
+    pub(crate) const NEVER_EMPTY: CentreKey = CentreKey(u32::MAX);
+
     /// The key of a snapped point.
     #[inline(always)]
     pub(crate) fn of(p: FixedPoint) -> CentreKey {

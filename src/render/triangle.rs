@@ -168,15 +168,17 @@ impl Painter<'_> {
         let mut scratch = Deep::SCRATCH;
         for face in faces {
             let v = face.map(|i| &verts.core[i as usize]);
-            let inside = v[0].code | v[1].code | v[2].code == 0;
             let base = || base_colors(mesh, face, run_color, diffuse);
+            // No sample centre in its box (from the keys): nothing drawn,
+            // whatever its area or winding; told first, as most common. A
+            // vertex outside a plane has a key that tells nothing
+            // (`CentreKey::NEVER_EMPTY`), so this face is inside them all.
+            if lean && CentreKey::box_is_empty(v.map(|v| v.key)) {
+                self.stats.raster.found_empty += 1;
+                continue;
+            }
+            let inside = v[0].code | v[1].code | v[2].code == 0;
             if inside && lean {
-                // No sample centre in its box (from the keys): nothing drawn,
-                // whatever its area or winding; told first, as most common.
-                if CentreKey::box_is_empty(v.map(|v| v.key)) {
-                    self.stats.raster.found_empty += 1;
-                    continue;
-                }
                 // Then culled or without area: rejected as its set-up
                 // would reject it (snapped, so in range).
                 let t = match SnappedTriangle::in_range(v.map(|v| v.fixed()), f.cull) {

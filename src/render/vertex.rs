@@ -647,5 +647,8 @@ pub(super) fn vertex(
     if !n.is_finite() {
         v.code |= BAD_NORMAL;
     }
+    if v.code != 0 {
+        v.key = CentreKey::NEVER_EMPTY;
+    }
     (v, more)
 }
