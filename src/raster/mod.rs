@@ -87,6 +87,7 @@ pub(crate) use float::FloatSetup;
 pub use setup::{Rejected, Setup};
 pub(crate) use small::SMALL_BOX;
 pub(crate) use small::SmallSetup;
+pub(crate) use snapped::Culling;
 pub use snapped::SnappedTriangle;
 pub(crate) use snapped::signed_area2;
 

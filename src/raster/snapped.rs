@@ -46,15 +46,22 @@ impl SnappedTriangle {
     /// other; checked in debug builds).
     #[inline(always)]
     pub(crate) fn in_range(p: [FixedPoint; 3], cull: Cull) -> Result<SnappedTriangle, Rejected> {
+        SnappedTriangle::culled_by(p, Culling::of(cull))
+    }
+
+    /// [`SnappedTriangle::in_range`] with the culling found once for many
+    /// triangles ([`Culling::of`]).
+    #[inline(always)]
+    pub(crate) fn culled_by(p: [FixedPoint; 3], c: Culling) -> Result<SnappedTriangle, Rejected> {
         debug_assert!(snapped_in_range(&p));
         let area2 = signed_area2(&p);
         if area2 == 0 {
             return Err(Rejected::Degenerate);
         }
-        match (cull, area2 > 0) {
-            (Cull::Back, false) | (Cull::Front, true) => Err(Rejected::Culled),
-            _ => Ok(SnappedTriangle { p, area2 }),
+        if c.culls(area2) {
+            return Err(Rejected::Culled);
         }
+        Ok(SnappedTriangle { p, area2 })
     }
 
     /// The vertices, as given.
@@ -79,4 +86,57 @@ impl SnappedTriangle {
 #[inline(always)]
 pub(crate) fn signed_area2(p: &[FixedPoint; 3]) -> i64 {
     Edge::new(p[0], p[1]).at(p[2].x.0, p[2].y.0)
+}
+
+/// A [`Cull`] as two numbers, so that a face's test is one comparison: a
+/// triangle of signed area `a` (never zero) is culled when
+/// `a ^ flip < below`. Back: `a < 0`; front: `!a < 0`, which is `a > 0`;
+/// none: below `i64::MIN`, never.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Culling {
+    flip: i64,
+    below: i64,
+}
+
+impl Culling {
+    /// The culling of `cull`.
+    pub(crate) fn of(cull: Cull) -> Culling {
+        match cull {
+            Cull::None => Culling {
+                flip: 0,
+                below: i64::MIN,
+            },
+            Cull::Back => Culling { flip: 0, below: 0 },
+            Cull::Front => Culling { flip: -1, below: 0 },
+        }
+    }
+
+    /// Whether a triangle of signed area `area2` (not zero) is culled.
+    #[inline(always)]
+    pub(crate) fn culls(self, area2: i64) -> bool {
+        area2 ^ self.flip < self.below
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The one comparison culls what the winding rule says, for areas of
+    /// either sign out to the largest.
+    #[test]
+    fn culling_is_the_winding_rule() {
+        let areas = [i64::MIN + 1, -(1 << 61), -2, -1, 1, 2, 1 << 61, i64::MAX];
+        for cull in [Cull::None, Cull::Back, Cull::Front] {
+            let c = Culling::of(cull);
+            for a in areas {
+                let rule = match cull {
+                    Cull::None => false,
+                    Cull::Back => a < 0,
+                    Cull::Front => a > 0,
+                };
+                assert_eq!(c.culls(a), rule, "{cull:?} {a}");
+            }
+        }
+    }
 }

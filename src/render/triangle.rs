@@ -32,7 +32,7 @@ use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
 use crate::options::{Highlights, RenderOptions};
 use crate::plan::Extras;
 use crate::raster::{
-    self, CentreKey, Coverage, FloatSetup, Precision, Rejected, Setup, SnappedTriangle,
+    self, CentreKey, Coverage, Culling, FloatSetup, Precision, Rejected, Setup, SnappedTriangle,
 };
 use crate::scene::{AlphaMode, Cull, Mesh, Scene};
 use crate::shade::Shading;
@@ -166,6 +166,7 @@ impl Painter<'_> {
         let verts = verts.trimmed::<KEEP>();
         // Where the corners' depth and light are found, when not kept.
         let mut scratch = Deep::SCRATCH;
+        let culling = Culling::of(f.cull);
         for face in faces {
             let v = face.map(|i| &verts.core[i as usize]);
             let base = || base_colors(mesh, face, run_color, diffuse);
@@ -181,7 +182,7 @@ impl Painter<'_> {
             if inside && lean {
                 // Then culled or without area: rejected as its set-up
                 // would reject it (snapped, so in range).
-                let t = match SnappedTriangle::in_range(v.map(|v| v.fixed()), f.cull) {
+                let t = match SnappedTriangle::culled_by(v.map(|v| v.fixed()), culling) {
                     Ok(t) => t,
                     Err(r) => {
                         self.stats.raster.count_rejected(r);
