@@ -222,8 +222,9 @@ impl Lights {
     /// Zero where the eye or a light is behind the surface.
     #[inline(always)]
     pub(crate) fn specular_a(&self, n: Vec3A, v: Vec3A, p: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
-        // Two copies of one loop: directional lights alone skip the
-        // positional match per light (their share of 1 folds away).
+        // Directional lights alone skip the positional match per light
+        // (their share of 1 folds away); up to four of them are found one
+        // a lane, the same bits.
         if self.positional {
             self.specular_near(n, v, p, f0, a2)
         } else if self.len <= 4 {

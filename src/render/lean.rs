@@ -1,8 +1,8 @@
 //! The lean path's set-up ([`crate::Plan::lean`]): a triangle inside
 //! every clip plane, without a texture, accepted and counted as drawn, is
 //! set up first (a box of a few samples tested sample by sample,
-//! `raster::SmallSetup`), and lit and filled only if it covers a sample.
-//! Where the vertex stage kept no depth or light for its corners
+//! `raster::SmallSetup`), and its corners read, lit and filled only if it
+//! covers a sample. Where the vertex stage kept no depth or light for its corners
 //! ([`crate::plan::Extras::Found`], a large model seen small), they are
 //! found only then too: most faces with a sample centre in their box
 //! cover none. The trade-off: a second entry beside the kept corners',
