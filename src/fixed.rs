@@ -100,8 +100,21 @@ pub(crate) struct SnappedLanes {
 }
 
 impl SnappedLanes {
-    /// The four points.
+    /// The four points' coordinates in pairs, `[x0, y0, x1, y1]` and
+    /// `[x2, y2, x3, y3]`: as the vertex stage keeps them, and as their
+    /// centre keys are found (`raster::CentreKey::of4`).
     #[inline(always)]
+    pub(crate) fn pairs(&self) -> [i32x4; 2] {
+        let (x, y) = (self.x.to_array(), self.y.to_array());
+        [
+            i32x4::new([x[0], y[0], x[1], y[1]]),
+            i32x4::new([x[2], y[2], x[3], y[3]]),
+        ]
+    }
+
+    /// The four points (for the tests, which compare them with
+    /// [`FixedPoint::snap`]'s).
+    #[cfg(test)]
     pub(crate) fn points(&self) -> [FixedPoint; 4] {
         let (x, y) = (self.x.to_array(), self.y.to_array());
         std::array::from_fn(|i| FixedPoint {

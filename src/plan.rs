@@ -199,7 +199,7 @@ impl fmt::Display for Bands {
     }
 }
 
-/// What the vertex stage keeps of a mesh's vertices beyond the 16 bytes
+/// What the vertex stage keeps of a mesh's vertices beyond the 14 bytes
 /// every face reads (snapped position, centre key, outcode), as the plan
 /// decides ([`Plan::vertex_extras`]): memory and speed alone, the frame is
 /// the same whichever.
@@ -277,7 +277,7 @@ impl Plan {
     /// samples, `examples/profile_scene`): a torus of 100,000 triangles
     /// (2 vertices a sample) costs 14 % more a frame found at set-up, one
     /// of 300,000 (6 a sample) 1 % less, of 600,000 (12) 9 % less, of 1M
-    /// (21) 14 % less; and found, a vertex keeps 16 bytes rather than 36.
+    /// (21) 14 % less; and found, a vertex keeps 14 bytes rather than 34.
     pub const DEFER_PER_SAMPLE: usize = 6;
 
     /// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's
@@ -529,7 +529,7 @@ impl Plan {
     }
 
     /// What the vertex stage keeps of mesh `i`'s vertices (culled as
-    /// `cull`) beyond the 16 bytes every face reads ([`Extras`]); where
+    /// `cull`) beyond the 14 bytes every face reads ([`Extras`]); where
     /// nothing, [`Plan::deferral`] runs and says why. Memory and speed
     /// alone: the frame is the same either way (and a mesh with a vertex
     /// that takes the f64 path all the same keeps them all; see the vertex
@@ -541,7 +541,7 @@ impl Plan {
     /// Whether the depth, `1/w` and light of mesh `i`'s vertices (culled
     /// as `cull`) are found again at set-up, for the corners of each face
     /// that covers a sample, rather than kept by the vertex stage for
-    /// every vertex (16 bytes a vertex rather than 36 or 68), and why.
+    /// every vertex (14 bytes a vertex rather than 34 or 66), and why.
     /// Found again only where no face may read a vertex's world position,
     /// normal or unsnapped position (flat shading, lights that fall off, a
     /// rim, highlights, textures, alpha, maps, the general path, the full

@@ -91,8 +91,8 @@ pub(super) fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool 
 /// the point, plus one if the point is on it: three vertices whose keys
 /// on an axis are equal and even lie strictly between two neighbouring
 /// centres there, so their box holds no centre (nor does it once clamped to
-/// a grid or a band). Each axis in 16 bits (the vertex stage's vertices
-/// are 16 bytes), clamped to `i16`'s range for a point more than 16,383
+/// a grid or a band). Each axis in 16 bits, x in the low half (as the
+/// vertex stage keeps a point's coordinates, x first), clamped to `i16`'s range for a point more than 16,383
 /// samples from the origin (in the guard band): the largest key, 32,767,
 /// is odd, so it never tells a box empty, and the least, −32,768, is
 /// kept only by points left of (below) the grid, so three of them do hold
@@ -117,27 +117,27 @@ impl CentreKey {
             let k = (d >> FRAC_BITS) * 2 + (d & (ONE - 1) == 0) as i64;
             k.clamp(i16::MIN.into(), i16::MAX.into()) as u16 as u32
         };
-        CentreKey(axis(p.x.0) << 16 | axis(p.y.0))
+        CentreKey(axis(p.x.0) | axis(p.y.0) << 16)
     }
 
-    /// The keys of four snapped points, computed in integer lanes: the
-    /// same as [`CentreKey::of`] of each (the coordinates fit in an `i32`,
-    /// and an arithmetic shift is the same division in either width).
+    /// The keys of four snapped points, computed in integer lanes from
+    /// their coordinates in pairs ([`SnappedLanes::pairs`]): the same as
+    /// [`CentreKey::of`] of each (the coordinates fit in an `i32`, and an
+    /// arithmetic shift is the same division in either width). Both axes
+    /// at once: a pair's two lanes are one point's x and y.
     #[inline(always)]
-    pub(crate) fn of4(p: &SnappedLanes) -> [CentreKey; 4] {
+    pub(crate) fn of4(pairs: [i32x4; 2]) -> [CentreKey; 4] {
+        use wide::bytemuck::cast;
         let axis = |v: i32x4| -> i32x4 {
             let d = v - i32x4::splat((ONE / 2) as i32);
             // All ones (−1) where the point is on a centre.
             let on = (d & i32x4::splat((ONE - 1) as i32)).simd_eq(i32x4::ZERO);
             ((d >> FRAC_BITS) << 1) - on
         };
-        let (x, y) = (axis(p.x).to_array(), axis(p.y).to_array());
-        // SSE2's saturating pack: the clamp of [`CentreKey::of`].
-        let k = wide::i16x8::from_i32x8_saturate(wide::i32x8::new([
-            x[0], x[1], x[2], x[3], y[0], y[1], y[2], y[3],
-        ]))
-        .to_array();
-        std::array::from_fn(|i| CentreKey((k[i] as u16 as u32) << 16 | k[i + 4] as u16 as u32))
+        // SSE2's saturating pack, the clamp of [`CentreKey::of`], leaves
+        // each point's x and y side by side: its key, x in the low half.
+        let k = wide::i16x8::from_i32x8_saturate(cast(pairs.map(axis)));
+        cast::<_, [u32; 4]>(k).map(CentreKey)
     }
 
     /// Whether the keys of a triangle's vertices show that its bounding box

@@ -20,7 +20,7 @@ use glam::Mat4;
 
 use super::stats::FrameStats;
 use super::triangle::Faces;
-use super::vertex::{Kept, Transforms, Vert, Verts};
+use super::vertex::{Core, Kept, Transforms, Verts};
 use super::{Painter, Renderer, Sorted, Stage};
 use crate::blit;
 use crate::clip::Polygon;
@@ -41,7 +41,7 @@ pub(super) struct BandWork {
     /// A mapped run's maps and face (scratch).
     mapping: super::mapped::Mapping,
     /// The loose triangles' vertices, one triangle at a time.
-    verts: Vec<Vert>,
+    verts: Core,
     kept: Kept,
     /// Unused: bands are not anti-aliased.
     acc: Vec<[f32; 4]>,
@@ -58,7 +58,7 @@ impl Default for BandWork {
             poly: Polygon::default(),
             sorted: Sorted::default(),
             mapping: Default::default(),
-            verts: Vec::new(),
+            verts: Core::default(),
             kept: Kept::default(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
@@ -143,7 +143,10 @@ impl Renderer {
             let of = |i: usize| {
                 let m = &meshes[i];
                 let (positions, normals) = super::vertices_of(posed, p, i, &scene.meshes[i]);
-                let kept = (&verts[m.core.clone()], kept.between(m.kept[0], m.kept[1]));
+                let kept = (
+                    verts.range(m.core.clone()),
+                    kept.between(m.kept[0], m.kept[1]),
+                );
                 Verts::new(kept, (positions, normals), &m.transforms, stage)
             };
             for (i, mesh) in scene.meshes.iter().enumerate() {

@@ -331,7 +331,7 @@ fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate
             "",
             m.positions.len(),
             m.positions.len() as f64 / samples,
-            size_of::<super::vertex::Vert>()
+            super::vertex::Core::BYTES
                 + match plan.vertex_extras(i, cull) {
                     crate::plan::Extras::Found => 0,
                     crate::plan::Extras::Deep => size_of::<super::vertex::Deep>(),

@@ -54,7 +54,7 @@ use crate::shade::Lights;
 use crate::transform::{self, Grid};
 use mapped::Ids;
 use triangle::Faces;
-use vertex::{Kept, Transforms, Vert, Verts};
+use vertex::{Core, Kept, Transforms, Verts};
 
 /// Per-frame constants of the vertex and triangle stages.
 #[derive(Clone, Copy)]
@@ -168,7 +168,7 @@ fn vertices_of<'a>(
 pub struct Renderer {
     fb: Framebuffer,
     frame: Frame,
-    verts: Vec<Vert>,
+    verts: Core,
     /// The extras of the vertices whose mesh keeps them.
     kept: Kept,
     poly: Polygon,
@@ -299,7 +299,7 @@ struct Painter<'a> {
     sorted: &'a mut Sorted,
     /// The mapped run being drawn's maps and face (none for other runs).
     mapping: &'a mut mapped::Mapping,
-    verts: &'a mut Vec<Vert>,
+    verts: &'a mut Core,
     kept: &'a mut Kept,
     acc: &'a mut Vec<[f32; 4]>,
 }
@@ -326,7 +326,7 @@ impl Renderer {
         Renderer {
             fb: Framebuffer::new(Grid::new(0, 0)),
             frame: Frame::default(),
-            verts: Vec::new(),
+            verts: Core::default(),
             kept: Kept::default(),
             poly: Polygon::default(),
             sorted: Sorted::default(),
@@ -573,7 +573,7 @@ impl Renderer {
             let (verts, kept) = (std::mem::take(painter.verts), std::mem::take(painter.kept));
             if p.faces.run {
                 let v = Verts::new(
-                    (&verts, kept.all()),
+                    (verts.all(), kept.all()),
                     (positions, normals),
                     &transforms,
                     stage,
@@ -612,7 +612,7 @@ impl Renderer {
             };
             let (verts, kept) = (std::mem::take(painter.verts), std::mem::take(painter.kept));
             let v = Verts::new(
-                (&verts, kept.all()),
+                (verts.all(), kept.all()),
                 (positions, normals),
                 &transforms,
                 stage,
@@ -681,11 +681,11 @@ mod tests {
         };
         assert_eq!(
             (
-                size_of::<Vert>(),
+                vertex::Core::BYTES,
                 size_of::<vertex::Deep>(),
                 size_of::<vertex::More>()
             ),
-            (16, 20, 52),
+            (14, 20, 52),
             "the sizes the docs say"
         );
         // Lit, culled at the back, matte, inside the view, of more
@@ -759,7 +759,7 @@ mod tests {
             )),
             "{far}"
         );
-        assert!(far.contains("16 bytes a vertex kept"), "{far}");
+        assert!(far.contains("14 bytes a vertex kept"), "{far}");
         let near = report(80, 24);
         assert!(
             near.contains(&format!(

@@ -167,22 +167,27 @@ impl Painter<'_> {
         // Where the corners' depth and light are found, when not kept.
         let mut scratch = Deep::SCRATCH;
         let culling = Culling::of(f.cull);
-        for face in faces {
-            let v = face.map(|i| &verts.core[i as usize]);
+        let core = &verts.core;
+        // No sample centre in its box (from the keys): nothing drawn,
+        // whatever its area or winding; told first, as most common, in a
+        // loop of its own that passes over such faces, counted once the run
+        // is done. A vertex outside a plane has a key that tells nothing
+        // (`CentreKey::NEVER_EMPTY`), so a face past it is inside them all.
+        let keys = |f: &[u32; 3]| f.map(|i| core.keys[i as usize]);
+        let mut rest = faces.iter();
+        let mut passed = 0;
+        while let Some(face) = if lean {
+            rest.find(|f| !CentreKey::box_is_empty(keys(f)))
+        } else {
+            rest.next()
+        } {
+            passed += 1;
             let base = || base_colors(mesh, face, run_color, diffuse);
-            // No sample centre in its box (from the keys): nothing drawn,
-            // whatever its area or winding; told first, as most common. A
-            // vertex outside a plane has a key that tells nothing
-            // (`CentreKey::NEVER_EMPTY`), so this face is inside them all.
-            if lean && CentreKey::box_is_empty(v.map(|v| v.key)) {
-                self.stats.raster.found_empty += 1;
-                continue;
-            }
-            let inside = v[0].code | v[1].code | v[2].code == 0;
+            let inside = core.code(face[0]) | core.code(face[1]) | core.code(face[2]) == 0;
             if inside && lean {
                 // Then culled or without area: rejected as its set-up
                 // would reject it (snapped, so in range).
-                let t = match SnappedTriangle::culled_by(v.map(|v| v.fixed()), culling) {
+                let t = match SnappedTriangle::culled_by(face.map(|i| core.fixed(i)), culling) {
                     Ok(t) => t,
                     Err(r) => {
                         self.stats.raster.count_rejected(r);
@@ -239,6 +244,9 @@ impl Painter<'_> {
             let v = verts.of_as::<KEEP>(*face, &mut scratch);
             self.triangle::<SHINY, false>(stage, v, base, f.cull, model, tex);
         }
+        if lean {
+            self.stats.raster.found_empty += (faces.len() - passed) as u64;
+        }
     }
 
     /// Draws the loose triangles, each through the vertex stage on its own.
@@ -266,7 +274,7 @@ impl Painter<'_> {
             let vertices = (&tri.vertices[..], &[normal; 3][..]);
             self.vertex_stage(stage, &loose, vertices, loose_tests, Extras::All);
             let (verts, kept) = (std::mem::take(self.verts), std::mem::take(self.kept));
-            let v = Verts::new((&verts, kept.all()), vertices, &loose, stage);
+            let v = Verts::new((verts.all(), kept.all()), vertices, &loose, stage);
             self.triangle::<false, false>(
                 stage,
                 v.of([0, 1, 2], &mut { Deep::SCRATCH }),

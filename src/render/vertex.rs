@@ -7,8 +7,9 @@
 //! twin, four vertices at a time in SIMD lanes, is `vertex_lanes.rs`, with
 //! the same arithmetic per lane and so the same bits.
 //!
-//! **What is kept.** Every face reads a vertex's outcode and snapped
-//! position (and its centre key, for the first test): [`Vert`], 16 bytes.
+//! **What is kept.** Every face reads a vertex's centre key (its first
+//! test), and the faces past that test its outcode and snapped position:
+//! [`Vert`], kept as three arrays ([`Core`], 14 bytes a vertex).
 //! A face that covers a sample also reads its depth, `1/w` and light
 //! ([`Deep`]); some faces read its world position, normal and unsnapped
 //! position (flat shading, falling-off lights, rims, highlights,
@@ -19,7 +20,7 @@
 //! the view with few vertices for the frame's samples keeps the [`Deep`]
 //! alone, all its faces read (`Plan::vertex_extras`, [`crate::plan::Extras`]).
 //! A large lit, culled, matte model seen small keeps
-//! 16 bytes a vertex, and the [`Deep`] of the corners of a face that
+//! 14 bytes a vertex, and the [`Deep`] of the corners of a face that
 //! covers a sample is found again at set-up ([`Lazy`], by the very
 //! operations the stage uses, so the bits are the same): most of its
 //! vertices are never the corner of such a face, so finding it there costs
@@ -64,7 +65,7 @@ impl Transforms {
 
 /// A vertex after the vertex stage: what every face reads of it, its clip
 /// outcode and, inside every plane, its snapped position and centre key.
-/// 16 bytes; what a face that covers a sample reads of it beyond these is
+/// Kept as three arrays ([`Core`], 14 bytes a vertex); what a face that covers a sample reads of it beyond these is
 /// in [`More`], kept only where the plan reads it, or found again at
 /// set-up ([`Lazy`]).
 #[derive(Clone, Copy, Debug, Default)]
@@ -96,6 +97,140 @@ impl Vert {
     #[inline(always)]
     pub(super) fn set_fixed(&mut self, f: FixedPoint) {
         self.fixed32 = [f.x.0 as i32, f.y.0 as i32];
+    }
+}
+
+/// Every vertex's [`Vert`], kept as three arrays (structure of arrays):
+/// its centre key, which every face reads first, its snapped position and
+/// its outcode, which the faces past that test read. 14 bytes a vertex
+/// ([`Core::BYTES`]), and each read is one load at a scaled index (a
+/// 16-byte [`Vert`] needs its index shifted first); the lanes store four
+/// keys or four positions at once. The face loop's first test reads the
+/// keys alone: 4 bytes a vertex, where most faces of a detailed model
+/// seen small end.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Core {
+    keys: Vec<CentreKey>,
+    fixed: Vec<[i32; 2]>,
+    codes: Vec<u16>,
+}
+
+impl Core {
+    /// The bytes a vertex takes: its centre key, snapped position and
+    /// outcode.
+    pub(super) const BYTES: usize =
+        size_of::<CentreKey>() + size_of::<[i32; 2]>() + size_of::<u16>();
+
+    /// How many vertices are kept.
+    pub(super) fn len(&self) -> usize {
+        self.keys.len()
+    }
+
+    /// Empty, keeping the memory.
+    pub(super) fn clear(&mut self) {
+        self.truncate(0);
+    }
+
+    /// The first `n` vertices kept.
+    pub(super) fn truncate(&mut self, n: usize) {
+        self.keys.truncate(n);
+        self.fixed.truncate(n);
+        self.codes.truncate(n);
+    }
+
+    /// Room for `n` more.
+    pub(super) fn reserve(&mut self, n: usize) {
+        self.keys.reserve(n);
+        self.fixed.reserve(n);
+        self.codes.reserve(n);
+    }
+
+    /// Appends `v`.
+    #[inline(always)]
+    pub(super) fn push(&mut self, v: Vert) {
+        self.keys.push(v.key);
+        self.fixed.push(v.fixed32);
+        self.codes.push(v.code);
+    }
+
+    /// Appends four vertices inside every plane: their keys and snapped
+    /// positions (outcodes 0).
+    #[inline(always)]
+    pub(super) fn push4(&mut self, keys: [CentreKey; 4], fixed: [[i32; 2]; 4]) {
+        self.keys.extend_from_slice(&keys);
+        self.fixed.extend_from_slice(&fixed);
+        self.codes.extend_from_slice(&[0; 4]);
+    }
+
+    /// The vertices in `r`.
+    pub(super) fn range(&self, r: std::ops::Range<usize>) -> CoreRef<'_> {
+        CoreRef {
+            keys: &self.keys[r.clone()],
+            fixed: &self.fixed[r.clone()],
+            codes: &self.codes[r],
+        }
+    }
+
+    /// All of them.
+    pub(super) fn all(&self) -> CoreRef<'_> {
+        self.range(0..self.len())
+    }
+
+    /// Each vertex kept, in order (for the tests).
+    #[cfg(test)]
+    pub(super) fn to_vec(&self) -> Vec<Vert> {
+        let all = self.all();
+        (0..self.len() as u32).map(|i| all.get(i)).collect()
+    }
+}
+
+/// One mesh's [`Core`].
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CoreRef<'a> {
+    pub(super) keys: &'a [CentreKey],
+    fixed: &'a [[i32; 2]],
+    codes: &'a [u16],
+}
+
+impl CoreRef<'_> {
+    /// Vertex `i`.
+    #[inline(always)]
+    pub(super) fn get(&self, i: u32) -> Vert {
+        let i = i as usize;
+        Vert {
+            fixed32: self.fixed[i],
+            key: self.keys[i],
+            code: self.codes[i],
+        }
+    }
+
+    /// Vertex `i`'s outcode.
+    #[inline(always)]
+    pub(super) fn code(&self, i: u32) -> u16 {
+        self.codes[i as usize]
+    }
+
+    /// Vertex `i`'s snapped position.
+    #[inline(always)]
+    pub(super) fn fixed(&self, i: u32) -> FixedPoint {
+        let [x, y] = self.fixed[i as usize];
+        FixedPoint {
+            x: Fixed(i64::from(x)),
+            y: Fixed(i64::from(y)),
+        }
+    }
+
+    /// The same, each array cut to the keys' length (as it is), once a
+    /// run: an index that passes the face loop's check on the keys then
+    /// needs none on the others.
+    #[inline(always)]
+    fn trimmed(self) -> Self {
+        let n = self.keys.len();
+        CoreRef {
+            keys: self.keys,
+            fixed: &self.fixed[..n],
+            codes: &self.codes[..n],
+        }
     }
 }
 
@@ -243,7 +378,7 @@ pub(super) mod keeps {
 /// ([`crate::Plan::vertex_extras`]), NaN.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct V<'a> {
-    at: &'a Vert,
+    at: Vert,
     deep: &'a Deep,
     rest: &'a Rest,
 }
@@ -252,7 +387,7 @@ impl std::ops::Deref for V<'_> {
     type Target = Vert;
     #[inline(always)]
     fn deref(&self) -> &Vert {
-        self.at
+        &self.at
     }
 }
 
@@ -287,7 +422,7 @@ impl V<'_> {
 /// corner's is found again from `lazy`).
 #[derive(Clone, Copy)]
 pub(super) struct Verts<'a> {
-    pub(super) core: &'a [Vert],
+    pub(super) core: CoreRef<'a>,
     pub(super) kept: KeptRef<'a>,
     pub(super) lazy: Lazy<'a>,
 }
@@ -297,7 +432,7 @@ pub(super) struct Verts<'a> {
 /// many more vertices than the faces that cover a sample have corners
 /// (a large model seen small), finding it for those corners alone costs
 /// less than finding it for every vertex and keeping it: the vertex
-/// stage keeps 16 bytes a vertex, not 36. The same operations find it both
+/// stage keeps 14 bytes a vertex, not 34. The same operations find it both
 /// ways ([`deep`] one at a time, `vertex_lanes::deep4` in lanes, as the
 /// stage itself does), so the bits are the same.
 #[derive(Clone, Copy)]
@@ -348,7 +483,7 @@ impl<'a> Verts<'a> {
     /// A mesh's vertices after the vertex stage, which read `vertices`
     /// (positions and normals) through `transforms`.
     pub(super) fn new(
-        (core, kept): (&'a [Vert], KeptRef<'a>),
+        (core, kept): (CoreRef<'a>, KeptRef<'a>),
         (positions, normals): (&'a [Vec3], &'a [Vec3]),
         transforms: &'a Transforms,
         stage: &'a Stage<'a>,
@@ -398,14 +533,14 @@ impl<'a> Verts<'a> {
             self.lazy.deep3(face, scratch);
             let scratch: &'s [Deep; 3] = scratch;
             let v = |k: usize| V {
-                at: &self.core[face[k] as usize],
+                at: self.core.get(face[k]),
                 deep: &scratch[k],
                 rest: &Rest::NAN,
             };
             return [v(0), v(1), v(2)];
         }
         let v = |i: u32| V {
-            at: &self.core[i as usize],
+            at: self.core.get(i),
             deep: &self.kept.deep[i as usize],
             rest: if KEEP == keeps::ALL {
                 &self.kept.rest[i as usize]
@@ -422,8 +557,9 @@ impl<'a> Verts<'a> {
     /// needs none on the others.
     #[inline(always)]
     pub(super) fn trimmed<const KEEP: u8>(self) -> Verts<'a> {
-        let n = self.core.len();
+        let n = self.core.keys.len();
         let mut v = self;
+        v.core = self.core.trimmed();
         if KEEP != keeps::FOUND {
             v.kept.deep = &self.kept.deep[..n];
         }

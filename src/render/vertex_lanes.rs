@@ -35,7 +35,7 @@
 use glam::{Vec3, Vec4};
 
 use super::Stage;
-use super::vertex::{Deep, Kept, More, Rest, Transforms, Vert, VertexWork, vertex};
+use super::vertex::{Core, Deep, Kept, More, Rest, Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
 use crate::plan::Extras;
 use crate::raster::CentreKey;
@@ -52,7 +52,7 @@ pub(super) fn vertices(
     t: &Transforms,
     (positions, normals): (&[Vec3], &[Vec3]),
     clip_tests: bool,
-    out: &mut Vec<Vert>,
+    out: &mut Core,
     (kept, keep): (&mut Kept, Extras),
 ) -> VertexWork {
     let n = positions.len().min(normals.len());
@@ -80,7 +80,7 @@ pub(super) fn vertices(
     }
     out.reserve(n);
     let mut off_path = 0;
-    let mut one = |out: &mut Vec<Vert>, kept: &mut Kept, p: Vec3, n: Vec3| {
+    let mut one = |out: &mut Core, kept: &mut Kept, p: Vec3, n: Vec3| {
         let (v, m) = vertex(stage, t, p, n, clip_tests);
         off_path += (v.code != 0) as u64;
         out.push(v);
@@ -102,7 +102,7 @@ pub(super) fn vertices(
         let (p, nn) = (as_four(p), as_four(nn));
         match four(stage, t, p, nn, clip_tests, smooth && keep) {
             Some((v, m)) => {
-                out.extend_from_slice(&v);
+                out.push4(v.map(|v| v.key), v.map(|v| v.fixed32));
                 if keep {
                     kept.deep.extend(m.each_ref().map(|m| m.deep));
                 }
@@ -167,7 +167,9 @@ fn four(
     let inv_w = Vec4::ONE / cw;
     let [x, y] = stage.viewport.apply4(cx * inv_w, cy * inv_w);
     let snapped = FixedPoint::snap4(x, y)?;
-    let (fixed, keys) = (snapped.points(), CentreKey::of4(&snapped));
+    let pairs = snapped.pairs();
+    let keys = CentreKey::of4(pairs);
+    let fixed: [[i32; 2]; 4] = wide::bytemuck::cast(pairs);
     let (normal, light) = if smooth {
         let unit = directions(&t.normal, nx, ny, nz)?;
         (unit, stage.lights.lambert4(unit))
@@ -183,7 +185,7 @@ fn four(
     let (l0, l1, l2) = (l0.to_array(), l1.to_array(), l2.to_array());
     let vert = |i: usize| Vert {
         code: 0,
-        fixed32: [fixed[i].x.0 as i32, fixed[i].y.0 as i32],
+        fixed32: fixed[i],
         key: keys[i],
     };
     let more = |i: usize| More {
@@ -428,7 +430,7 @@ mod tests {
             (cols, rows) in (1u16..300, 1u16..100),
         ) {
             let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices_in.into_iter().unzip();
-            let (mut four, mut kept, mut one) = (Vec::new(), Kept::default(), Vec::new());
+            let (mut four, mut kept, mut one) = (Core::default(), Kept::default(), Vec::new());
             let mut deep = Kept::default();
             with_stage(shading, cols, rows, turn, |stage, t| {
                 let vs = (&positions[..], &normals[..]);
@@ -439,12 +441,12 @@ mod tests {
                 // With less kept, the same vertices, and the same depth
                 // and light where those are kept.
                 let verts = |v: &[Vert]| v.iter().map(|v| bits((v, &More::default()))).collect::<Vec<_>>();
-                let (mut alone, mut lean) = (Vec::new(), Vec::new());
+                let (mut alone, mut lean) = (Core::default(), Core::default());
                 let mut none = Kept::default();
                 vertices(stage, t, vs, clip_tests, &mut alone, (&mut none, Extras::Found));
                 vertices(stage, t, vs, clip_tests, &mut lean, (&mut deep, Extras::Deep));
-                assert_eq!(verts(&alone), verts(&four));
-                assert_eq!(verts(&lean), verts(&four));
+                assert_eq!(verts(&alone.to_vec()), verts(&four.to_vec()));
+                assert_eq!(verts(&lean.to_vec()), verts(&four.to_vec()));
                 assert_eq!((none.deep.len(), none.rest.len(), deep.rest.len()), (0, 0, 0));
             });
             prop_assert_eq!(four.len(), one.len());
@@ -457,7 +459,7 @@ mod tests {
             };
             prop_assert_eq!(deep_bits(&deep.deep), deep_bits(&kept.deep));
             let more = kept.deep.iter().zip(&kept.rest).map(|(&deep, &rest)| More { deep, rest });
-            for (i, ((a, m), (b, n))) in four.iter().zip(more).zip(&one).enumerate() {
+            for (i, ((a, m), (b, n))) in four.to_vec().iter().zip(more).zip(&one).enumerate() {
                 prop_assert_eq!(bits((a, &m)), bits((b, n)), "vertex {}: {:?} {:?}", i, a, b);
             }
         }

@@ -49,7 +49,7 @@
 //! around each position, listed the same way.
 //!
 //! While a frame is drawn the renderer keeps one transformed vertex per
-//! vertex of the mesh being drawn: 16 bytes (clip outcode, snapped screen
+//! vertex of the mesh being drawn: 14 bytes (clip outcode, snapped screen
 //! position and its centre key), and 52 more (depth, 1/w, light, world
 //! position, normal, unsnapped screen position) only for a mesh whose
 //! faces may read them or that has few vertices for the frame's samples
