@@ -767,6 +767,6 @@ mod tests {
             )),
             "{near}"
         );
-        assert!(near.contains("36 bytes a vertex kept"), "{near}");
+        assert!(near.contains("34 bytes a vertex kept"), "{near}");
     }
 }
