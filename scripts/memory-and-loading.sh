@@ -4,7 +4,9 @@
 #
 #   * peak memory (GNU time's maximum resident set), one frame of Tux and
 #     of a generated torus of 4M triangles (`rastty render --cols 200
-#     --rows 60 --color truecolor`), and per triangle;
+#     --rows 60 --color truecolor`), and per triangle; in brackets beside
+#     Tux's, the process's floor: `rastty --version`, which loads no model
+#     (the binary's and the C libraries' pages it touches);
 #   * normals at load: callgrind's inclusive count of
 #     `Geometry::compute_normals` (normals, welding, closedness) on the
 #     torus of 1M triangles, per triangle, and in brackets that of the
@@ -65,19 +67,20 @@ row() { # label, directory of binaries
   a=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 10)
   b=$(count "$2/examples/profile_scene" ../shared/models/linux-mascot-tux.obj 40)
   frame=$(( (b - a) / 30 ))
-  local tux_kb m4_kb
+  local tux_kb m4_kb ver_kb
   tux_kb=$(peak "$bin" render "$tux" "${args[@]}")
+  ver_kb=$(peak "$bin" --version)
   m4_kb=$(peak "$bin" render "$m4" "${args[@]}")
   strip -o target/load-cost/stripped "$bin"
-  printf '| %s | %.1f MiB | %.1f MiB (%d B) | %d (%s) | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
-    "$(echo "$tux_kb / 1024" | bc -l)" "$(echo "$m4_kb / 1024" | bc -l)" $(( m4_kb * 1024 / 4000000 )) \
+  printf '| %s | %.1f MiB (%.1f) | %.1f MiB (%d B) | %d (%s) | %.1f | %.2fM | %.2fM | %.2fM | %.1f MB / %.1f MB |\n' "$1" \
+    "$(echo "$tux_kb / 1024" | bc -l)" "$(echo "$ver_kb / 1024" | bc -l)" "$(echo "$m4_kb / 1024" | bc -l)" $(( m4_kb * 1024 / 4000000 )) \
     $(( normals / tris1 )) "$([ -n "$smooth" ] && echo $(( smooth / tris1 )) || echo –)" "$(echo "($load - $finish) / $bytes1" | bc -l)" \
     "$(echo "$frame / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render cube) / 1000000" | bc -l)" \
     "$(echo "$(count "$bin" render tests/models/teapot.obj "${args[@]}") / 1000000" | bc -l)" \
     "$(echo "$(stat -c %s "$bin") / 1000000" | bc -l)" "$(echo "$(stat -c %s target/load-cost/stripped) / 1000000" | bc -l)"
 }
-printf '| build | peak memory, Tux | peak memory, torus 4M (a triangle) | normals at load, a triangle (the normals alone) | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
+printf '| build | peak memory, Tux (`rastty --version`) | peak memory, torus 4M (a triangle) | normals at load, a triangle (the normals alone) | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
 printf '|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
 if [ $# -gt 0 ]; then
   row "$1" "$(build "$1")"
