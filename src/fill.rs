@@ -567,7 +567,9 @@ impl Attributes {
             // Weights e_i, or e_i / w_i for perspective correction,
             // renormalised.
             w: if perspective {
-                perspective_weights(order.map(|i| inv_w[i]))
+                // Written out: `map`'s closure was not always inlined
+                // here.
+                perspective_weights([inv_w[order[0]], inv_w[order[1]], inv_w[order[2]]])
             } else {
                 [1.0; 3]
             },

@@ -154,7 +154,13 @@ impl Setup {
                 for y in self.y0..=self.y1 {
                     let (lo, hi) = self.span(row, sx, last);
                     if lo <= hi {
-                        let mut e = [0, 1, 2].map(|k| row[k] + lo * sx[k]);
+                        // Written out: `map`'s closure was not always
+                        // inlined here (a call a row).
+                        let mut e = [
+                            row[0] + lo * sx[0],
+                            row[1] + lo * sx[1],
+                            row[2] + lo * sx[2],
+                        ];
                         for x in self.x0 + lo..=self.x0 + hi {
                             hit(x as u32, y as u32, e);
                             e = [e[0] + sx[0], e[1] + sx[1], e[2] + sx[2]];
