@@ -65,9 +65,9 @@ impl Transforms {
 
 /// A vertex after the vertex stage: what every face reads of it, its clip
 /// outcode and, inside every plane, its snapped position and centre key.
-/// Kept as three arrays ([`Core`], 14 bytes a vertex); what a face that covers a sample reads of it beyond these is
-/// in [`More`], kept only where the plan reads it, or found again at
-/// set-up ([`Lazy`]).
+/// Kept as three arrays ([`Core`], 14 bytes a vertex); what a face that
+/// covers a sample reads of it beyond these is in [`More`], kept only
+/// where the plan reads it, or found again at set-up ([`Lazy`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Vert {
     /// The screen position snapped, once per vertex rather than once per
