@@ -92,11 +92,11 @@ pub(super) fn box_is_empty(p: &[FixedPoint; 3], grid: Grid, band: Band) -> bool 
 /// on an axis are equal and even lie strictly between two neighbouring
 /// centres there, so their box holds no centre (nor does it once clamped to
 /// a grid or a band). Each axis in 16 bits, x in the low half (as the
-/// vertex stage keeps a point's coordinates, x first), clamped to `i16`'s range for a point more than 16,383
-/// samples from the origin (in the guard band): the largest key, 32,767,
-/// is odd, so it never tells a box empty, and the least, −32,768, is
-/// kept only by points left of (below) the grid, so three of them do hold
-/// no centre of it. Computed once per
+/// vertex stage keeps a point's coordinates, x first), clamped to `i16`'s
+/// range for a point more than 16,383 samples from the origin (in the
+/// guard band): the largest key, 32,767, is odd, so it never tells a box
+/// empty, and the least, −32,768, is kept only by points left of (below)
+/// the grid, so three of them do hold no centre of it. Computed once per
 /// vertex by the vertex stage, four at a time in integer lanes
 /// ([`CentreKey::of4`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
