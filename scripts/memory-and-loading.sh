@@ -17,7 +17,9 @@
 #   * a steady Tux frame at 200×60 half blocks, render only
 #     (examples/profile_scene, (40 frames − 10) / 30);
 #   * whole-process instructions of `render cube` and of the teapot;
-#   * the release binary's size, and stripped of symbols and line tables.
+#   * the release binary's size, and stripped of symbols and line tables;
+#   * under the table, how many of the functions the common commands run
+#     cli/hot-functions.txt lists (scripts/hot-functions.sh --check).
 #
 #   scripts/memory-and-loading.sh [COMMIT]     (needs valgrind, GNU time)
 set -euo pipefail
@@ -86,3 +88,5 @@ if [ $# -gt 0 ]; then
   row "$1" "$(build "$1")"
 fi
 row "$(git rev-parse --short HEAD)" target/release
+# How current cli/hot-functions.txt is (what its order buys: cli/build.rs).
+scripts/hot-functions.sh --check

@@ -1,0 +1,65 @@
+//! Links the program's hot functions side by side: `hot-functions.txt`
+//! lists, in order, the functions of the binary that the common commands
+//! run (written by `scripts/hot-functions.sh`), and the linker lays them
+//! out first, in that order. The kernel maps a program's code into memory
+//! by blocks of up to 16 pages around each page it runs: scattered through
+//! 4 MB of code, the functions one frame of Tux runs made 2.6 MB of it
+//! resident; side by side, about 0.7 MB (peak memory in docs/figures.md,
+//! "Memory, loading and start-up"). Nothing else changes: the same
+//! machine code, the same instructions.
+//!
+//! Only LLD reads such a file (`--symbol-ordering-file`); it is Rust's
+//! linker for x86-64 Linux from Rust 1.90. Where the linker may be another
+//! (an older compiler, another target, a linker chosen in `RUSTFLAGS`) the
+//! file is not passed and the program links as it would without it. A
+//! name the file lists that the binary lacks (another feature set, another
+//! compiler, whose symbols differ) is passed over without a word.
+
+use std::path::Path;
+use std::process::Command;
+
+fn main() {
+    println!("cargo:rerun-if-changed=hot-functions.txt");
+    println!("cargo:rerun-if-changed=build.rs");
+    if !links_with_lld() {
+        return;
+    }
+    let dir = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let file = Path::new(&dir).join("hot-functions.txt");
+    if !file.is_file() {
+        return;
+    }
+    println!(
+        "cargo:rustc-link-arg-bins=-Wl,--symbol-ordering-file={}",
+        file.display()
+    );
+    println!("cargo:rustc-link-arg-bins=-Wl,--no-warn-symbol-ordering");
+}
+
+/// Whether the binary is linked by LLD: x86-64 Linux with glibc, Rust 1.90
+/// or later, and no linker chosen in the flags.
+fn links_with_lld() -> bool {
+    let var = |name: &str| std::env::var(name).unwrap_or_default();
+    if var("TARGET") != "x86_64-unknown-linux-gnu" {
+        return false;
+    }
+    let flags = var("CARGO_ENCODED_RUSTFLAGS");
+    if ["linker", "fuse-ld", "link-self-contained"]
+        .iter()
+        .any(|f| flags.contains(f))
+    {
+        return false;
+    }
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let Ok(out) = Command::new(rustc).arg("-V").output() else {
+        return false;
+    };
+    // "rustc 1.95.0 (59807616e 2026-04-14)"
+    let version = String::from_utf8_lossy(&out.stdout);
+    let minor = version
+        .split_whitespace()
+        .nth(1)
+        .and_then(|v| v.split('.').nth(1))
+        .and_then(|m| m.parse::<u32>().ok());
+    matches!(minor, Some(m) if m >= 90)
+}
