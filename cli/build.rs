@@ -4,7 +4,7 @@
 //! out first, in that order. The kernel maps a program's code into memory
 //! by blocks of up to 16 pages around each page it runs: scattered through
 //! 4 MB of code, the functions one frame of Tux runs made 2.6 MB of it
-//! resident; side by side, about 0.7 MB (peak memory in docs/figures.md,
+//! resident; side by side, about 0.9 MB (peak memory in docs/figures.md,
 //! "Memory, loading and start-up"). Nothing else changes: the same
 //! machine code, the same instructions.
 //!
