@@ -1,39 +1,36 @@
-//! Links the program's hot functions side by side: `hot-functions.txt`
-//! lists, in order, the functions of the binary that the common commands
-//! run (written by `scripts/hot-functions.sh`), and the linker lays them
-//! out first, in that order. The kernel maps a program's code into memory
-//! by blocks of up to 16 pages around each page it runs: scattered through
+//! Links the program's hot functions side by side: `hot-functions.ld`, a
+//! linker script written by `scripts/hot-functions.sh`, names the sections
+//! of the functions the common commands run, in the order they are first
+//! needed, and the linker lays them out at the start of `.text`, then the
+//! rest as it would. The kernel maps a program's code into memory by
+//! blocks of up to 16 pages around each page it runs: scattered through
 //! 4 MB of code, the functions one frame of Tux runs made 2.6 MB of it
-//! resident; side by side, about 0.9 MB (peak memory in docs/figures.md,
+//! resident; side by side, 0.9 MB (peak memory in docs/figures.md,
 //! "Memory, loading and start-up"). Nothing else changes: the same
 //! machine code, the same instructions.
 //!
-//! Only LLD reads such a file (`--symbol-ordering-file`); it is Rust's
-//! linker for x86-64 Linux from Rust 1.90. Where the linker may be another
-//! (an older compiler, another target, a linker chosen in `RUSTFLAGS`) the
-//! file is not passed and the program links as it would without it. A
-//! name the file lists that the binary lacks (another feature set, another
-//! compiler, whose symbols differ) is passed over without a word.
+//! The script is given to LLD alone, Rust's linker for x86-64 Linux from
+//! Rust 1.90, with which it was tried. Where the linker may be another (an
+//! older compiler, another target, a linker chosen in `RUSTFLAGS`) it is
+//! not passed, and the program links as it would without it. A section the
+//! script names that the binary lacks (another feature set, another
+//! compiler, whose symbols differ) matches nothing, which changes nothing.
 
 use std::path::Path;
 use std::process::Command;
 
 fn main() {
-    println!("cargo:rerun-if-changed=hot-functions.txt");
+    println!("cargo:rerun-if-changed=hot-functions.ld");
     println!("cargo:rerun-if-changed=build.rs");
     if !links_with_lld() {
         return;
     }
     let dir = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
-    let file = Path::new(&dir).join("hot-functions.txt");
+    let file = Path::new(&dir).join("hot-functions.ld");
     if !file.is_file() {
         return;
     }
-    println!(
-        "cargo:rustc-link-arg-bins=-Wl,--symbol-ordering-file={}",
-        file.display()
-    );
-    println!("cargo:rustc-link-arg-bins=-Wl,--no-warn-symbol-ordering");
+    println!("cargo:rustc-link-arg-bins=-Wl,-T,{}", file.display());
 }
 
 /// Whether the binary is linked by LLD: x86-64 Linux with glibc, Rust 1.90

@@ -1,13 +1,25 @@
 #!/usr/bin/env bash
-# Writes cli/hot-functions.txt: the functions of the release binary that
-# the common commands run, in the order they are first needed, command by
-# command (start-up, a small model, Tux, spin, then pictures, colours and
-# the other loaders), which cli/build.rs gives the linker to lay out side
-# by side (why: its doc). Symbols are the binary's own mangled names: they
-# change with the compiler, the dependencies and the feature set, and new
-# functions are not in the file until it is written again; those whose
-# names depend on where the repository is are left out (see below). With --check,
-# writes nothing and says how many of the functions run are in the file.
+# Writes cli/hot-functions.ld: a linker script that lays out first in
+# .text, side by side, the functions of the release binary that the common
+# commands run, in the order they are first needed, command by command
+# (start-up, a small model, Tux, spin, then pictures, colours and the other
+# loaders), then the rest of the code as the linker would. cli/build.rs
+# gives it to the linker (why: its doc). The code stays in the one section
+# named .text, where valgrind finds its symbols (in a section of another
+# name, callgrind names none of its functions).
+#
+# A function is named by its section, `.text.` and its symbol (or
+# `.text.unlikely.` and its symbol, where the compiler found it cold): the
+# program's own mangled names, which change with the compiler, the
+# dependencies and the feature set (a function new since the script was
+# last written is not in it). Where LLVM ends a name with `.llvm.` and a
+# hash of its code unit (which changes with the folder the repository is
+# in), the section is matched whatever the hash. Functions with the same
+# code share one body under several names: each name at a body's address
+# is listed, as callgrind reports one of them.
+#
+# With --check, writes nothing and says how many of the functions the
+# commands run the binary built now has before the script's end mark.
 #
 #   scripts/hot-functions.sh [--check]        (needs valgrind)
 set -euo pipefail
@@ -38,25 +50,44 @@ for r in "${runs[@]}"; do
     --callgrind-out-file="$out/cg.$k" "$bin" $r > /dev/null 2>&1
   # The functions of the binary itself (not of the C libraries, nor
   # callgrind's names for code without a symbol); those no command before
-  # ran appended, by name. Not the names LLVM ends with `.llvm.` and a
-  # hash of the code unit, which changes with the folder the repository
-  # is in: a clone elsewhere would not find them.
+  # ran appended, by name.
   awk -v bin="$bin" '
     /^ob=/ { ob = substr($0, 4) }
     /^fn=/ { if (ob == bin) print substr($0, 4) }
   ' "$out/cg.$k" | grep -E '^[A-Za-z_]' | sort -u > "$out/run.$k"
-  grep -vF '.llvm.' "$out/run.$k" | grep -vxF -f "$out/all.txt" >> "$out/all.txt" || true
+  grep -vxF -f "$out/all.txt" "$out/run.$k" >> "$out/all.txt" || true
 done
+# Every symbol, by address (in decimal).
+nm -t d --defined-only "$bin" | awk '$2 ~ /^[tTwW]$/ { print $1, $3 }' > "$out/symbols"
+
 if [ "${1:-}" = --check ]; then
-  run=$(sort -u "$out"/run.* | wc -l)
-  listed=$(sort -u "$out"/run.* | grep -cxF -f <(grep -v '^#' cli/hot-functions.txt) || true)
-  folder=$(sort -u "$out"/run.* | grep -cF '.llvm.' || true)
-  echo "cli/hot-functions.txt lists $listed of the $run functions the commands run ($folder have names that depend on the folder)"
+  end=$(awk '$3 == "__rastty_hot_end" { print $1 + 0 }' <(nm -t d "$bin"))
+  awk -v end="${end:-0}" '
+    NR == FNR { want[$0] = 1; next }
+    ($2 in want) { hot[$2] = hot[$2] || $1 + 0 < end }
+    END { n = 0; h = 0; for (s in want) { n++; if (hot[s]) h++ }
+          printf "%d of the %d functions the commands run are laid out first\n", h, n }
+  ' "$out/all.txt" "$out/symbols"
   exit 0
 fi
+# Each name run, then the other names at its address; a name's section
+# pattern, with any hash after `.llvm.` matched by `*`.
+awk '
+  NR == FNR { names[$1] = names[$1] " " $2; at[$2] = $1; next }
+  { print $0; n = split(names[at[$0]], same, " "); for (i = 1; i <= n; i++) if (same[i] != $0) print same[i] }
+' "$out/symbols" "$out/all.txt" |
+  sed 's/\.llvm\.[0-9]*$/.llvm.*/' | awk '!seen[$0]++' > "$out/patterns"
 {
-  echo "# Written by scripts/hot-functions.sh: the functions the common commands run,"
-  echo "# which the linker lays out side by side (cli/build.rs)."
-  cat "$out/all.txt"
-} > cli/hot-functions.txt
-echo "$(wc -l < "$out/all.txt") functions in cli/hot-functions.txt"
+  echo "/* Written by scripts/hot-functions.sh: the functions the common commands run,"
+  echo "   side by side at the start of .text (cli/build.rs). */"
+  echo "SECTIONS"
+  echo "{"
+  echo "  .text : {"
+  sed 's/.*/    *(.text.\0 .text.unlikely.\0)/' "$out/patterns"
+  echo "    __rastty_hot_end = .;"
+  echo "    *(.text .text.*)"
+  echo "  }"
+  echo "}"
+  echo "INSERT BEFORE .init;"
+} > cli/hot-functions.ld
+echo "$(wc -l < "$out/patterns") section patterns in cli/hot-functions.ld"
