@@ -18,14 +18,18 @@
 # code share one body under several names: each name at a body's address
 # is listed, as callgrind reports one of them.
 #
+# Two builds of the program are looked at, as their symbols differ: the
+# workspace's (`cargo build --release`, `cargo run --release`, which the
+# README and the figures use) and the program's alone (`cargo build
+# --release -p rastty-cli`, `cargo install --path cli`), whose
+# dependencies are built with fewer features.
+#
 # With --check, writes nothing and says how many of the functions the
-# commands run the binary built now has before the script's end mark.
+# commands run the workspace's binary has before the script's end mark.
 #
 #   scripts/hot-functions.sh [--check]        (needs valgrind)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q -p rastty-cli
-bin=$PWD/target/release/rastty
 out=target/hot-functions
 mkdir -p "$out"
 m=../shared/models
@@ -41,42 +45,52 @@ runs=(
   "render tests/models/shiba-inu-binary.stl"
 )
 [ -d "$m/animated" ] && runs+=("spin $m/animated/BoxAnimated.gltf --frames 4 --cols 80 --rows 30")
-: > "$out/all.txt"
-k=0
-for r in "${runs[@]}"; do
-  k=$((k + 1))
-  # shellcheck disable=SC2086
-  valgrind --tool=callgrind --demangle=no --compress-strings=no \
-    --callgrind-out-file="$out/cg.$k" "$bin" $r > /dev/null 2>&1
-  # The functions of the binary itself (not of the C libraries, nor
-  # callgrind's names for code without a symbol); those no command before
-  # ran appended, by name.
-  awk -v bin="$bin" '
-    /^ob=/ { ob = substr($0, 4) }
-    /^fn=/ { if (ob == bin) print substr($0, 4) }
-  ' "$out/cg.$k" | grep -E '^[A-Za-z_]' | sort -u > "$out/run.$k"
-  grep -vxF -f "$out/all.txt" "$out/run.$k" >> "$out/all.txt" || true
-done
-# Every symbol, by address (in decimal).
-nm -t d --defined-only "$bin" | awk '$2 ~ /^[tTwW]$/ { print $1, $3 }' > "$out/symbols"
 
+# The functions binary $1 runs (of its own: not of the C libraries, nor
+# callgrind's names for code without a symbol), appended to $2 command
+# by command, those no command before ran by name; its symbols by address
+# (in decimal) in $2.symbols.
+collect() {
+  local bin=$1 list=$2 k=0
+  : > "$list"
+  for r in "${runs[@]}"; do
+    k=$((k + 1))
+    # shellcheck disable=SC2086
+    valgrind --tool=callgrind --demangle=no --compress-strings=no \
+      --callgrind-out-file="$out/cg" "$bin" $r > /dev/null 2>&1
+    awk -v bin="$bin" '
+      /^ob=/ { ob = substr($0, 4) }
+      /^fn=/ { if (ob == bin) print substr($0, 4) }
+    ' "$out/cg" | grep -E '^[A-Za-z_]' | sort -u > "$out/run"
+    grep -vxF -f "$list" "$out/run" >> "$list" || true
+  done
+  nm -t d --defined-only "$bin" | awk '$2 ~ /^[tTwW]$/ { print $1, $3 }' > "$list.symbols"
+}
+
+cargo build --release -q
+collect "$PWD/target/release/rastty" "$out/workspace"
 if [ "${1:-}" = --check ]; then
-  end=$(awk '$3 == "__rastty_hot_end" { print $1 + 0 }' <(nm -t d "$bin"))
+  end=$(awk '$3 == "__rastty_hot_end" { print $1 + 0 }' <(nm -t d target/release/rastty))
   awk -v end="${end:-0}" '
     NR == FNR { want[$0] = 1; next }
     ($2 in want) { hot[$2] = hot[$2] || $1 + 0 < end }
     END { n = 0; h = 0; for (s in want) { n++; if (hot[s]) h++ }
           printf "%d of the %d functions the commands run are laid out first\n", h, n }
-  ' "$out/all.txt" "$out/symbols"
+  ' "$out/workspace" "$out/workspace.symbols"
   exit 0
 fi
+CARGO_TARGET_DIR=$out/target cargo build --release -q -p rastty-cli
+collect "$PWD/$out/target/release/rastty" "$out/program"
+
 # Each name run, then the other names at its address; a name's section
-# pattern, with any hash after `.llvm.` matched by `*`.
-awk '
-  NR == FNR { names[$1] = names[$1] " " $2; at[$2] = $1; next }
-  { print $0; n = split(names[at[$0]], same, " "); for (i = 1; i <= n; i++) if (same[i] != $0) print same[i] }
-' "$out/symbols" "$out/all.txt" |
-  sed 's/\.llvm\.[0-9]*$/.llvm.*/' | awk '!seen[$0]++' > "$out/patterns"
+# pattern, with any hash after `.llvm.` matched by `*`: the workspace's,
+# then the program's.
+for b in workspace program; do
+  awk '
+    NR == FNR { names[$1] = names[$1] " " $2; at[$2] = $1; next }
+    { print $0; n = split(names[at[$0]], same, " "); for (i = 1; i <= n; i++) if (same[i] != $0) print same[i] }
+  ' "$out/$b.symbols" "$out/$b"
+done | sed 's/\.llvm\.[0-9]*$/.llvm.*/' | awk '!seen[$0]++' > "$out/patterns"
 {
   echo "/* Written by scripts/hot-functions.sh: the functions the common commands run,"
   echo "   side by side at the start of .text (cli/build.rs). */"

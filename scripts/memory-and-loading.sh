@@ -2,7 +2,8 @@
 # What loading, memory and start-up cost, for this checkout and (given a
 # commit) for that commit built beside it, one row each (docs/figures.md):
 #
-#   * peak memory (GNU time's maximum resident set), one frame of Tux and
+#   * peak memory (GNU time's maximum resident set, the median of three
+#     runs), one frame of Tux and
 #     of a generated torus of 4M triangles (`rastty render --cols 200
 #     --rows 60 --color truecolor`), and per triangle; in brackets beside
 #     Tux's, the process's floor: `rastty --version`, which loads no model
@@ -19,7 +20,7 @@
 #   * whole-process instructions of `render cube` and of the teapot;
 #   * the release binary's size, and stripped of symbols and line tables;
 #   * under the table, how many of the functions the common commands run
-#     cli/hot-functions.txt lists (scripts/hot-functions.sh --check).
+#     cli/hot-functions.ld lays out first (scripts/hot-functions.sh --check).
 #
 #   scripts/memory-and-loading.sh [COMMIT]     (needs valgrind, GNU time)
 set -euo pipefail
@@ -43,7 +44,13 @@ build() {
   echo target/rev/target/release
 }
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
-peak() { /usr/bin/time -o target/load-cost/time -f '%M' "$@" >/dev/null 2>&1; cat target/load-cost/time; }
+# Peak memory, the median of three runs.
+peak() {
+  for _ in 1 2 3; do
+    /usr/bin/time -o target/load-cost/time -f '%M' "$@" >/dev/null 2>&1
+    cat target/load-cost/time
+  done | sort -n | sed -n 2p
+}
 # Inclusive instructions of the function whose name ends in $1, in the
 # callgrind run of `profile` (target/load-cost/cg.out). callgrind_annotate
 # lists a function once for each source file its inlined code comes from
@@ -88,5 +95,5 @@ if [ $# -gt 0 ]; then
   row "$1" "$(build "$1")"
 fi
 row "$(git rev-parse --short HEAD)" target/release
-# How current cli/hot-functions.txt is (what its order buys: cli/build.rs).
+# How current cli/hot-functions.ld is (what its layout buys: cli/build.rs).
 scripts/hot-functions.sh --check
