@@ -3,9 +3,9 @@
 # commit) for that commit built beside it, one row each (docs/figures.md):
 #
 #   * peak memory (GNU time's maximum resident set, the median of three
-#     runs), one frame of Tux and
-#     of a generated torus of 4M triangles (`rastty render --cols 200
-#     --rows 60 --color truecolor`), and per triangle; in brackets beside
+#     runs), one frame of Tux and of a generated torus of 4M triangles
+#     (`rastty render --cols 200 --rows 60 --color truecolor`), and per
+#     triangle; in brackets beside
 #     Tux's, the process's floor: `rastty --version`, which loads no model
 #     (the binary's and the C libraries' pages it touches);
 #   * normals at load: callgrind's inclusive count of
