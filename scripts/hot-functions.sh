@@ -9,7 +9,8 @@
 # name, callgrind names none of its functions).
 #
 # A function is named by its section, `.text.` and its symbol (or
-# `.text.unlikely.` and its symbol, where the compiler found it cold): the
+# `.text.unlikely.` and its symbol, where the compiler found it cold: a
+# mangled name is matched after any prefix, a plain C name exactly): the
 # program's own mangled names, which change with the compiler, the
 # dependencies and the feature set (a function new since the script was
 # last written is not in it). Where LLVM ends a name with `.llvm.` and a
@@ -97,7 +98,7 @@ done | sed 's/\.llvm\.[0-9]*$/.llvm.*/' | awk '!seen[$0]++' > "$out/patterns"
   echo "SECTIONS"
   echo "{"
   echo "  .text : {"
-  sed 's/.*/    *(.text.\0 .text.unlikely.\0)/' "$out/patterns"
+  sed -E 's/^(_ZN|_R).*/    *(.text.*\0)/; s/^[^ ].*/    *(.text.\0)/' "$out/patterns"
   echo "    __rastty_hot_end = .;"
   echo "    *(.text .text.*)"
   echo "  }"
