@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# What loading, memory and start-up cost, for this checkout and (given a
-# commit) for that commit built beside it, one row each (docs/figures.md):
+# What loading, memory and start-up cost, for this checkout and (given
+# commits) for each commit built beside it, one row each (docs/figures.md):
 #
 #   * peak memory (GNU time's maximum resident set, the median of three
 #     runs), one frame of Tux and of a generated torus of 4M triangles
@@ -22,7 +22,7 @@
 #   * under the table, how many of the functions the common commands run
 #     cli/hot-functions.ld lays out first (scripts/hot-functions.sh --check).
 #
-#   scripts/memory-and-loading.sh [COMMIT]     (needs valgrind, GNU time)
+#   scripts/memory-and-loading.sh [COMMIT...]     (needs valgrind, GNU time)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tux=tests/models/linux-mascot-tux.obj
@@ -91,9 +91,9 @@ row() { # label, directory of binaries
 }
 printf '| build | peak memory, Tux (`rastty --version`) | peak memory, torus 4M (a triangle) | normals at load, a triangle (the normals alone) | OBJ parsing, a byte | steady Tux frame | `render cube` | teapot, one frame | binary / stripped |\n'
 printf '|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
-if [ $# -gt 0 ]; then
-  row "$1" "$(build "$1")"
-fi
+for rev in "$@"; do
+  row "$rev" "$(build "$rev")"
+done
 row "$(git rev-parse --short HEAD)" target/release
 # How current cli/hot-functions.ld is (what its layout buys: cli/build.rs).
 scripts/hot-functions.sh --check
