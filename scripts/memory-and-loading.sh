@@ -5,9 +5,9 @@
 #   * peak memory (GNU time's maximum resident set, the median of three
 #     runs), one frame of Tux and of a generated torus of 4M triangles
 #     (`rastty render --cols 200 --rows 60 --color truecolor`), and per
-#     triangle; in brackets beside
-#     Tux's, the process's floor: `rastty --version`, which loads no model
-#     (the binary's and the C libraries' pages it touches);
+#     triangle; in brackets beside Tux's, the process's floor: `rastty
+#     --version`, which loads no model (the binary's and the C libraries'
+#     pages it touches);
 #   * normals at load: callgrind's inclusive count of
 #     `Geometry::compute_normals` (normals, welding, closedness) on the
 #     torus of 1M triangles, per triangle, and in brackets that of the
