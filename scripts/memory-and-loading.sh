@@ -19,7 +19,11 @@
 #     (examples/profile_scene, (40 frames − 10) / 30);
 #   * whole-process instructions of `render cube` and of the teapot;
 #   * the release binary's size, and stripped of symbols and line tables;
-#   * under the table, how many of the functions the common commands run
+#   * under the table, for this checkout: what loading the same torus
+#     costs where the file has normals (a `vn` for each position): the
+#     inclusive count of `Geometry::analyze` a triangle, the welding,
+#     corner lists and closedness that every mesh pays, with normals or
+#     without; and how many of the functions the common commands run
 #     cli/hot-functions.ld lays out first (scripts/hot-functions.sh --check).
 #
 #   scripts/memory-and-loading.sh [COMMIT...]     (needs valgrind, GNU time)
@@ -95,5 +99,13 @@ for rev in "$@"; do
   row "$rev" "$(build "$rev")"
 done
 row "$(git rev-parse --short HEAD)" target/release
+# The torus with normals in the file: each `v` followed by a `vn`, each
+# corner `v//v`.
+mn=target/load-cost/torus-1000000-vn.obj
+[ -s "$mn" ] || awk '/^v /{print; print "vn 0 0 1"; next}
+  /^f /{printf "f"; for (i = 2; i <= NF; i++) printf " %s//%s", $i, $i; print ""; next}
+  {print}' "$m1" > "$mn"
+profile target/release/rastty render "$mn" --cols 200 --rows 60 --color truecolor
+echo "with normals in the file, the torus's connectivity (\`Geometry::analyze\`): $(( $(inclusive 'Geometry::analyze') / 1000000 )) a triangle"
 # How current cli/hot-functions.ld is (what its layout buys: cli/build.rs).
 scripts/hot-functions.sh --check
