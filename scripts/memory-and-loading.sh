@@ -43,9 +43,11 @@ build() {
   local rev=$1 dir=target/rev/$1
   git worktree prune
   [ -d "$dir" ] || git worktree add -q --detach "$dir" "$rev"
-  CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty-cli >&2
-  CARGO_TARGET_DIR=target/rev/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty --example profile_scene >&2
-  echo target/rev/target/release
+  # Not one target shared by the commits: cargo would find a commit built
+  # before up to date and leave the binary of the last one built in place.
+  CARGO_TARGET_DIR=$dir/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty-cli >&2
+  CARGO_TARGET_DIR=$dir/target cargo build --release -q --locked --manifest-path "$dir/Cargo.toml" -p rastty --example profile_scene >&2
+  echo "$dir/target/release"
 }
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
 # Peak memory, the median of three runs.
