@@ -6,15 +6,26 @@
 //! none.)
 #![no_main]
 
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
 use libfuzzer_sys::fuzz_target;
 use rastty::glam::Vec3;
 use rastty::scene::Scene;
 use rastty::{GlyphMode, RenderOptions, Renderer};
 
+/// This process's scratch directory, made once (as `mtl_texture`'s).
+fn dir() -> &'static PathBuf {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("rastty-fuzz-obj-{}", std::process::id()));
+        std::fs::create_dir_all(&d).expect("a scratch directory");
+        d
+    })
+}
+
 fuzz_target!(|data: &[u8]| {
-    let dir = std::env::temp_dir().join(format!("rastty-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a scratch directory");
-    let path = dir.join("fuzz.obj");
+    let path = dir().join("fuzz.obj");
     std::fs::write(&path, data).expect("the model written");
     let Ok(scene) = Scene::open(&path) else {
         return;
