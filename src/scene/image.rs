@@ -55,6 +55,7 @@ pub fn decode(
 /// metallic-roughness or occlusion map) into a texture of their values
 /// over 255, not sRGB-decoded; under the same checks and budget as
 /// [`decode`].
+#[cfg(feature = "gltf")]
 pub fn decode_linear(
     bytes: &[u8],
     name: &str,
@@ -73,6 +74,7 @@ pub fn decode_linear(
 /// The alpha channel of a PNG image as a texture (linear, as alpha is, in
 /// every channel), `None` for an image without one; under the same checks
 /// and budget as [`decode`].
+#[cfg(feature = "gltf")]
 pub fn decode_alpha(
     bytes: &[u8],
     name: &str,
