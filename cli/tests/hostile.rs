@@ -199,7 +199,12 @@ fn a_notice_in_the_status_line_is_drawn_escaped() {
 fn files_a_model_names_are_opened_as_the_model_is() {
     let d = dir("refs");
     let cases = [
-        // Read as the name beside the model, as loaders do.
+        // Read as the name beside the model, as loaders do, and the
+        // error says so.
+        (
+            "/dev/zero",
+            "buffer 0: \"/dev/zero\" is an absolute path: \"zero\" beside it is read instead; ",
+        ),
         ("/dev/zero", "refs/zero: No such file or directory"),
         (
             "http://example.com/t.bin",
@@ -285,6 +290,37 @@ fn files_a_model_names_are_opened_as_the_model_is() {
         format!(
             "note: {}: \"/etc/abs.bin\" is an absolute path: \"abs.bin\" beside it is read instead\n",
             model.display()
+        )
+    );
+    // An OBJ's absolute `map_Kd` and `mtllib` that are not beside it
+    // either: the error (or the note) says where they were looked for.
+    put(&inner, "abs.mtl", "newmtl m\nmap_Kd /dev/zero\n");
+    let obj = put(
+        &inner,
+        "abs.obj",
+        "mtllib abs.mtl\nmtllib C:\\models\\gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl m\nf 1/1 2/1 3/1\n",
+    );
+    let r = refused(&obj);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "error: {}:2:8: \"/dev/zero\" is an absolute path: \"zero\" beside it is read instead; {}: No such file or directory (os error 2)\n",
+            inner.join("abs.mtl").display(),
+            inner.join("zero").display()
+        )
+    );
+    std::fs::write(
+        &obj,
+        "mtllib C:\\models\\gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let r = render(&obj, &[]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "note: {}:1:8: \"C:\\models\\gone.mtl\" is an absolute path: \"gone.mtl\" beside it is read instead; material library not found: drawn in the default colour\n",
+            obj.display()
         )
     );
 }

@@ -103,6 +103,19 @@ pub struct Reference {
     /// looked for beside the model instead, or it leads out of the
     /// model's folder.
     pub note: Option<String>,
+    /// The same, without the owner's name, for an error about the file
+    /// (which names its owner itself).
+    pub why: Option<String>,
+}
+
+/// `message` about a file a model names, after where it was looked for
+/// and why ([`Reference::why`]), when that is not where the name points.
+#[cfg_attr(not(feature = "textures"), allow(dead_code))]
+pub fn explain(why: Option<&str>, message: impl std::fmt::Display) -> String {
+    match why {
+        Some(why) => format!("{why}; {message}"),
+        None => message.to_string(),
+    }
 }
 
 /// Where the file that `owner` (a model or material file in `dir`, named
@@ -120,13 +133,14 @@ pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
         && matches!(bytes[2], b'/' | b'\\');
     if name.starts_with('/') || name.starts_with('\\') || windows_absolute {
         let last = name.rsplit(['/', '\\']).next().unwrap_or("");
-        let note = format!(
-            "{owner}: {shown} is an absolute path: {} beside it is read instead",
+        let why = format!(
+            "{shown} is an absolute path: {} beside it is read instead",
             crate::text::name(last, 80)
         );
         return Reference {
             path: dir.join(last),
-            note: Some(note),
+            note: Some(format!("{owner}: {why}")),
+            why: Some(why),
         };
     }
     // Lexically: whether the path climbs above the folder.
@@ -140,10 +154,11 @@ pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
         }
         outside |= depth < 0;
     }
-    let note = outside.then(|| format!("{owner}: {shown} is read from outside its folder"));
+    let why = outside.then(|| format!("{shown} is read from outside its folder"));
     Reference {
         path: dir.join(name),
-        note,
+        note: why.as_ref().map(|why| format!("{owner}: {why}")),
+        why,
     }
 }
 

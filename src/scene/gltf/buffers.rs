@@ -105,8 +105,9 @@ pub(super) fn fetch(
         ));
     };
     let r = file::reference(base, owner, &path);
+    let read = file::read(&r.path, max_bytes).map_err(|e| file::explain(r.why.as_deref(), e));
     notes.extend(r.note);
-    file::read(&r.path, max_bytes).map_err(|e| e.to_string())
+    read
 }
 
 /// A URI's scheme (`http` of `http://…`), if it has one; a drive letter

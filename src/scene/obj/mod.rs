@@ -444,7 +444,7 @@ impl<'a> Reader<'a> {
                 path: map.mtl.clone(),
                 line: map.line,
                 column: map.column,
-                message,
+                message: file::explain(map.why.as_deref(), message),
             })?;
             let (w, h) = texture.original_size();
             self.texels_left -= u64::from(w) * u64::from(h);
@@ -455,7 +455,7 @@ impl<'a> Reader<'a> {
         }
         #[cfg(not(feature = "textures"))]
         {
-            let _ = (&map.sampler, &map.mtl, map.line, map.column);
+            let _ = (&map.sampler, &map.mtl, map.line, map.column, &map.why);
             self.unread_textures += 1;
             Ok(None)
         }
@@ -488,10 +488,12 @@ impl<'a> Reader<'a> {
                 // Downloaded models often come without their library: the
                 // faces are drawn in the default colour, and it is said.
                 let at = self.at_byte(line, n, col, "");
-                self.reference_notes.push(format!(
-                    "{at}material library {} not found: drawn in the default colour",
-                    crate::text::name(&lossy(file), 80)
-                ));
+                let what = match r.why {
+                    Some(why) => format!("{why}; material library"),
+                    None => format!("material library {}", crate::text::name(&lossy(file), 80)),
+                };
+                self.reference_notes
+                    .push(format!("{at}{what} not found: drawn in the default colour"));
                 continue;
             }
             self.reference_notes.extend(r.note);

@@ -65,6 +65,8 @@ impl Material {
 #[derive(Clone, Debug)]
 pub(super) struct Map {
     pub(super) path: PathBuf,
+    /// Why `path` is not where the name points ([`file::Reference::why`]).
+    pub(super) why: Option<String>,
     pub(super) sampler: Sampler,
     pub(super) mtl: String,
     pub(super) line: usize,
@@ -153,14 +155,15 @@ pub(super) fn mtl(
                 let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
                 let r =
                     file::reference(path.parent().unwrap_or(Path::new(".")), &name, &lossy(file));
-                notes.extend(r.note);
                 let map = Map {
+                    why: r.why.clone(),
                     path: r.path,
                     sampler,
                     mtl: name.clone(),
                     line: n,
                     column,
                 };
+                notes.extend(r.note);
                 out.entry(m.clone()).or_default().map = Some(map);
             }
             Some((key @ (b"Kd" | b"Ks" | b"Ke"), kcol)) => {
