@@ -164,6 +164,31 @@ fn mtllib_names_several_libraries() {
     );
 }
 
+#[test]
+fn a_backslash_separates_folders_as_windows_tools_write_them() {
+    let dir = scratch("backslash");
+    std::fs::create_dir_all(dir.join("mats")).unwrap();
+    std::fs::create_dir_all(dir.join("model")).unwrap();
+    std::fs::write(dir.join("mats/a.mtl"), "newmtl red\nKd 1 0 0\n").unwrap();
+    let src = format!("mtllib mats\\a.mtl\n{TRIANGLE}usemtl red\nf 1 2 3\n");
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir).unwrap();
+    assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([65535, 0, 0]));
+    assert!(m.notes.is_empty(), "{:?}", m.notes);
+    // `..\` climbs out of the folder, as `../` does: said.
+    let src = format!("mtllib ..\\mats\\a.mtl\n{TRIANGLE}usemtl red\nf 1 2 3\n");
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir.join("model")).unwrap();
+    assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([65535, 0, 0]));
+    assert_eq!(
+        m.notes,
+        ["t.obj: \"..\\mats\\a.mtl\" is read from outside its folder"]
+    );
+    // A file whose name holds the backslash is read first.
+    std::fs::write(dir.join("mats\\a.mtl"), "newmtl red\nKd 0 0 1\n").unwrap();
+    let src = format!("mtllib mats\\a.mtl\n{TRIANGLE}usemtl red\nf 1 2 3\n");
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir).unwrap();
+    assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([0, 0, 65535]));
+}
+
 const FACET: &str = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
 
 #[test]

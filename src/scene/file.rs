@@ -123,9 +123,17 @@ pub fn explain(why: Option<&str>, message: impl std::fmt::Display) -> String {
 /// included: asset packs share folders, with a note when the path leaves
 /// the folder); an absolute name (`/x/y.png`, `C:\\x\\y.png`) is not read
 /// where it points, but its last part in `dir`, as common loaders do,
-/// with a note.
+/// with a note. A backslash separates folders, as Windows tools write
+/// them (`maps\\t.png`), unless a file of the name as written is there.
 pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
     let shown = crate::text::name(name, 80);
+    let slashed;
+    let name = if name.contains('\\') && !dir.join(name).exists() {
+        slashed = name.replace('\\', "/");
+        &slashed
+    } else {
+        name
+    };
     let bytes = name.as_bytes();
     let windows_absolute = bytes.len() >= 3
         && bytes[0].is_ascii_alphabetic()
