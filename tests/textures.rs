@@ -415,6 +415,41 @@ fn obj_map_kd_textures_the_faces_with_v_running_up() {
 }
 
 #[test]
+fn map_kd_options_are_read_past_and_those_that_move_the_texture_are_noted() {
+    // `-o` with two of its three numbers, then a name with a space; a
+    // scale of 1 and an offset of 0 move nothing.
+    let png = png_rgb(1, 2, &[RED, BLUE]);
+    let files = |mtl: &'static [u8], name: &str| {
+        let dir = dir_with(
+            name,
+            &[
+                ("q.obj", OBJ_QUAD.as_bytes()),
+                ("q.mtl", mtl),
+                ("my image.png", &png),
+            ],
+        );
+        obj::load(&dir.join("q.obj"), &LoadOptions::default()).unwrap()
+    };
+    let moved = files(
+        b"newmtl tex\nmap_Kd -o 0.5 0.25 -s 1 1 1 -mm 0 1 -t 0 -cc on -clamp on my image.png\n",
+        "obj-map-kd-moved",
+    );
+    assert_eq!(moved.geometry.textures.len(), 1);
+    assert_eq!(moved.notes.len(), 1, "{:?}", moved.notes);
+    assert!(
+        moved.notes[0].ends_with("/q.mtl: not drawn: `map_Kd -o`, `map_Kd -cc`"),
+        "{:?}",
+        moved.notes
+    );
+    let still = files(
+        b"newmtl tex\nmap_Kd -o 0 0 -s 1 1 -bm 2 -cc off -blendu on my image.png\n",
+        "obj-map-kd-still",
+    );
+    assert_eq!(still.geometry.textures.len(), 1);
+    assert_eq!(still.notes, Vec::<String>::new());
+}
+
+#[test]
 fn a_texture_that_does_not_decode_is_one_error_naming_it() {
     let mut png = png_rgb(2, 2, &[RED, BLUE, BLUE, RED]);
     png.truncate(png.len() - 20);

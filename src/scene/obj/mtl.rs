@@ -118,7 +118,8 @@ pub(super) fn mtl(
             Some((b"map_Kd", kcol)) => {
                 let mut sampler = Sampler::default();
                 // Options first (`-clamp on` is read; others are skipped
-                // with their arguments), then the file name, spaces and all.
+                // with their arguments, and noted where they would change
+                // the picture), then the file name, spaces and all.
                 let mut rest = c;
                 loop {
                     // Looked at on a copy, taken only if it is an option.
@@ -127,17 +128,51 @@ pub(super) fn mtl(
                         break;
                     };
                     rest = next;
-                    let args = match w {
-                        b"-o" | b"-s" | b"-t" => 3,
-                        b"-mm" => 2,
-                        _ => 1,
+                    // `-o u [v [w]]` (and `-s`, `-t`): the optional two
+                    // taken only where they are numbers.
+                    let (args, optional) = match w {
+                        b"-o" | b"-s" | b"-t" => (1, 2),
+                        b"-mm" => (2, 0),
+                        _ => (1, 0),
                     };
+                    let number = |a: &[u8]| std::str::from_utf8(a).ok()?.parse::<f32>().ok();
+                    let mut values = Vec::new();
+                    let mut on = false;
                     for _ in 0..args {
                         let arg = rest.word();
-                        if w == b"-clamp" && arg.is_some_and(|(a, _)| a == b"on") {
+                        on = arg.is_some_and(|(a, _)| a == b"on");
+                        if w == b"-clamp" && on {
                             sampler.wrap_u = Wrap::ClampToEdge;
                             sampler.wrap_v = Wrap::ClampToEdge;
                         }
+                        values.push(arg.and_then(|(a, _)| number(a)));
+                    }
+                    for _ in 0..optional {
+                        let mut next = rest;
+                        let Some(x) = next.word().and_then(|(a, _)| number(a)) else {
+                            break;
+                        };
+                        values.push(Some(x));
+                        rest = next;
+                    }
+                    // An option that would move, scale, disturb or
+                    // correct the texture, other than at its default, is
+                    // said as not drawn (the others change nothing a
+                    // `map_Kd` alone draws).
+                    let is =
+                        |default: &[f32]| values.iter().zip(default).all(|(v, d)| *v == Some(*d));
+                    let moves = match w {
+                        b"-o" => Some(("map_Kd -o", is(&[0.0; 3]))),
+                        b"-s" => Some(("map_Kd -s", is(&[1.0; 3]))),
+                        b"-t" => Some(("map_Kd -t", is(&[0.0; 3]))),
+                        b"-mm" => Some(("map_Kd -mm", is(&[0.0, 1.0]))),
+                        b"-cc" => Some(("map_Kd -cc", !on)),
+                        _ => None,
+                    };
+                    if let Some((key, false)) = moves
+                        && !unread.contains(&key)
+                    {
+                        unread.push(key);
                     }
                 }
                 let file = rest.rest();
