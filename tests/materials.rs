@@ -227,6 +227,21 @@ fn an_obj_material_glows_with_ke_and_shines_with_ks_unless_illum_says_not() {
 }
 
 #[test]
+fn a_colour_as_a_spectral_curve_or_in_xyz_is_noted_and_leaves_the_colour_as_it_was() {
+    let plain = obj_square("newmtl m\nKd 0.2 0.4 0.6\n");
+    let loaded = obj_square("newmtl m\nKd 0.2 0.4 0.6\nKd spectral red.rfl 2\nKs xyz 1 1 1\n");
+    let (m, p) = (&loaded.geometry.materials[0], &plain.geometry.materials[0]);
+    assert_eq!((m.color, m.finish.specular), (p.color, None));
+    assert!(m.color.is_some());
+    assert_eq!(loaded.notes.len(), 1);
+    assert!(
+        loaded.notes[0].ends_with("/m.mtl: not drawn: `Kd spectral`, `Ks xyz`"),
+        "{:?}",
+        loaded.notes
+    );
+}
+
+#[test]
 fn a_bad_ns_is_an_error_at_its_line_and_column() {
     let dir = std::env::temp_dir().join(format!("rastty-mtl-ns-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

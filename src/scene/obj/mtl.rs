@@ -203,6 +203,25 @@ pub(super) fn mtl(
             }
             Some((key @ (b"Kd" | b"Ks" | b"Ke"), kcol)) => {
                 let key = std::str::from_utf8(key).unwrap_or("K");
+                // A colour given as a spectral curve or in CIE XYZ, which
+                // the format allows: said as not drawn, the material's
+                // colour left as it was.
+                let form = c.clone().word().map(|(w, _)| w);
+                let other = match (key, form) {
+                    ("Kd", Some(b"spectral")) => Some("Kd spectral"),
+                    ("Kd", Some(b"xyz")) => Some("Kd xyz"),
+                    ("Ks", Some(b"spectral")) => Some("Ks spectral"),
+                    ("Ks", Some(b"xyz")) => Some("Ks xyz"),
+                    ("Ke", Some(b"spectral")) => Some("Ke spectral"),
+                    ("Ke", Some(b"xyz")) => Some("Ke xyz"),
+                    _ => None,
+                };
+                if let Some(other) = other {
+                    if !unread.contains(&other) {
+                        unread.push(other);
+                    }
+                    continue;
+                }
                 let mut v = [0.0f32; 3];
                 let mut k = 0;
                 while let Some(x) = c.number() {
