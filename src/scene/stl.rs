@@ -4,7 +4,8 @@
 //! bytes a facet, so its size says what it is: a file of exactly `84 + 50·n`
 //! bytes, `n` its count, is binary even when its header starts with
 //! `solid` (many exporters write that); anything else that starts with
-//! `solid` is ASCII. The size is checked before the facets are read, so a
+//! `solid` (in any case: some exporters write `SOLID`, and their keywords
+//! in capitals) is ASCII. The size is checked before the facets are read, so a
 //! truncated file is an error at once and a facet count is never trusted as
 //! an allocation.
 //!
@@ -73,7 +74,10 @@ fn read(head: &[u8], rest: impl Read, size: u64, name: &str, crease: f32) -> Res
     let count =
         (head.len() == 84).then(|| u32::from_le_bytes([head[80], head[81], head[82], head[83]]));
     let binary_size = count.map(|c| 84 + 50 * c as u64);
-    if binary_size == Some(size) || !head.starts_with(b"solid") {
+    let solid = head
+        .get(..5)
+        .is_some_and(|h| h.eq_ignore_ascii_case(b"solid"));
+    if binary_size == Some(size) || !solid {
         return binary(head, rest, size, name, count).and_then(|w| w.finish(name, crease));
     }
     ascii(head.chain(rest), name).and_then(|w| w.finish(name, crease))
@@ -184,6 +188,19 @@ fn binary(
     Ok(w)
 }
 
+/// `word` in lower case, in `buf`, if it is no longer than a keyword
+/// (some exporters write `SOLID`, `FACET NORMAL`); else `word` as it is.
+fn lower<'a>(word: &'a [u8], buf: &'a mut [u8; 8]) -> &'a [u8] {
+    match buf.get_mut(..word.len()) {
+        Some(b) => {
+            b.copy_from_slice(word);
+            b.make_ascii_lowercase();
+            b
+        }
+        None => word,
+    }
+}
+
 /// What the ASCII reader expects next.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Want {
@@ -211,6 +228,8 @@ fn ascii(src: impl Read, name: &str) -> Result<Welder> {
         let Some((keyword, kcol)) = words.word() else {
             continue;
         };
+        let (written, mut buf) = (keyword, [0; 8]);
+        let keyword = lower(keyword, &mut buf);
         let at = |offset: usize, msg: String| error(name, n, file::column(line, offset), msg);
         let numbers = |words: &mut Cursor, what: &str| -> Result<Vec3> {
             let mut v = [0.0f32; 3];
@@ -234,8 +253,11 @@ fn ascii(src: impl Read, name: &str) -> Result<Welder> {
         want = match (want, keyword) {
             (Want::Solid, b"solid") => Want::Facet,
             (Want::Facet, b"facet") => {
-                match words.word() {
-                    Some((b"normal", _)) => {
+                match words
+                    .word()
+                    .map(|(w, col)| (w.eq_ignore_ascii_case(b"normal"), col))
+                {
+                    Some((true, _)) => {
                         numbers(&mut words, "facet normal")?;
                     }
                     other => {
@@ -249,7 +271,10 @@ fn ascii(src: impl Read, name: &str) -> Result<Welder> {
             }
             (Want::Facet, b"endsolid") => Want::Done,
             (Want::OuterLoop, b"outer") => {
-                if !matches!(words.word(), Some((b"loop", _))) {
+                if !words
+                    .word()
+                    .is_some_and(|(w, _)| w.eq_ignore_ascii_case(b"loop"))
+                {
                     return Err(at(kcol, "expected `outer loop`".into()));
                 }
                 Want::Vertex(0)
@@ -293,7 +318,7 @@ fn ascii(src: impl Read, name: &str) -> Result<Welder> {
                     kcol,
                     format!(
                         "expected {expected}, found {:?}",
-                        String::from_utf8_lossy(keyword)
+                        String::from_utf8_lossy(written)
                     ),
                 ));
             }
@@ -315,6 +340,19 @@ mod tests {
     use super::*;
 
     const FACET: &str = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+
+    #[test]
+    fn ascii_keywords_in_capitals_are_read() {
+        let src = format!("SOLID T\n{}ENDSOLID T\n", FACET.to_uppercase());
+        let m = parse(src.as_bytes(), "t.stl").unwrap();
+        assert_eq!(m.geometry.faces.len(), 1);
+        let src = format!("Solid t\n{FACET}Bogus\n");
+        let e = parse(src.as_bytes(), "t.stl").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "t.stl:9:1: expected `facet` or `endsolid`, found \"Bogus\""
+        );
+    }
 
     #[test]
     fn ascii_with_or_without_a_name_and_binary_starting_with_solid() {
