@@ -189,6 +189,29 @@ fn a_backslash_separates_folders_as_windows_tools_write_them() {
     assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([0, 0, 65535]));
 }
 
+#[test]
+fn a_name_in_another_case_is_read_with_a_note() {
+    // A model made where case does not matter names `mats/A.MTL`; the
+    // folder holds `Mats/a.mtl`.
+    let dir = scratch("case");
+    std::fs::create_dir_all(dir.join("Mats")).unwrap();
+    std::fs::write(dir.join("Mats/a.mtl"), "newmtl red\nKd 1 0 0\n").unwrap();
+    let src = format!("mtllib mats\\A.MTL\n{TRIANGLE}usemtl red\nf 1 2 3\n");
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir).unwrap();
+    assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([65535, 0, 0]));
+    assert_eq!(
+        m.notes,
+        ["t.obj: \"mats\\A.MTL\" is read as \"Mats/a.mtl\", its name in another case"]
+    );
+    // A name that is there as written is read without a word.
+    std::fs::write(dir.join("A.MTL"), "newmtl red\nKd 0 0 1\n").unwrap();
+    std::fs::write(dir.join("a.mtl"), "newmtl red\nKd 0 1 0\n").unwrap();
+    let src = format!("mtllib A.MTL\n{TRIANGLE}usemtl red\nf 1 2 3\n");
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir).unwrap();
+    assert_eq!(m.geometry.face_color(0, Lin::WHITE), Lin([0, 0, 65535]));
+    assert!(m.notes.is_empty(), "{:?}", m.notes);
+}
+
 const FACET: &str = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
 
 #[test]

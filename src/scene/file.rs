@@ -124,7 +124,8 @@ pub fn explain(why: Option<&str>, message: impl std::fmt::Display) -> String {
 /// the folder); an absolute name (`/x/y.png`, `C:\\x\\y.png`) is not read
 /// where it points, but its last part in `dir`, as common loaders do,
 /// with a note. A backslash separates folders, as Windows tools write
-/// them (`maps\\t.png`), unless a file of the name as written is there.
+/// them (`maps\\t.png`), unless a file of the name as written is there;
+/// and a name not found is looked for in another case, with a note.
 pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
     let shown = crate::text::name(name, 80);
     let slashed;
@@ -145,11 +146,7 @@ pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
             "{shown} is an absolute path: {} beside it is read instead",
             crate::text::name(last, 80)
         );
-        return Reference {
-            path: dir.join(last),
-            note: Some(format!("{owner}: {why}")),
-            why: Some(why),
-        };
+        return found(dir, owner, (last, &shown), Some(why));
     }
     // Lexically: whether the path climbs above the folder.
     let mut depth: i64 = 0;
@@ -163,12 +160,65 @@ pub fn reference(dir: &Path, owner: &str, name: &str) -> Reference {
         outside |= depth < 0;
     }
     let why = outside.then(|| format!("{shown} is read from outside its folder"));
+    found(dir, owner, (name, &shown), why)
+}
+
+/// [`reference`]'s answer for `rel` below `dir` (`shown` as the name was
+/// written), `why` it is read there: where no file has that name but one
+/// has it in another case (a model made where case does not matter),
+/// that one, with a note.
+fn found(dir: &Path, owner: &str, (rel, shown): (&str, &str), why: Option<String>) -> Reference {
+    let mut path = dir.join(rel);
+    let mut why = why;
+    if !path.exists()
+        && let Some(other) = in_any_case(dir, Path::new(rel))
+    {
+        let as_found = other.strip_prefix(dir).unwrap_or(&other);
+        let as_found = crate::text::name(&as_found.to_string_lossy(), 80);
+        why = Some(match why {
+            Some(why) => format!("{why}, as {as_found}, its name in another case"),
+            None => format!("{shown} is read as {as_found}, its name in another case"),
+        });
+        path = other;
+    }
     Reference {
-        path: dir.join(name),
+        path,
         note: why.as_ref().map(|why| format!("{owner}: {why}")),
         why,
     }
 }
+
+/// `rel` below `dir`, each of its parts that is not there matched to an
+/// entry of its folder whose name differs only in case (the least such
+/// name); `None` where a part matches none. At most [`CASE_ENTRIES`]
+/// entries are read, over all the folders.
+fn in_any_case(dir: &Path, rel: &Path) -> Option<PathBuf> {
+    let mut left = CASE_ENTRIES;
+    let mut at = dir.to_path_buf();
+    for part in rel.components() {
+        let std::path::Component::Normal(part) = part else {
+            at.push(part);
+            continue;
+        };
+        let exact = at.join(part);
+        if exact.exists() {
+            at = exact;
+            continue;
+        }
+        let want = part.to_str()?.to_lowercase();
+        let name = std::fs::read_dir(&at)
+            .ok()?
+            .take_while(|_| left.checked_sub(1).map(|l| left = l).is_some())
+            .filter_map(|e| e.ok()?.file_name().into_string().ok())
+            .filter(|n| n.to_lowercase() == want)
+            .min()?;
+        at.push(name);
+    }
+    Some(at)
+}
+
+/// How many folder entries [`in_any_case`] reads at most.
+const CASE_ENTRIES: usize = 4096;
 
 /// A size in bytes, readably.
 pub fn human(n: u64) -> String {
