@@ -212,6 +212,26 @@ fn a_name_in_another_case_is_read_with_a_note() {
     assert!(m.notes.is_empty(), "{:?}", m.notes);
 }
 
+#[test]
+fn a_material_no_library_defines_is_noted_once() {
+    let dir = scratch("unknown-material");
+    std::fs::write(dir.join("a.mtl"), "newmtl red\nKd 1 0 0\n").unwrap();
+    let faces = "f 1 2 3\n";
+    let src = format!(
+        "mtllib a.mtl\n{TRIANGLE}usemtl blue\n{faces}usemtl red\n{faces}usemtl green\n{faces}usemtl blue\n{faces}"
+    );
+    let m = obj::parse(src.as_bytes(), "t.obj", &dir).unwrap();
+    let g = &m.geometry;
+    assert_eq!(g.face_color(0, Lin::WHITE), Lin::WHITE);
+    assert_eq!(g.face_color(1, Lin::WHITE), Lin([65535, 0, 0]));
+    assert_eq!(
+        m.notes,
+        [
+            "t.obj:5:8: material \"blue\" is in none of the material libraries read (nor is 1 other name `usemtl` gives): drawn in the default colour"
+        ]
+    );
+}
+
 const FACET: &str = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
 
 #[test]

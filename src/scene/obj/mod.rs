@@ -42,7 +42,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::LoadOptions;
 use super::file::{self, Cursor, Lines};
@@ -140,6 +140,10 @@ struct Reader<'a> {
     texels_left: u64,
     /// Notes on the files named (absolute paths, paths out of the folder).
     reference_notes: Vec<String>,
+    /// The names `usemtl` gave that no library read defines, and the
+    /// first of them, said where it was.
+    unknown_materials: FxHashSet<Vec<u8>>,
+    first_unknown: Option<String>,
     /// Whether the faces now being read are textured (then their corners
     /// keep their `vt`).
     textured: bool,
@@ -217,6 +221,8 @@ impl<'a> Reader<'a> {
             texture_ids: FxHashMap::default(),
             texels_left: options.max_texels,
             reference_notes: Vec::new(),
+            unknown_materials: FxHashSet::default(),
+            first_unknown: None,
             textured: false,
             unread_textures: 0,
             all_normals: true,
@@ -317,7 +323,14 @@ impl<'a> Reader<'a> {
             b"f" => self.face(c, n)?,
             b"l" | b"p" => self.lines_and_points += 1,
             b"usemtl" => {
-                let material = self.library.get(c.rest()).cloned().unwrap_or_default();
+                let name = c.rest();
+                let material = match self.library.get(name) {
+                    Some(m) => m.clone(),
+                    None => {
+                        self.unknown_material(name, c.line(), n);
+                        Material::default()
+                    }
+                };
                 let finish = material.finish();
                 let texture = match material.map {
                     Some(map) => self.texture(map)?,
@@ -339,6 +352,23 @@ impl<'a> Reader<'a> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// A `usemtl` of line `n` (`line`) naming a material no library read
+    /// defines: kept for a note, where a library was read (without one,
+    /// its own note says the faces are drawn in the default colour).
+    fn unknown_material(&mut self, name: &[u8], line: &[u8], n: usize) {
+        if self.library.is_empty() || !self.unknown_materials.insert(name.to_vec()) {
+            return;
+        }
+        if self.first_unknown.is_none() {
+            let offset = name.as_ptr() as usize - line.as_ptr() as usize;
+            let at = self.at_byte(line, n, offset, "");
+            self.first_unknown = Some(format!(
+                "{at}material {} is in none of the material libraries read",
+                crate::text::name(&lossy(name), 80)
+            ));
+        }
     }
 
     /// A `v` of line `n` (checked: below the limit, a finite colour).
@@ -506,6 +536,14 @@ impl<'a> Reader<'a> {
 
     fn finish(mut self, last_line: usize) -> Result<Loaded> {
         let mut notes = std::mem::take(&mut self.reference_notes);
+        if let Some(first) = self.first_unknown.take() {
+            let more = match self.unknown_materials.len() - 1 {
+                0 => String::new(),
+                1 => " (nor is 1 other name `usemtl` gives)".to_string(),
+                k => format!(" (nor are {k} other names `usemtl` gives)"),
+            };
+            notes.push(format!("{first}{more}: drawn in the default colour"));
+        }
         notes.extend(polygon::fallback_note(self.name, self.cutter.fallbacks));
         if let Some(&first) = self.bad_pos.first() {
             notes.push(format!(
