@@ -175,7 +175,7 @@ fn bad_gltf_files_get_one_error_naming_what_is_wrong() {
         ),
         (
             glb(
-                &triangle_json("", 36, nodes, prim, r#","extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"]"#),
+                &triangle_json("", 36, nodes, prim, r#","extensionsUsed":["KHR_texture_transform","KHR_draco_mesh_compression"],"extensionsRequired":["KHR_texture_transform","KHR_draco_mesh_compression"]"#),
                 &f32s(&TRI),
             ),
             "t.glb: needs the extension KHR_draco_mesh_compression, which rastty does not read",
@@ -187,6 +187,18 @@ fn bad_gltf_files_get_one_error_naming_what_is_wrong() {
         assert!(err.starts_with(want), "{err}");
         assert!(!err.contains('\n'), "{err}");
     }
+    // An extension rastty draws may be required.
+    let required = glb(
+        &triangle_json(
+            "",
+            36,
+            nodes,
+            prim,
+            r#","extensionsUsed":["KHR_texture_transform"],"extensionsRequired":["KHR_texture_transform"]"#,
+        ),
+        &f32s(&TRI),
+    );
+    assert_eq!(parse_glb(&required).unwrap().geometry.faces.len(), 1);
 }
 
 #[test]

@@ -30,9 +30,9 @@
 //!
 //! Not read, and said in one note: points and lines, textures read through
 //! a second texture coordinate set, cameras, and extensions other than
-//! unlit, emissive strength, punctual lights and texture transform. An
-//! extension the file marks as required is an error, since the model
-//! cannot be drawn right without it.
+//! unlit, emissive strength, punctual lights and texture transform. One of
+//! those others that the file marks as required is an error, since the
+//! model cannot be drawn right without it.
 //!
 //! Trade-offs: the crate parses and validates the JSON and resolves
 //! buffers; the byte ranges of the accessors used are checked here before
@@ -104,7 +104,11 @@ pub fn parse(
     let Gltf { document, blob } =
         Gltf::from_slice_without_validation(bytes).map_err(|e| bad(describe(&e)))?;
     let root = document.into_json();
-    let required = &root.extensions_required;
+    // Those it draws may be required: only the others are refused.
+    let required: Vec<&str> = (root.extensions_required.iter())
+        .map(String::as_str)
+        .filter(|e| !DRAWN_EXTENSIONS.contains(e))
+        .collect();
     if !required.is_empty() {
         return Err(bad(format!(
             "needs the extension{} {}, which rastty does not read",
