@@ -25,7 +25,7 @@ fn square(material: &str) -> Vec<u8> {
     let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
     let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
     d.glb(&format!(
-        r#""extensionsUsed":["KHR_materials_unlit","KHR_materials_emissive_strength"],
+        r#""extensionsUsed":["KHR_materials_unlit","KHR_materials_emissive_strength","KHR_materials_pbrSpecularGlossiness"],
 "materials":[{material}],
 "meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx},"material":0}}]}}],
 "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
@@ -109,6 +109,26 @@ fn an_unlit_material_is_its_colour_whatever_the_lights() {
     assert_ne!(
         colours(&scene(load(&square(lit)), &[DIM_FROM_SIDE])),
         [base]
+    );
+}
+
+#[test]
+fn a_specular_glossiness_material_is_drawn_by_its_diffuse_colour_and_specular() {
+    // Its diffuse colour stands for the base colour (which says green).
+    let matte = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,1,0,1]},"extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseFactor":[0.5,0.25,0.125,1],"specularFactor":[0,0,0]}}}"#;
+    let g = load(&square(matte));
+    assert_eq!(g.materials[0].finish.specular, None);
+    assert_eq!(
+        colours(&scene(g, &[WHITE_FROM_FRONT])),
+        [Lin::from_unit([0.5, 0.25, 0.125])]
+    );
+    // Its specular colour is the reflectance, 1 − glossiness the
+    // roughness, of a surface that is no metal.
+    let shiny = r#"{"extensions":{"KHR_materials_pbrSpecularGlossiness":{"specularFactor":[0.5,0.25,1],"glossinessFactor":0.75}}}"#;
+    let s = load(&square(shiny)).materials[0].finish.specular.unwrap();
+    assert_eq!(
+        (s.reflectance, s.metallic, s.roughness),
+        (Vec3::new(0.5, 0.25, 1.0), 0.0, 0.25)
     );
 }
 

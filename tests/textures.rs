@@ -745,6 +745,46 @@ fn quad_with_uvs(png: &[u8], uvs: &[[f32; 2]; 4], transform: Option<&str>) -> Sc
 }
 
 #[test]
+fn a_specular_glossiness_diffuse_texture_is_the_base_colour_texture() {
+    // The quad textured through KHR_materials_pbrSpecularGlossiness's
+    // diffuse texture (no highlight) is the quad textured through its base
+    // colour texture, sample for sample.
+    let png = png_rgb(2, 2, &[RED, BLUE, [0, 255, 0], [255; 3]]);
+    let corners = [[0.0f32, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let (want, _) = samples(&quad_with_uvs(&png, &corners, None), None);
+    let mesh = TexturedMesh {
+        positions: &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
+        uvs: &corners,
+        indices: &[0, 1, 2, 0, 2, 3],
+        png: &png,
+        sampler: r#"{"magFilter":9728,"minFilter":9728}"#,
+        base_color: [1.0; 4],
+    };
+    let (json, bin) = mesh.parts(None);
+    let base = r#""materials":[{"pbrMetallicRoughness":{"baseColorFactor":[1.0, 1.0, 1.0, 1.0],"baseColorTexture":{"index":0}}}]"#;
+    assert!(json.contains(base), "{json}");
+    let json = json
+        .replace(
+            base,
+            r#""materials":[{"extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseTexture":{"index":0},"specularFactor":[0,0,0]}}}]"#,
+        )
+        .replacen('{', r#"{"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],"#, 1);
+    let loaded = gltf::parse(&glb(&json, &bin), None, "quad.glb", &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let camera = Camera {
+        projection: Projection::None,
+        ..Camera::default()
+    };
+    let (got, _) = samples(&scene_of(loaded, camera), None);
+    assert_eq!(got, want);
+}
+
+#[test]
 fn a_texture_transform_moves_the_lookup_as_the_same_uvs_moved_by_hand() {
     // Four texels, repeated; the quad's UVs run over [0, 1]². The
     // extension's T · R · S, with R turning the texture counter-clockwise

@@ -58,6 +58,22 @@ impl Specular {
         })
     }
 
+    /// glTF's `KHR_materials_pbrSpecularGlossiness`: reflectance its
+    /// specular colour (linear, clamped into [0, 1]), no metal, roughness
+    /// 1 − glossiness (clamped as [`Specular::metallic_roughness`]'s);
+    /// `None` where the specular colour is black (no highlight) or a
+    /// number is not finite.
+    pub fn specular_glossiness(specular: Vec3, glossiness: f32) -> Option<Specular> {
+        if !specular.is_finite() || !glossiness.is_finite() || specular.max_element() <= 0.0 {
+            return None;
+        }
+        Some(Specular {
+            reflectance: specular.clamp(Vec3::ZERO, Vec3::ONE),
+            metallic: 0.0,
+            roughness: (1.0 - glossiness).clamp(Self::MIN_ROUGHNESS, 1.0),
+        })
+    }
+
     /// OBJ's Phong terms: `Ks` (linear, clamped into [0, 1]) and the
     /// exponent `Ns` (at least 0); `None` where `Ks` is black (no
     /// highlight) or a number is not finite.

@@ -92,21 +92,47 @@ pub(super) fn light_of(
     Ok(l)
 }
 
+/// A material's base colour factor and texture: where it has
+/// `KHR_materials_pbrSpecularGlossiness` (older exporters' materials), its
+/// diffuse colour and texture, which the extension says are used instead
+/// of the metallic-roughness ones; else its metallic-roughness base
+/// colour.
+pub(super) fn base_color<'a>(
+    material: &::gltf::Material<'a>,
+) -> ([f32; 4], Option<::gltf::texture::Info<'a>>) {
+    match material.pbr_specular_glossiness() {
+        Some(sg) => (sg.diffuse_factor(), sg.diffuse_texture()),
+        None => {
+            let pbr = material.pbr_metallic_roughness();
+            (pbr.base_color_factor(), pbr.base_color_texture())
+        }
+    }
+}
+
 /// A material's finish: its metallic-roughness factors where they are not
 /// both glTF's defaults (1 and 1, a rough metal, drawn matte: see
 /// [`crate::scene::Finish`]) or a metallic-roughness texture is given, its
 /// emissive factor times `KHR_materials_emissive_strength`, and
-/// `KHR_materials_unlit`. Factors are linear, as glTF's colours are.
+/// `KHR_materials_unlit`. Factors are linear, as glTF's colours are. A
+/// material with `KHR_materials_pbrSpecularGlossiness` takes its specular
+/// colour and glossiness instead ([`crate::scene::Specular::specular_glossiness`]).
 pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
     let pbr = material.pbr_metallic_roughness();
     let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
     let said = (metallic, roughness) != (1.0, 1.0) || pbr.metallic_roughness_texture().is_some();
     let strength = material.emissive_strength().unwrap_or(1.0);
     let e = material.emissive_factor().map(|c| c * strength);
-    crate::scene::Finish {
-        specular: said
+    let specular = match material.pbr_specular_glossiness() {
+        Some(sg) => crate::scene::Specular::specular_glossiness(
+            Vec3::from(sg.specular_factor()),
+            sg.glossiness_factor(),
+        ),
+        None => said
             .then(|| crate::scene::Specular::metallic_roughness(metallic, roughness))
             .flatten(),
+    };
+    crate::scene::Finish {
+        specular,
         emissive: Lin::from_unit(e),
         unlit: material.unlit(),
         alpha: alpha(material),
@@ -129,7 +155,7 @@ fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
     };
     crate::scene::Alpha {
         mode,
-        factor: material.pbr_metallic_roughness().base_color_factor()[3].clamp(0.0, 1.0),
+        factor: base_color(material).0[3].clamp(0.0, 1.0),
         texture: None,
     }
 }
@@ -150,10 +176,17 @@ impl Parts<'_> {
         // (T · R · S, as the extension says), by the base colour's
         // transform, or the first other map's where the base has none.
         let pbr = material.pbr_metallic_roughness();
-        let base_info = pbr.base_color_texture();
+        let base_info = base_color(material).1;
+        let sg = material.pbr_specular_glossiness();
+        // Under specular-glossiness, the metallic-roughness texture is not
+        // read, and the specular-glossiness one is noted.
+        let metallic_roughness = pbr.metallic_roughness_texture().filter(|_| sg.is_none());
+        if sg.is_some_and(|sg| sg.specular_glossiness_texture().is_some()) {
+            *ignored.entry("specular-glossiness textures").or_default() += 1;
+        }
         let infos = [
             base_info.clone(),
-            pbr.metallic_roughness_texture(),
+            metallic_roughness.clone(),
             material.emissive_texture(),
         ];
         let uv_transform = infos
@@ -188,10 +221,7 @@ impl Parts<'_> {
             }
             _ => None,
         };
-        if let Some(info) = pbr
-            .metallic_roughness_texture()
-            .filter(|i| first_set(set(i)))
-        {
+        if let Some(info) = metallic_roughness.filter(|i| first_set(set(i))) {
             finish.maps.metallic_roughness =
                 self.texture(&info.texture(), buffers, Decode::Values)?;
         }

@@ -30,7 +30,9 @@
 //!
 //! Not read, and said in one note: points and lines, textures read through
 //! a second texture coordinate set, cameras, and extensions other than
-//! unlit, emissive strength, punctual lights and texture transform. One of
+//! unlit, emissive strength, punctual lights, texture transform and
+//! specular-glossiness (its diffuse colour and texture, specular colour
+//! and glossiness; not its specular-glossiness texture). One of
 //! those others that the file marks as required is an error, since the
 //! model cannot be drawn right without it.
 //!
@@ -550,7 +552,7 @@ impl Parts<'_> {
             }
             _ => self.tangents_missing = true,
         }
-        let factor = material.pbr_metallic_roughness().base_color_factor();
+        let factor = material::base_color(&material).0;
         let base = Lin::from_unit([factor[0], factor[1], factor[2]]);
         let own = material.index().is_some();
         self.base
@@ -691,4 +693,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_lights_punctual",
     "KHR_texture_transform",
+    "KHR_materials_pbrSpecularGlossiness",
 ];
