@@ -13,6 +13,7 @@ use crate::raster::{Precision, Traversal};
 use crate::scene::Cull;
 use crate::shade::Shading;
 use crate::texture::FilterMode;
+use crate::transform::Axis;
 
 /// Largest frame side, in cells: a bigger terminal is drawn at this size
 /// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
@@ -38,6 +39,11 @@ pub struct RenderOptions {
     /// (pitch), then y (yaw), then z (roll). What `spin` animates. Lights
     /// and camera stay put.
     pub turn: Vec3,
+    /// The axis `turn` turns about from frame to frame (`spin --axis`; y
+    /// for a still frame, as `--yaw` turns it): a model framed by its
+    /// camera ([`crate::scene::Camera::resolved_turning`]) fits the view
+    /// turned any way about it, `turn`'s other two angles as they are.
+    pub turn_axis: Axis,
     /// How surfaces are lit.
     pub shading: Shading,
     /// Culling for everything, overriding each mesh's own (`None`: meshes
@@ -242,6 +248,7 @@ impl Default for RenderOptions {
             cell_aspect: 0.5,
             traversal: Traversal::default(),
             turn: Vec3::ZERO,
+            turn_axis: Axis::Y,
             shading: Shading::default(),
             cull: None,
             pipeline: Pipeline::default(),

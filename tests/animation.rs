@@ -626,3 +626,60 @@ fn a_planned_frame_poses_only_the_parts_its_clip_moves() {
         full.framebuffer().samples()
     );
 }
+
+/// Whether a frame of `r` leaves its outermost rows and columns of
+/// samples empty (nothing cut off at an edge), having drawn something.
+fn inside_the_edges(r: &Renderer) -> bool {
+    let g = r.framebuffer().grid();
+    let (w, h) = (g.width as usize, g.height as usize);
+    let s = r.framebuffer().samples();
+    let at = |x: usize, y: usize| s[y * w + x].is_some();
+    s.iter().any(Option::is_some)
+        && (0..w).all(|x| !at(x, 0) && !at(x, h - 1))
+        && (0..h).all(|y| !at(0, y) && !at(w - 1, y))
+}
+
+#[test]
+fn a_model_tilted_or_turning_about_x_or_z_is_framed_whole() {
+    // A box four times as long (z) as it is wide and high: framed for a
+    // turn about y, its length lies across the view.
+    let mut mesh = rastty::scene::Shape::Cube.mesh(Rgb::WHITE);
+    for p in &mut mesh.geometry_mut().positions {
+        p.z *= 4.0;
+    }
+    let scene = Scene::of_mesh(mesh);
+    let opts = RenderOptions {
+        cols: 60,
+        rows: 20,
+        ..RenderOptions::default()
+    };
+    let mut r = Renderer::new();
+    // Still frames tilted (its length turned upright) and rolled.
+    for turn in [
+        Vec3::ZERO,
+        Vec3::new(90.0, 0.0, 0.0),
+        Vec3::new(60.0, 30.0, 45.0),
+    ] {
+        r.render(&scene, &RenderOptions { turn, ..opts });
+        assert!(inside_the_edges(&r), "turned {turn}");
+    }
+    // Every frame of a turn about x, and about z, from a tilt: framed the
+    // same, none cut off.
+    for (axis, unit) in [
+        (rastty::transform::Axis::X, Vec3::X),
+        (rastty::transform::Axis::Z, Vec3::Z),
+    ] {
+        for k in 0..24 {
+            let turn = Vec3::new(10.0, 20.0, 30.0) + unit * (15.0 * k as f32 + 7.0);
+            r.render(
+                &scene,
+                &RenderOptions {
+                    turn,
+                    turn_axis: axis,
+                    ..opts
+                },
+            );
+            assert!(inside_the_edges(&r), "about {axis:?}, turned {turn}");
+        }
+    }
+}

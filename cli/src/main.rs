@@ -677,6 +677,8 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         cell_aspect,
         traversal: knobs.traversal,
         turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
+        // `--yaw`'s axis; spin's loop sets its own.
+        turn_axis: rastty::transform::Axis::Y,
         shading: view.shading,
         cull: view.cull,
         pipeline: if knobs.full_pipeline {

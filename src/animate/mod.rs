@@ -450,8 +450,10 @@ impl Player {
         // The status line takes a row of its own: the model is drawn in
         // the rows above it, never under it.
         let hud_row = self.hud && self.opts.rows > 1;
+        // Framed to fit however it turns about the spin's axis.
         let opts = RenderOptions {
             turn,
+            turn_axis: self.spin.axis,
             rows: self.opts.rows - u16::from(hud_row),
             ..self.opts
         };

@@ -188,7 +188,7 @@ pub struct Renderer {
     bands: Vec<bands::BandWork>,
     /// The last camera resolved, the aspect it was resolved for, and the
     /// result ([`Camera::resolved`]).
-    camera: Option<(Camera, u32, Camera)>,
+    camera: Option<(Camera, FramingKey, Camera)>,
     /// Where each mesh's vertices are in `verts` and `more`, and its
     /// matrices, for a frame drawn in bands.
     meshes: Vec<MeshVerts>,
@@ -304,6 +304,10 @@ struct Painter<'a> {
     acc: &'a mut Vec<[f32; 4]>,
 }
 
+/// What a resolved camera was found for besides the camera itself: the
+/// aspect, the turn's fixed angles (bits) and its axis.
+type FramingKey = (u32, [u32; 3], transform::Axis);
+
 /// Where one mesh's vertices are in a frame's vertex buffers, and its
 /// matrices (for a frame drawn in bands, which keeps every mesh's).
 #[derive(Debug)]
@@ -390,7 +394,7 @@ impl Renderer {
         let turn = transform::rotation(opts.turn);
         // A camera that frames a model is placed for this view's aspect
         // (a few hundred thousand instructions), once while neither changes.
-        let cam = &self.resolved(&scene.camera, opts.aspect());
+        let cam = &self.resolved(&scene.camera, opts);
         let vp = cam.view_projection(opts.aspect());
         let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
         // The plan is taken out of `self` for the frame (the stages borrow
@@ -524,14 +528,28 @@ impl Renderer {
         }
     }
 
-    /// `camera` resolved for `aspect`: the last frame's result when both are
-    /// the same (bit for bit), otherwise found afresh.
-    fn resolved(&mut self, camera: &Camera, aspect: f32) -> Camera {
+    /// `camera` resolved for the view and turn of `opts`
+    /// ([`Camera::resolved_turning`]): the last frame's result when the
+    /// camera, the aspect and the turn's fixed angles are the same (bit
+    /// for bit), otherwise found afresh. The angle about the turn's axis,
+    /// which `spin` changes every frame, is swept through, so not looked at.
+    fn resolved(&mut self, camera: &Camera, opts: &RenderOptions) -> Camera {
+        let t = opts.turn;
+        let fixed = match opts.turn_axis {
+            transform::Axis::X => Vec3::new(0.0, t.y, t.z),
+            transform::Axis::Y => Vec3::new(t.x, 0.0, t.z),
+            transform::Axis::Z => Vec3::new(t.x, t.y, 0.0),
+        };
+        let key = (
+            opts.aspect().to_bits(),
+            fixed.to_array().map(f32::to_bits),
+            opts.turn_axis,
+        );
         match self.camera {
-            Some((c, a, resolved)) if c.same_bits(camera) && a == aspect.to_bits() => resolved,
+            Some((c, k, resolved)) if c.same_bits(camera) && k == key => resolved,
             _ => {
-                let resolved = camera.resolved(aspect);
-                self.camera = Some((*camera, aspect.to_bits(), resolved));
+                let resolved = camera.resolved_turning(opts.aspect(), fixed, opts.turn_axis);
+                self.camera = Some((*camera, key, resolved));
                 resolved
             }
         }

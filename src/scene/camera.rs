@@ -2,6 +2,7 @@
 //! camera that frames a model, placed for the view's aspect when drawn.
 
 use super::*;
+use crate::transform::Axis;
 use glam::Vec2;
 
 /// Where the viewer stands and how the view is projected.
@@ -388,6 +389,17 @@ impl Camera {
     /// round about its axis fills 90 %, a long one less in any one view.
     /// Otherwise the camera as it is.
     pub fn resolved(&self, aspect: f32) -> Camera {
+        self.resolved_turning(aspect, Vec3::ZERO, Axis::Y)
+    }
+
+    /// [`Camera::resolved`] for a model turned by `turn` (degrees about x,
+    /// then y, then z, as [`crate::RenderOptions::turn`]) that turns
+    /// about `axis` from frame to frame: the outline is swept every way
+    /// about `axis`, with `turn`'s other two angles as they are (its angle
+    /// about `axis` is any), so that a tilted model, or one turning about
+    /// x or z, is not cut off either. About y and untilted it is
+    /// [`Camera::resolved`].
+    pub fn resolved_turning(&self, aspect: f32, turn: Vec3, axis: Axis) -> Camera {
         const SWEPT: usize = 16 * Fit::POINTS;
         let (Some(fit), Projection::Perspective { fov_y, .. }) = (self.fit, self.projection) else {
             return Camera { fit: None, ..*self };
@@ -409,8 +421,9 @@ impl Camera {
         let mut depth = [0.0f32; SWEPT];
         let mut height = [0.0f32; SWEPT];
         let mut wide = [0.0f32; SWEPT];
+        let sweep = Sweep::new(turn, axis);
         for (k, turned) in depth.chunks_exact_mut(Fit::POINTS).enumerate() {
-            let turn = glam::Quat::from_rotation_y(std::f32::consts::TAU * k as f32 / 16.0);
+            let turn = sweep.at(std::f32::consts::TAU * k as f32 / 16.0);
             for (j, (z, &p)) in turned.iter_mut().zip(&fit.points).enumerate() {
                 let p = turn * p - self.target;
                 let i = k * Fit::POINTS + j;
@@ -564,6 +577,58 @@ impl Camera {
             );
         }
         Ok(())
+    }
+}
+
+/// The turns [`Camera::resolved_turning`] sweeps a model's outline
+/// through: about `axis` by any angle, between the turns about the other
+/// two axes that stay put (`Rz · Ry · Rx`, as [`crate::transform::rotation`]
+/// composes them).
+struct Sweep {
+    axis: Axis,
+    /// The fixed turns applied before and after the swept one.
+    before: Option<glam::Quat>,
+    after: Option<glam::Quat>,
+}
+
+impl Sweep {
+    fn new(turn: Vec3, axis: Axis) -> Sweep {
+        let r = turn * (std::f32::consts::PI / 180.0);
+        let (x, y, z) = (
+            glam::Quat::from_rotation_x(r.x),
+            glam::Quat::from_rotation_y(r.y),
+            glam::Quat::from_rotation_z(r.z),
+        );
+        // A turn of no angle is left out: untilted, the sweep about y is
+        // the one [`Camera::resolved`] has always made, bit for bit.
+        let (before, after) = match axis {
+            Axis::X => (None, Some(z * y)),
+            Axis::Y => (Some(x), Some(z)),
+            Axis::Z => (Some(y * x), None),
+        };
+        let some = |q: Option<glam::Quat>| q.filter(|q| *q != glam::Quat::IDENTITY);
+        Sweep {
+            axis,
+            before: some(before),
+            after: some(after),
+        }
+    }
+
+    /// The turn by `angle` (radians) about the axis, between the fixed ones.
+    fn at(&self, angle: f32) -> glam::Quat {
+        let swept = match self.axis {
+            Axis::X => glam::Quat::from_rotation_x(angle),
+            Axis::Y => glam::Quat::from_rotation_y(angle),
+            Axis::Z => glam::Quat::from_rotation_z(angle),
+        };
+        let swept = match self.before {
+            Some(b) => swept * b,
+            None => swept,
+        };
+        match self.after {
+            Some(a) => a * swept,
+            None => swept,
+        }
     }
 }
 
