@@ -64,9 +64,11 @@ pub fn setup<'a>(
 ) -> (Lit<'a>, Vec<u32>, Buffer2d<u32>, Buffer2d<f32>) {
     let mesh = &scene.meshes[0];
     let model = rastty::transform::rotation(opts.turn) * mesh.model;
-    // The camera as rastty places it for this view (a framing camera's
-    // distance depends on the aspect).
-    let camera = scene.camera.resolved(opts.aspect());
+    // The camera as rastty places it for this view and turn (a framing
+    // camera's distance depends on the aspect and on the turn's tilt).
+    let camera = scene
+        .camera
+        .resolved_turning(opts.aspect(), opts.turn, opts.turn_axis);
     let mvp = camera.view_projection(opts.aspect()) * model;
     let indices: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
     let pipeline = Lit {

@@ -355,7 +355,7 @@ mod tests {
             ..Default::default()
         };
         let grid = opts.glyphs.grid(cols, rows);
-        let cam = scene.camera.resolved(opts.aspect());
+        let cam = (scene.camera).resolved_turning(opts.aspect(), opts.turn, opts.turn_axis);
         let vp = cam.view_projection(opts.aspect());
         let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
         let turn = transform::rotation(opts.turn);
