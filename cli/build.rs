@@ -5,7 +5,7 @@
 //! rest as it would. The kernel maps a program's code into memory by
 //! blocks of up to 16 pages around each page it runs, so functions
 //! scattered through 4 MB of code keep much of it resident: side by side,
-//! one frame of Tux peaks at 6.7 MiB, not 8.4, and `rastty --version` at
+//! one frame of Tux peaks at 6.6 MiB, not 8.4, and `rastty --version` at
 //! 2.9, not 3.8 (docs/figures.md, "Memory, loading and start-up", against
 //! 9d8112f built beside). Nothing else changes: the same machine code, the
 //! same instructions.
