@@ -148,21 +148,32 @@ fn a_checkerboard_floor_in_perspective_matches_an_f64_ray_cast() {
 /// A quad filling the canonical square (no projection), `u` from `u0` to
 /// `u1` left to right and `v` from `v0` (top) to `v1` (bottom).
 fn screen_quad(png: &[u8], sampler: &str, u: [f32; 2], v: [f32; 2]) -> Scene {
-    let glb = TexturedMesh {
+    let uvs = [[u[0], v[1]], [u[1], v[1]], [u[1], v[0]], [u[0], v[0]]];
+    let glb = square(png, &uvs, sampler).glb();
+    let loaded = gltf::parse(&glb, None, "quad.glb", &LoadOptions::default()).unwrap();
+    unprojected(loaded)
+}
+
+/// The canonical square as a textured mesh, its corners (counter-clockwise
+/// from the bottom left) at `uvs` of `png`, read through `sampler`.
+fn square<'a>(png: &'a [u8], uvs: &'a [[f32; 2]], sampler: &'a str) -> TexturedMesh<'a> {
+    TexturedMesh {
         positions: &[
             [-1.0, -1.0, 0.0],
             [1.0, -1.0, 0.0],
             [1.0, 1.0, 0.0],
             [-1.0, 1.0, 0.0],
         ],
-        uvs: &[[u[0], v[1]], [u[1], v[1]], [u[1], v[0]], [u[0], v[0]]],
+        uvs,
         indices: &[0, 1, 2, 0, 2, 3],
         png,
         sampler,
         base_color: [1.0; 4],
     }
-    .glb();
-    let loaded = gltf::parse(&glb, None, "quad.glb", &LoadOptions::default()).unwrap();
+}
+
+/// `loaded` seen without a projection: the canonical square fills the view.
+fn unprojected(loaded: obj::Loaded) -> Scene {
     let camera = Camera {
         projection: Projection::None,
         ..Camera::default()
@@ -712,20 +723,7 @@ fn a_scene_file_places_a_textured_gltf_as_the_library_does() {
 /// given, its base colour texture's `textureInfo` extended by `transform`
 /// (`KHR_texture_transform` JSON) when there is one.
 fn quad_with_uvs(png: &[u8], uvs: &[[f32; 2]; 4], transform: Option<&str>) -> Scene {
-    let mesh = TexturedMesh {
-        positions: &[
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        uvs,
-        indices: &[0, 1, 2, 0, 2, 3],
-        png,
-        sampler: r#"{"magFilter":9728,"minFilter":9728}"#,
-        base_color: [1.0; 4],
-    };
-    let (mut json, bin) = mesh.parts(None);
+    let (mut json, bin) = square(png, uvs, NEAREST).parts(None);
     if let Some(t) = transform {
         json = json.replace(
             r#""baseColorTexture":{"index":0}"#,
@@ -737,12 +735,11 @@ fn quad_with_uvs(png: &[u8], uvs: &[[f32; 2]; 4], transform: Option<&str>) -> Sc
     }
     let loaded = gltf::parse(&glb(&json, &bin), None, "quad.glb", &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
-    let camera = Camera {
-        projection: Projection::None,
-        ..Camera::default()
-    };
-    scene_of(loaded, camera)
+    unprojected(loaded)
 }
+
+/// Nearest texels, within a level and between levels.
+const NEAREST: &str = r#"{"magFilter":9728,"minFilter":9728}"#;
 
 #[test]
 fn a_specular_glossiness_diffuse_texture_is_the_base_colour_texture() {
@@ -752,20 +749,7 @@ fn a_specular_glossiness_diffuse_texture_is_the_base_colour_texture() {
     let png = png_rgb(2, 2, &[RED, BLUE, [0, 255, 0], [255; 3]]);
     let corners = [[0.0f32, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let (want, _) = samples(&quad_with_uvs(&png, &corners, None), None);
-    let mesh = TexturedMesh {
-        positions: &[
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        uvs: &corners,
-        indices: &[0, 1, 2, 0, 2, 3],
-        png: &png,
-        sampler: r#"{"magFilter":9728,"minFilter":9728}"#,
-        base_color: [1.0; 4],
-    };
-    let (json, bin) = mesh.parts(None);
+    let (json, bin) = square(&png, &corners, NEAREST).parts(None);
     let base = r#""materials":[{"pbrMetallicRoughness":{"baseColorFactor":[1.0, 1.0, 1.0, 1.0],"baseColorTexture":{"index":0}}}]"#;
     assert!(json.contains(base), "{json}");
     let json = json
@@ -776,11 +760,7 @@ fn a_specular_glossiness_diffuse_texture_is_the_base_colour_texture() {
         .replacen('{', r#"{"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],"#, 1);
     let loaded = gltf::parse(&glb(&json, &bin), None, "quad.glb", &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
-    let camera = Camera {
-        projection: Projection::None,
-        ..Camera::default()
-    };
-    let (got, _) = samples(&scene_of(loaded, camera), None);
+    let (got, _) = samples(&unprojected(loaded), None);
     assert_eq!(got, want);
 }
 
