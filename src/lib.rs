@@ -114,6 +114,7 @@ pub mod animate;
 
 // Where frames go: a picture, a recording, or a ratatui buffer (the
 // terminal itself is the program's, in cli/).
+pub mod outfile;
 #[cfg(feature = "share")]
 pub mod picture;
 #[cfg(feature = "share")]

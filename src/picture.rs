@@ -37,6 +37,7 @@ use crate::color::{Ink, Lin, Palette, Quantizer, Rgb, xterm256};
 use crate::encode::{Rep, TermCell, write_lines};
 use crate::error::{Error, Result};
 use crate::frame::Frame;
+use crate::outfile::OutFile;
 
 /// The most pixels a picture may have (8,192 × 8,192).
 pub const MAX_PIXELS: u64 = 1 << 26;
@@ -676,7 +677,8 @@ impl Format {
 
 /// Writes `frame` to `path` in `format`: pictures at `cell` pixels a cell
 /// in `theme`'s default colours, colours as `palette` sends them. Returns
-/// the bytes written.
+/// the bytes written. The file is written as [`OutFile`] writes: an
+/// existing one is replaced only once the whole picture is written.
 pub fn save(
     frame: &Frame,
     path: &Path,
@@ -685,7 +687,23 @@ pub fn save(
     theme: Theme,
     cell: CellPx,
 ) -> Result<usize> {
-    // Made in memory first: a refusal leaves no file behind.
+    let mut out = OutFile::create(path)?;
+    let n = write(frame, &mut out, format, palette, theme, cell)?;
+    out.commit()?;
+    Ok(n)
+}
+
+/// Writes `frame` to `out` (a file named `out.path()`) in `format`, as
+/// [`save`] does, without committing it. Returns the bytes written.
+pub fn write(
+    frame: &Frame,
+    out: &mut OutFile,
+    format: Format,
+    palette: Palette,
+    theme: Theme,
+    cell: CellPx,
+) -> Result<usize> {
+    // Made in memory first: a refusal writes nothing.
     let mut body = Vec::new();
     match format {
         Format::Png => Picture::paint(frame, palette, theme, cell)?.write_png(&mut body),
@@ -696,8 +714,8 @@ pub fn save(
         Format::Ans => write_lines(frame, palette, Rep::Off, &mut Vec::new(), &mut body),
         Format::Txt => write!(body, "{frame}"),
     }
-    .map_err(|e| Error::io(path, e))?;
-    std::fs::write(path, &body).map_err(|e| Error::io(path, e))?;
+    .map_err(|e| Error::io(out.path(), e))?;
+    out.write_all(&body).map_err(|e| Error::io(out.path(), e))?;
     Ok(body.len())
 }
 

@@ -8,7 +8,6 @@ mod live;
 mod terminal;
 
 use rastty::Choice;
-use std::fs::File;
 use std::io::{self, Write};
 use std::path::Path;
 use std::process::ExitCode;
@@ -24,6 +23,7 @@ use rastty::animate;
 use rastty::animate::{Player, Spin};
 use rastty::cast::{self, Recorder};
 use rastty::encode::Encoder;
+use rastty::outfile::OutFile;
 use rastty::picture::{self, Format, Theme};
 use rastty::scene::{Projection, Scene, View};
 use rastty::{GlyphMode, RenderOptions, Renderer, color::ColorDepth, encode};
@@ -213,6 +213,8 @@ fn try_main(cli: Cli) -> rastty::Result<ExitCode> {
 }
 
 fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
+    // The plot's file is begun before the work, which takes minutes.
+    let mut svg = OutFile::create(&args.svg)?;
     let models = match &args.models {
         Some(dir) if !dir.is_dir() => {
             return Err(rastty::Error::Invalid(format!(
@@ -246,9 +248,12 @@ fn bench(args: &cli::BenchArgs) -> rastty::Result<()> {
     )
     .and_then(|()| write!(out, "{}", report.markdown()))
     .map_err(stdout_error)?;
-    report
-        .svg(&args.svg)
+    let plot = report
+        .svg()
         .map_err(|e| rastty::Error::Invalid(format!("{}: {e}", args.svg.display())))?;
+    svg.write_all(plot.as_bytes())
+        .map_err(|e| rastty::Error::io(&args.svg, e))?;
+    svg.commit()?;
     say_lines(&format!(
         "wrote {}",
         rastty::text::line(&args.svg.display().to_string())
@@ -346,38 +351,29 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         }
     }
     // Everything that can be refused is refused before the work: the
-    // frame's size, the files to write, then the scene.
+    // frame's size, the files to write, then the scene, and a file to
+    // write that the scene is read from.
     opts.check_samples(max_samples(&args.budgets))?;
-    let mut record = args
-        .record
-        .as_deref()
-        .map(|p| Ok((create(p)?, p)))
-        .transpose()?;
-    let scene = scene(&args.input, &args.budgets)
-        .and_then(|mut s| {
-            // A scene file's own poses stand unless a clip or time is asked.
-            if (args.input.clip.is_some() || args.time.is_some())
-                && let Some(c) = clip(&s, args.input.clip.as_deref())?
-            {
-                s.set_pose(c, args.time.unwrap_or(0.0));
-            }
-            Ok(s)
-        })
-        .and_then(|s| {
-            let (mut s, view) = with_view(s, &args.view)?;
-            // The view as `spin` applies it, where one is asked for (else
-            // the camera as it is, to the bit).
-            if view != View::AS_GIVEN {
-                s.camera = view.apply(&s.camera);
-            }
-            Ok(s)
-        })
-        .inspect_err(|_| {
-            // No recording of a frame that was never drawn.
-            if let Some((_, path)) = &record {
-                let _ = std::fs::remove_file(path);
-            }
-        })?;
+    let mut output = args.output.as_deref().map(OutFile::create).transpose()?;
+    let mut record = args.record.as_deref().map(OutFile::create).transpose()?;
+    let scene = scene(&args.input, &args.budgets)?;
+    check_outputs(&scene, &[output.as_ref(), record.as_ref()])?;
+    let scene = {
+        let mut s = scene;
+        // A scene file's own poses stand unless a clip or time is asked.
+        if (args.input.clip.is_some() || args.time.is_some())
+            && let Some(c) = clip(&s, args.input.clip.as_deref())?
+        {
+            s.set_pose(c, args.time.unwrap_or(0.0));
+        }
+        let (mut s, view) = with_view(s, &args.view)?;
+        // The view as `spin` applies it, where one is asked for (else
+        // the camera as it is, to the bit).
+        if view != View::AS_GIVEN {
+            s.camera = view.apply(&s.camera);
+        }
+        s
+    };
     let mut renderer = Renderer::new();
     let frame = renderer.render(&scene, &opts);
     let palette = rastty::color::Palette {
@@ -387,9 +383,9 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     };
     let start = std::time::Instant::now();
     let mut buf = Vec::new();
-    let written = match (&args.output, format) {
-        (Some(path), Some(format)) => {
-            picture::save(frame, path, format, palette, Theme::default(), args.cell_px)?
+    let written = match (&mut output, format) {
+        (Some(out), Some(format)) => {
+            picture::write(frame, out, format, palette, Theme::default(), args.cell_px)?
         }
         _ => {
             let mut stdout = stdout()?;
@@ -399,17 +395,25 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
             buf.len()
         }
     };
-    if let Some((file, path)) = record.take() {
-        let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
-        let mut rec = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
-            .and_then(|mut rec| {
-                encoder.prepare(frame);
-                rec.output(Duration::ZERO, encoder.last_bytes())?;
-                rec.end()?;
-                Ok(rec)
-            })
-            .map_err(|e| rastty::Error::io(path, e))?;
-        rec.flush().map_err(|e| rastty::Error::io(path, e))?;
+    let record = match record.take() {
+        Some(file) => {
+            let path = file.path().to_path_buf();
+            let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
+            let rec = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
+                .and_then(|mut rec| {
+                    encoder.prepare(frame);
+                    rec.output(Duration::ZERO, encoder.last_bytes())?;
+                    rec.end()?;
+                    rec.finish()
+                })
+                .map_err(|e| rastty::Error::io(&path, e))?;
+            Some(rec)
+        }
+        None => None,
+    };
+    // The last step: each file written takes its place.
+    for file in output.into_iter().chain(record) {
+        file.commit()?;
     }
     if args.explain {
         let encode = start.elapsed();
@@ -420,11 +424,14 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     Ok(())
 }
 
-/// A file to write, buffered.
-fn create(path: &Path) -> rastty::Result<io::BufWriter<File>> {
-    File::create(path)
-        .map(io::BufWriter::new)
-        .map_err(|e| rastty::Error::io(path, e))
+/// Refuses files to write that the scene is read from, or that name one
+/// file twice.
+fn check_outputs(scene: &Scene, outputs: &[Option<&OutFile>]) -> rastty::Result<()> {
+    let outputs: Vec<&OutFile> = outputs.iter().flatten().copied().collect();
+    for out in &outputs {
+        out.check(&scene.sources, &outputs)?;
+    }
+    Ok(())
 }
 
 /// `scene` with the background and camera the view's flags ask for
@@ -485,7 +492,10 @@ fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let opts = options(&args.view, &args.knobs, 0);
     opts.check_samples(max_samples(&args.budgets))?;
-    let (scene, view) = with_view(scene(&args.input, &args.budgets)?, &args.view)?;
+    let record = args.record.as_deref().map(OutFile::create).transpose()?;
+    let scene = scene(&args.input, &args.budgets)?;
+    check_outputs(&scene, &[record.as_ref()])?;
+    let (scene, view) = with_view(scene, &args.view)?;
     let spin = Spin {
         axis: args.axis,
         step: args
@@ -522,7 +532,7 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
                 "spin: stdout is not a terminal; give --frames N to write N frames, or use `rastty render`".into(),
             ));
         };
-        if let Some(path) = &args.record {
+        if let Some(file) = record {
             // A recording moves the cursor whatever TERM says (its player
             // does) and, as a file for any terminal, has colour unless told.
             let opts = RenderOptions {
@@ -530,18 +540,15 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
                 ..opts
             };
             let encoder = Encoder::new(opts.color).with_dither(args.view.dither);
-            return Recorder::new(
-                create(path)?,
-                opts.cols,
-                opts.rows,
-                &cast::Terminal::from_env(),
-            )
-            .and_then(|mut rec| {
-                cast::play(&scene, &opts, spin, frames, args.fps, encoder, &mut rec)?;
-                rec.flush()
-            })
-            .map(|()| ExitCode::SUCCESS)
-            .map_err(|e| rastty::Error::io(path, e));
+            let path = file.path().to_path_buf();
+            let file = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
+                .and_then(|mut rec| {
+                    cast::play(&scene, &opts, spin, frames, args.fps, encoder, &mut rec)?;
+                    rec.finish()
+                })
+                .map_err(|e| rastty::Error::io(&path, e))?;
+            file.commit()?;
+            return Ok(ExitCode::SUCCESS);
         }
         let mut out = stdout()?;
         animate::play(&scene, &opts, spin, frames, encoder, &mut out, |_| {})
@@ -563,11 +570,12 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         detect_truecolor: args.view.color == cli::ColorArg::Auto
             && !matches!(opts.color, ColorDepth::None | ColorDepth::TrueColor),
     };
-    let mut rec = match &args.record {
-        Some(path) => {
+    let mut rec = match record {
+        Some(file) => {
             let o = player.options();
-            let rec = Recorder::new(create(path)?, o.cols, o.rows, &cast::Terminal::from_env())
-                .map_err(|e| rastty::Error::io(path, e))?;
+            let path = file.path().to_path_buf();
+            let rec = Recorder::new(file, o.cols, o.rows, &cast::Terminal::from_env())
+                .map_err(|e| rastty::Error::io(&path, e))?;
             Some((rec, path))
         }
         None => None,
@@ -575,10 +583,13 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let record = rec.as_mut().map(|(r, _)| r as &mut Recorder<dyn Write>);
     let outcome = live::run(&mut player, &live_opts, record)
         .map_err(|e| rastty::Error::Invalid(format!("spin: {e}")))?;
-    if let Some((rec, path)) = &mut rec {
+    // A run ended by a key, its frame count or a signal that quits is a
+    // whole recording: it takes its place.
+    if let Some((mut rec, path)) = rec {
         rec.end()
-            .and_then(|()| rec.flush())
-            .map_err(|e| rastty::Error::io(path, e))?;
+            .and_then(|()| rec.finish())
+            .map_err(|e| rastty::Error::io(&path, e))?
+            .commit()?;
     }
     for m in &outcome.messages {
         say("note", m);

@@ -25,17 +25,20 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// The most memory the decoder may take for one image.
 pub const MAX_DECODE_BYTES: u64 = 512 << 20;
 
-/// Reads and decodes the image at `path` (opened and read as the model
+/// Reads and decodes the image `file` at `path` (opened as the model
 /// itself is), within `max_texels`; the error says what is wrong, naming
 /// the file.
 pub fn load(
+    mut file: file::Opened<'_>,
     path: &Path,
     sampler: Sampler,
-    max_bytes: u64,
     max_texels: u64,
 ) -> Result<Texture, String> {
+    use std::io::Read;
     let name = path.display().to_string();
-    let bytes = file::read(path, max_bytes).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::with_capacity(usize::try_from(file.size()).unwrap_or(0));
+    file.read_to_end(&mut bytes)
+        .map_err(|e| format!("{name}: {e}"))?;
     decode(&bytes, &name, sampler, max_texels).map_err(|e| format!("{name}: {e}"))
 }
 

@@ -47,7 +47,11 @@ impl Format {
             _ => None,
         };
         let regular = std::fs::metadata(path).is_ok_and(|m| m.is_file());
-        let head = if regular { head(path) } else { Vec::new() };
+        let head = if regular {
+            file::head(path, 512).unwrap_or_default()
+        } else {
+            Vec::new()
+        };
         let (signed, guessed) = sniff(&head);
         match (named, ext.as_deref()) {
             (Some(named), _) => match signed {
@@ -123,17 +127,6 @@ impl Format {
 pub(super) fn readable(f: Format) -> bool {
     !matches!(f, Format::Gltf if !cfg!(feature = "gltf"))
         && !matches!(f, Format::Ply if !cfg!(feature = "ply"))
-}
-
-/// Up to the first 512 bytes of the file at `path` (none if it cannot be
-/// read: the loader will say why).
-pub(super) fn head(path: &Path) -> Vec<u8> {
-    use std::io::Read;
-    let mut head = Vec::with_capacity(512);
-    if let Ok(f) = std::fs::File::open(path) {
-        let _ = f.take(512).read_to_end(&mut head);
-    }
-    head
 }
 
 /// What a file's first bytes say: a signature (a format that cannot be
@@ -297,25 +290,38 @@ pub(super) const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) 
 /// Loads a model file by its extension, or a built-in shape by its name:
 /// its geometry, and what the loader has to tell.
 pub fn load_geometry(path: &Path, options: &LoadOptions) -> Result<(Arc<Geometry>, Vec<String>)> {
+    let files = file::Files::new(options.max_bytes);
+    let (geometry, mut notes) = load_geometry_in(path, options, &files)?;
+    notes.extend(files.take_notes());
+    Ok((geometry, notes))
+}
+
+/// [`load_geometry`], every file opened through `files`.
+pub(super) fn load_geometry_in(
+    path: &Path,
+    options: &LoadOptions,
+    files: &file::Files,
+) -> Result<(Arc<Geometry>, Vec<String>)> {
     let (format, note) = Format::of(path)?;
-    load_as(path, format, note, options)
+    load_as(path, format, note, options, files)
 }
 
 /// [`load_geometry`] of a file whose format is known (`note`: what telling
-/// it said, if anything).
+/// it said, if anything), every file opened through `files`.
 pub(super) fn load_as(
     path: &Path,
     format: Format,
     note: Option<String>,
     options: &LoadOptions,
+    files: &file::Files,
 ) -> Result<(Arc<Geometry>, Vec<String>)> {
     let mut loaded = match format {
-        Format::Obj => obj::load(path, options)?,
-        Format::Stl => stl::load(path, options)?,
+        Format::Obj => obj::load_in(path, options, files)?,
+        Format::Stl => stl::load_in(path, options, files)?,
         #[cfg(feature = "gltf")]
-        Format::Gltf => gltf::load(path, options)?,
+        Format::Gltf => gltf::load_in(path, options, files)?,
         #[cfg(feature = "ply")]
-        Format::Ply => ply::load(path, options)?,
+        Format::Ply => ply::load_in(path, options, files)?,
         Format::Shape(shape) => {
             let mut g = shape.geometry();
             if options.crease != mesh::DEFAULT_CREASE {

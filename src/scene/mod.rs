@@ -64,6 +64,7 @@ pub mod anim;
 mod builder;
 mod camera;
 mod file;
+mod lines;
 mod finish;
 mod load;
 mod light;
@@ -97,6 +98,7 @@ pub use builder::SceneBuilder;
 pub(crate) use camera::Fit;
 pub use camera::{Camera, Projection, View};
 use def::*;
+pub use file::{FileId, Source};
 pub use finish::{Alpha, AlphaMode, Finish, Maps, Specular};
 pub use light::{Light, LightKind, MAX_LIGHTS};
 pub use load::load_geometry;
@@ -126,6 +128,11 @@ pub struct Scene {
     /// What loading found but did not draw (non-finite vertices, line
     /// elements…), one line each, for the user to be told.
     pub notes: Vec<String>,
+    /// The files the scene was read from: the scene or model file and
+    /// every file it names, each once (empty for a scene made in code).
+    /// Whatever rastty writes is refused where it would replace one of
+    /// them.
+    pub sources: Vec<Source>,
 }
 
 /// A triangle and its colouring.
@@ -347,6 +354,7 @@ impl Scene {
             meshes: vec![mesh],
             lights,
             notes: Vec::new(),
+            sources: Vec::new(),
         }
     }
 
@@ -394,8 +402,22 @@ impl Scene {
 
     /// [`Scene::of_model`], the file read with `options`.
     pub fn of_model_within(name: &Path, options: &LoadOptions) -> Result<Scene> {
+        let files = file::Files::new(options.max_bytes);
+        let scene = Scene::of_model_in(name, options, &files)?;
+        Ok(scene.read_from(&files))
+    }
+
+    /// `self` with the files it was read from and what reading them said.
+    fn read_from(mut self, files: &file::Files) -> Scene {
+        self.sources = files.sources();
+        self.notes.extend(files.take_notes());
+        self
+    }
+
+    /// [`Scene::of_model_within`], every file opened through `files`.
+    fn of_model_in(name: &Path, options: &LoadOptions, files: &file::Files) -> Result<Scene> {
         let (format, note) = Format::of(name)?;
-        let (geometry, notes) = load_as(name, format, note, options)?;
+        let (geometry, notes) = load_as(name, format, note, options, files)?;
         // STL is z-up by convention; OBJ and the shapes are y-up.
         let stl = format == Format::Stl;
         let up = options.up.unwrap_or(if stl {
@@ -435,10 +457,12 @@ impl Scene {
 
     /// [`Scene::open`], every file read with `options`.
     pub fn open_within(path: &Path, options: &LoadOptions) -> Result<Scene> {
+        let files = file::Files::new(options.max_bytes);
         let scene = match Scene::kind(path)? {
-            Kind::Model => Scene::of_model_within(path, options)?,
-            Kind::Scene => Scene::load_within(path, options)?,
-        };
+            Kind::Model => Scene::of_model_in(path, options, &files)?,
+            Kind::Scene => Scene::load_in(path, options, &files)?,
+        }
+        .read_from(&files);
         // Loaders refuse what they would expand past the budget; a model
         // read whole is held to it too.
         let n = scene.triangle_count() as u64;
@@ -464,16 +488,20 @@ impl Scene {
 
     /// [`Scene::load`], every file read with `options`.
     pub fn load_within(path: &Path, options: &LoadOptions) -> Result<Scene> {
-        use std::io::Read;
-        let (mut f, size) = file::open(path, options.max_bytes)?;
-        let mut bytes = Vec::with_capacity(size as usize);
-        f.read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+        let files = file::Files::new(options.max_bytes);
+        let scene = Scene::load_in(path, options, &files)?;
+        Ok(scene.read_from(&files))
+    }
+
+    /// [`Scene::load_within`], every file opened through `files`.
+    fn load_in(path: &Path, options: &LoadOptions, files: &file::Files) -> Result<Scene> {
+        let bytes = files.read(path)?;
         let name = path.display().to_string();
         let src = String::from_utf8(bytes).map_err(|e| {
             let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
             Error::parse_at(&name, &text, e.utf8_error().valid_up_to(), "not UTF-8 text")
         })?;
-        Scene::parse_with(&src, &name, path.parent(), options)
+        Scene::parse_in_files(&src, &name, path.parent(), options, files)
     }
 
     /// Parses a scene from TOML text; `name` is used in error messages.
@@ -501,9 +529,23 @@ impl Scene {
         dir: Option<&Path>,
         options: &LoadOptions,
     ) -> Result<Scene> {
+        let files = file::Files::new(options.max_bytes);
+        let scene = Scene::parse_in_files(src, name, dir, options, &files)?;
+        Ok(scene.read_from(&files))
+    }
+
+    /// [`Scene::parse_with`], every model file opened through `files`.
+    fn parse_in_files(
+        src: &str,
+        name: &str,
+        dir: Option<&Path>,
+        options: &LoadOptions,
+        files: &file::Files,
+    ) -> Result<Scene> {
         let mut scene = Scene::default();
         let mut camera_at: Option<usize> = None;
-        let mut loaded: FxHashMap<std::path::PathBuf, Arc<Geometry>> = FxHashMap::default();
+        // Each model file once, however many meshes name it, by any name.
+        let mut loaded: FxHashMap<file::FileId, Arc<Geometry>> = FxHashMap::default();
         // The budgets are the scene's: each model loaded spends texels
         // from what is left, each mesh placed spends its triangles.
         let mut options = *options;
@@ -599,14 +641,17 @@ impl Scene {
                                 ),
                             ));
                         }
-                        match loaded.get(&p) {
+                        let id = file::FileId::at(&p);
+                        match id.as_ref().and_then(|id| loaded.get(id)) {
                             Some(g) => Arc::clone(g),
                             None => {
-                                let (g, notes) = load_geometry(&p, &options)?;
+                                let (g, notes) = load_geometry_in(&p, &options, files)?;
                                 options.max_texels =
                                     options.max_texels.saturating_sub(texels_of(&g));
                                 scene.notes.extend(notes);
-                                loaded.insert(p, Arc::clone(&g));
+                                if let Some(id) = id {
+                                    loaded.insert(id, Arc::clone(&g));
+                                }
                                 g
                             }
                         }

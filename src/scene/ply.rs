@@ -31,7 +31,15 @@ use crate::error::{Error, Result};
 
 /// Loads a PLY file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let (file, _) = file::open(path, options.max_bytes)?;
+    let files = file::Files::new(options.max_bytes);
+    let mut loaded = load_in(path, options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
+}
+
+/// [`load`], the file opened through `files`.
+pub(crate) fn load_in(path: &Path, options: &LoadOptions, files: &file::Files) -> Result<Loaded> {
+    let file = files.open(path)?;
     read(
         BufReader::new(file),
         &path.display().to_string(),

@@ -24,7 +24,8 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::LoadOptions;
-use super::file::{self, Cursor, Lines};
+use super::file;
+use super::lines::{self, Cursor, Lines};
 use super::mesh::Geometry;
 use super::obj::Loaded;
 use super::topology::PositionSet;
@@ -32,7 +33,16 @@ use crate::error::{Error, Result};
 
 /// Loads an STL file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let (mut file, size) = file::open(path, options.max_bytes)?;
+    let files = file::Files::new(options.max_bytes);
+    let mut loaded = load_in(path, options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
+}
+
+/// [`load`], the file opened through `files`.
+pub(crate) fn load_in(path: &Path, options: &LoadOptions, files: &file::Files) -> Result<Loaded> {
+    let mut file = files.open(path)?;
+    let size = file.size();
     let name = path.display().to_string();
     let mut head = [0u8; 84];
     let n = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, e))?;
@@ -230,7 +240,7 @@ fn ascii(src: impl Read, name: &str) -> Result<Welder> {
         };
         let (written, mut buf) = (keyword, [0; 8]);
         let keyword = lower(keyword, &mut buf);
-        let at = |offset: usize, msg: String| error(name, n, file::column(line, offset), msg);
+        let at = |offset: usize, msg: String| error(name, n, lines::column(line, offset), msg);
         let numbers = |words: &mut Cursor, what: &str| -> Result<Vec3> {
             let mut v = [0.0f32; 3];
             for (k, slot) in v.iter_mut().enumerate() {

@@ -51,9 +51,10 @@ impl Report {
     /// (relative to the knob's worst) against time per frame on the
     /// workload where the knob's settings differ most in time (texture
     /// filtering costs nothing on a scene without textures).
-    pub fn svg(&self, path: &Path) -> Result<(), String> {
+    pub fn svg(&self) -> Result<String, String> {
         use plotters::prelude::*;
-        let root = SVGBackend::new(path, (960, 640)).into_drawing_area();
+        let mut out = String::new();
+        let root = SVGBackend::with_string(&mut out, (960, 640)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         // Per knob, the workload whose times spread the most (relatively).
         let mut on: std::collections::BTreeMap<&str, usize> = Default::default();
@@ -151,7 +152,10 @@ impl Report {
             .border_style(BLACK)
             .draw()
             .map_err(|e| e.to_string())?;
-        root.present().map_err(|e| e.to_string())
+        root.present().map_err(|e| e.to_string())?;
+        drop(chart);
+        drop(root);
+        Ok(out)
     }
 }
 

@@ -5,28 +5,46 @@
 //! buffer at least as long as it says.
 
 use super::*;
+use crate::scene::file::{FileId, Files};
+use ::gltf::buffer::Data;
+
+/// A buffer's bytes, shared by every buffer that names the same file.
+pub(super) type Buffer = Arc<[u8]>;
 
 /// The document's buffers, read as the model was read (data URIs decoded,
-/// files found beside the model with [`file::reference`]), each at least
-/// as long as it says; every buffer view is checked to lie inside its
-/// buffer.
+/// files found beside the model with [`file::reference`], each file read
+/// once however many buffers name it), each at least as long as it says;
+/// every buffer view is checked to lie inside its buffer.
 pub(super) fn buffers(
     document: &::gltf::Document,
     mut blob: Option<Vec<u8>>,
     base: Option<&Path>,
     owner: &str,
-    max_bytes: u64,
+    files: &Files,
     notes: &mut Vec<String>,
-) -> std::result::Result<Vec<Data>, String> {
-    let mut out = Vec::new();
+) -> std::result::Result<Vec<Buffer>, String> {
+    let mut out: Vec<Buffer> = Vec::new();
+    let mut read: FxHashMap<FileId, Buffer> = FxHashMap::default();
     for b in document.buffers() {
         let what = format!("buffer {}", b.index());
-        let mut data = match b.source() {
-            ::gltf::buffer::Source::Bin => blob
-                .take()
-                .ok_or_else(|| format!("{what}: the file has no binary chunk"))?,
+        let data: Buffer = match b.source() {
+            ::gltf::buffer::Source::Bin => padded(
+                blob.take()
+                    .ok_or_else(|| format!("{what}: the file has no binary chunk"))?,
+            ),
             ::gltf::buffer::Source::Uri(uri) => {
-                fetch(uri, base, owner, max_bytes, notes).map_err(|e| format!("{what}: {e}"))?
+                match locate(uri, base, owner, files, notes).map_err(|e| format!("{what}: {e}"))? {
+                    Located::Bytes(bytes) => padded(bytes),
+                    Located::File(opened, r) => match read.get(opened.id()) {
+                        Some(data) => Arc::clone(data),
+                        None => {
+                            let id = opened.id().clone();
+                            let data = padded(r.read(opened).map_err(|e| format!("{what}: {e}"))?);
+                            read.insert(id, Arc::clone(&data));
+                            data
+                        }
+                    },
+                }
             }
         };
         if data.len() < b.length() {
@@ -36,10 +54,7 @@ pub(super) fn buffers(
                 b.length()
             ));
         }
-        while data.len() % 4 != 0 {
-            data.push(0);
-        }
-        out.push(Data(data));
+        out.push(data);
     }
     for v in document.views() {
         let len = v.buffer().length();
@@ -59,20 +74,51 @@ pub(super) fn buffers(
     Ok(out)
 }
 
-/// The bytes a buffer's or an image's URI names: a `data:` URI decoded, or
-/// the file it names beside the model (percent-encoding decoded, `file:`
-/// taken as a path), opened and read as the model itself was. Nothing is
-/// fetched from the network.
-pub(super) fn fetch(
+/// `data` padded with zeros to a multiple of four bytes, as the gltf
+/// crate's readers expect.
+fn padded(mut data: Vec<u8>) -> Buffer {
+    data.resize(data.len().next_multiple_of(4), 0);
+    data.into()
+}
+
+/// Where the bytes a URI names are: in the URI (a `data:` URI, decoded),
+/// or in a file, opened and not yet read.
+pub(super) enum Located<'f> {
+    Bytes(Vec<u8>),
+    File(file::Opened<'f>, file::Reference),
+}
+
+impl file::Reference {
+    /// All of `opened` (this reference's file); an error says where the
+    /// file was looked for and why, where that is not where its name
+    /// points.
+    pub(super) fn read(
+        &self,
+        mut opened: file::Opened<'_>,
+    ) -> std::result::Result<Vec<u8>, String> {
+        use std::io::Read;
+        let mut bytes = Vec::with_capacity(usize::try_from(opened.size()).unwrap_or(0));
+        opened
+            .read_to_end(&mut bytes)
+            .map_err(|e| file::explain(self.why.as_deref(), Error::io(&self.path, e)))?;
+        Ok(bytes)
+    }
+}
+
+/// Where the bytes a buffer's or an image's URI names are: a `data:` URI
+/// decoded, or the file it names beside the model (percent-encoding
+/// decoded, `file:` taken as a path), opened as the model itself was.
+/// Nothing is fetched from the network.
+pub(super) fn locate<'f>(
     uri: &str,
     base: Option<&Path>,
     owner: &str,
-    max_bytes: u64,
+    files: &'f Files,
     notes: &mut Vec<String>,
-) -> std::result::Result<Vec<u8>, String> {
+) -> std::result::Result<Located<'f>, String> {
     if uri.starts_with("data:") {
         return Data::from_source(::gltf::buffer::Source::Uri(uri), None)
-            .map(|d| d.0)
+            .map(|d| Located::Bytes(d.0))
             .map_err(|e| describe(&e));
     }
     let shown = crate::text::name(uri, 80);
@@ -105,9 +151,11 @@ pub(super) fn fetch(
         ));
     };
     let r = file::reference(base, owner, &path);
-    let read = file::read(&r.path, max_bytes).map_err(|e| file::explain(r.why.as_deref(), e));
-    notes.extend(r.note);
-    read
+    let opened = files
+        .open(&r.path)
+        .map_err(|e| file::explain(r.why.as_deref(), e))?;
+    notes.extend(r.note.clone());
+    Ok(Located::File(opened, r))
 }
 
 /// A URI's scheme (`http` of `http://…`), if it has one; a drive letter
@@ -124,7 +172,7 @@ pub(super) fn scheme(uri: &str) -> Option<&str> {
 /// it names lies inside its buffer view and buffer.
 pub(super) fn check(
     acc: &Accessor,
-    buffers: &[Data],
+    buffers: &[Buffer],
     types: &[DataType],
     dims: &[Dimensions],
     what: &str,

@@ -10,11 +10,13 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use ::gltf::buffer::Data;
+use super::buffers::Buffer;
 use ::gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use glam::{Mat4, Vec2, Vec3};
 
-use super::{Parts, fetch};
+use super::Parts;
+use super::buffers::{Located, locate};
+use crate::scene::file::Files;
 
 use crate::color::Lin;
 use crate::scene::light::{Light, LightKind};
@@ -169,7 +171,7 @@ impl Parts<'_> {
         &mut self,
         material: &::gltf::Material<'_>,
         finish: &mut crate::scene::Finish,
-        buffers: &[Data],
+        buffers: &[Buffer],
         ignored: &mut BTreeMap<&'static str, usize>,
     ) -> std::result::Result<(Option<u32>, Option<glam::Affine2>), String> {
         // KHR_texture_transform: the coordinates moved once, here
@@ -258,7 +260,7 @@ impl Parts<'_> {
     fn texture(
         &mut self,
         t: &::gltf::Texture,
-        buffers: &[Data],
+        buffers: &[Buffer],
         how: Decode,
     ) -> std::result::Result<Option<u32>, String> {
         if let Some(&id) = self.images.decoded.get(&(t.index(), how)) {
@@ -278,6 +280,8 @@ impl Parts<'_> {
         };
         let bad = |e: String| format!("texture {}: {what}: {e}", t.index());
         let owned;
+        let mut file_key = None;
+        let unset = Files::default();
         let bytes: &[u8] = match (&json.uri, json.buffer_view) {
             (None, Some(view)) => {
                 let view = self
@@ -303,14 +307,30 @@ impl Parts<'_> {
                 &buffer[range]
             }
             (Some(uri), None) => {
-                owned = fetch(
+                let located = locate(
                     uri,
                     self.images.base,
                     self.images.owner,
-                    self.images.max_bytes,
+                    self.images.files.unwrap_or(&unset),
                     &mut self.images.notes,
                 )
                 .map_err(bad)?;
+                owned = match located {
+                    Located::Bytes(bytes) => bytes,
+                    Located::File(opened, r) => {
+                        // A file that another texture decoded the same way
+                        // with the same sampler is not read again.
+                        file_key = Some((opened.id().clone(), how, t.sampler().index()));
+                        if let Some(&id) = file_key
+                            .as_ref()
+                            .and_then(|k| self.images.files_decoded.get(k))
+                        {
+                            self.images.decoded.insert((t.index(), how), id);
+                            return Ok(id);
+                        }
+                        r.read(opened).map_err(bad)?
+                    }
+                };
                 &owned
             }
             (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
@@ -335,6 +355,9 @@ impl Parts<'_> {
             self.textures.len() as u32 - 1
         });
         self.images.decoded.insert((t.index(), how), id);
+        if let Some(key) = file_key {
+            self.images.files_decoded.insert(key, id);
+        }
         Ok(id)
     }
 }

@@ -50,14 +50,14 @@ use std::path::Path;
 use std::sync::Arc;
 
 use ::gltf::accessor::{DataType, Dimensions};
-use ::gltf::buffer::Data;
 use ::gltf::mesh::Mode;
 use ::gltf::{Accessor, Gltf, Semantic};
+use buffers::Buffer;
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use rustc_hash::FxHashMap;
 
 use super::LoadOptions;
-use super::file;
+use super::file::{self, FileId, Files};
 use super::light::Light;
 use super::mesh::{Geometry, MaterialRun};
 use super::obj::Loaded;
@@ -65,7 +65,7 @@ use crate::color::Lin;
 use crate::error::{Error, Result};
 use crate::scene::anim::Posed;
 use crate::texture::Texture;
-use buffers::{buffers, check, fetch};
+use buffers::{buffers, check};
 use material::{Decode, finish, light_of};
 use rig::{Placement, RigParts};
 
@@ -75,8 +75,22 @@ const MAX_DEPTH: usize = 256;
 
 /// Loads a `.gltf` (with the files it names, beside it) or `.glb` file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let bytes = file::read(path, options.max_bytes)?;
-    parse(&bytes, path.parent(), &path.display().to_string(), options)
+    let files = Files::new(options.max_bytes);
+    let mut loaded = load_in(path, options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
+}
+
+/// [`load`], every file opened through `files`.
+pub(crate) fn load_in(path: &Path, options: &LoadOptions, files: &Files) -> Result<Loaded> {
+    let bytes = files.read(path)?;
+    parse_in(
+        &bytes,
+        path.parent(),
+        &path.display().to_string(),
+        options,
+        files,
+    )
 }
 
 /// Parses glTF or GLB bytes; files it names are looked for in `base`;
@@ -86,6 +100,20 @@ pub fn parse(
     base: Option<&Path>,
     name: &str,
     options: &LoadOptions,
+) -> Result<Loaded> {
+    let files = Files::new(options.max_bytes);
+    let mut loaded = parse_in(bytes, base, name, options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
+}
+
+/// [`parse`], every file it names opened through `files`.
+fn parse_in(
+    bytes: &[u8],
+    base: Option<&Path>,
+    name: &str,
+    options: &LoadOptions,
+    files: &Files,
 ) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
     if !bytes.starts_with(b"glTF") && !bytes.trim_ascii_start().starts_with(b"{") {
@@ -135,8 +163,7 @@ pub fn parse(
     }
     let document = ::gltf::Document::from_json(root).map_err(|e| bad(describe(&e)))?;
     let mut notes = Vec::new();
-    let buffers =
-        buffers(&document, blob, base, name, options.max_bytes, &mut notes).map_err(bad)?;
+    let buffers = buffers(&document, blob, base, name, files, &mut notes).map_err(bad)?;
 
     let scene = document
         .default_scene()
@@ -157,11 +184,12 @@ pub fn parse(
         images: Images {
             base,
             owner: name,
-            max_bytes: options.max_bytes,
+            files: Some(files),
             texels_left: options.max_texels,
             root: Some(document.as_json()),
             notes: Vec::new(),
             decoded: FxHashMap::default(),
+            files_decoded: FxHashMap::default(),
         },
         ..Parts::default()
     };
@@ -361,7 +389,9 @@ struct Images<'a> {
     base: Option<&'a Path>,
     /// The model's name, for messages.
     owner: &'a str,
-    max_bytes: u64,
+    /// Where every file is opened (always set: an option only for
+    /// `Default`).
+    files: Option<&'a Files>,
     /// What is left of the texel budget.
     texels_left: u64,
     /// The document, for what the crate's `Image::source` would panic on.
@@ -371,6 +401,9 @@ struct Images<'a> {
     /// The texture made of each glTF texture's colour (and alpha: `true`),
     /// as an index into `textures` (`None`: an image without alpha).
     decoded: FxHashMap<(usize, Decode), Option<u32>>,
+    /// The same, for each image file decoded, each way and with each
+    /// sampler (by its index in the document).
+    files_decoded: FxHashMap<(FileId, Decode, Option<usize>), Option<u32>>,
 }
 
 /// The primitives gathered so far, in world space.
@@ -405,7 +438,7 @@ impl Parts<'_> {
         &mut self,
         prim: &::gltf::Primitive,
         world: Mat4,
-        buffers: &[Data],
+        buffers: &[Buffer],
         ignored: &mut BTreeMap<&'static str, usize>,
         placed: Option<(&mut RigParts, Placement)>,
         document: &::gltf::Document,
@@ -490,7 +523,7 @@ impl Parts<'_> {
                 "the indices",
             )?;
         }
-        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
         let first = self.positions.len() as u32;
         let n = positions.count();
         let start = self.positions.len();

@@ -9,10 +9,10 @@
 //! counted against the loading budget of bytes, since a node tree can
 //! place one mesh many times.
 
+use super::buffers::Buffer;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::animation::util::ReadOutputs;
 use ::gltf::animation::{Interpolation as GltfInterpolation, Property as GltfProperty};
-use ::gltf::buffer::Data;
 use glam::{Mat4, Quat, Vec3};
 use rustc_hash::FxHashMap;
 
@@ -107,13 +107,13 @@ impl RigParts {
         &mut self,
         prim: &::gltf::Primitive,
         place: Placement,
-        buffers: &[Data],
+        buffers: &[Buffer],
         (first, positions, normals): (u32, Vec<Vec3>, Vec<Vec3>),
         document: &::gltf::Document,
     ) -> Result<(), String> {
         let n = positions.len();
         self.keep(24 * n as u64)?;
-        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
         let binding = match place.skin {
             Some(s) => {
                 let joints = document
@@ -271,7 +271,7 @@ impl RigParts {
     pub(super) fn finish(
         mut self,
         document: &::gltf::Document,
-        buffers: &[Data],
+        buffers: &[Buffer],
         notes: &mut Vec<String>,
     ) -> Result<Rig, String> {
         for skin in document.skins() {
@@ -298,7 +298,7 @@ impl RigParts {
                             joints.len()
                         ));
                     }
-                    let reader = skin.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+                    let reader = skin.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                     let ms: Vec<Mat4> = reader
                         .read_inverse_bind_matrices()
                         .ok_or(format!("{what} could not be read"))?
@@ -400,7 +400,7 @@ impl RigParts {
                     ),
                 };
                 check(&output, buffers, types, dims, &format!("{at}'s output"))?;
-                let reader = ch.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+                let reader = ch.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                 let times: Vec<f64> = reader
                     .read_inputs()
                     .ok_or(format!("{at}'s input could not be read"))?

@@ -31,14 +31,14 @@
 //! What parsing costs a byte is in docs/figures.md ("Memory, loading and
 //! start-up"); the property test holds both ways to the general reader.
 //!
-//! The bytes after the buffer's unread ones are NUL (`file::SLACK`, 16, of
+//! The bytes after the buffer's unread ones are NUL (`lines::SLACK`, 16, of
 //! them), and no item takes a NUL, so every 8-byte look ahead stays
 //! inside the window and a line that is cut off is never taken.
 
 use glam::{Vec2, Vec3};
 
 use super::{MAX_VERTICES, NONE, Reader, vertex_color};
-use crate::scene::file::{POW10_INT, digit_bytes, digits_value, exact_decimal, short_digits};
+use crate::scene::lines::{POW10_INT, digit_bytes, digits_value, exact_decimal, short_digits};
 
 /// A position in the buffer's window.
 struct Scan<'w> {
@@ -543,7 +543,8 @@ mod tests {
     use proptest::prelude::*;
 
     use super::super::{LoadOptions, Reader, read_with};
-    use crate::scene::file::Cursor;
+    use crate::scene::file::Files;
+    use crate::scene::lines::Cursor;
 
     /// A reader that hands out `step` bytes at a time, so that lines are
     /// cut at every place by the line buffer's ends.
@@ -562,7 +563,15 @@ mod tests {
     /// it reads back to the same bits), read with or without the fast path.
     fn read(src: &[u8], step: usize, fast: bool) -> String {
         let options = LoadOptions::default();
-        match read_with(Trickle(src, step), "t.obj", Path::new("."), &options, fast) {
+        let files = Files::new(options.max_bytes);
+        match read_with(
+            Trickle(src, step),
+            "t.obj",
+            Path::new("."),
+            &options,
+            &files,
+            fast,
+        ) {
             Ok(loaded) => format!("{loaded:?}"),
             Err(e) => format!("error: {e}"),
         }
@@ -573,7 +582,8 @@ mod tests {
     /// and the NUL slack.
     fn fast_lines(src: &[u8], after: &[u8]) -> usize {
         let options = LoadOptions::default();
-        let mut r = Reader::new("t.obj", Path::new("."), &options);
+        let files = Files::new(options.max_bytes);
+        let mut r = Reader::new("t.obj", Path::new("."), &options, &files);
         for line in ["v 0 0 0", "v 1 0 0", "v 0 1 0", "vt 0 0", "vn 0 0 1"] {
             r.statement(Cursor::new(line.as_bytes()), 1).unwrap();
         }
@@ -581,7 +591,7 @@ mod tests {
         for line in src.split_inclusive(|&b| b == b'\n') {
             let mut window = line.to_vec();
             window.extend(after);
-            window.extend([0; crate::scene::file::SLACK]);
+            window.extend([0; crate::scene::lines::SLACK]);
             n += r.fast_line(&window, 2).is_some() as usize;
         }
         n
@@ -755,7 +765,8 @@ mod tests {
         let later = b"f 1 2 3\n".repeat(16);
         let read = |fast: bool| {
             let options = LoadOptions::default();
-            let mut r = Reader::new("t.obj", Path::new("."), &options);
+            let files = Files::new(options.max_bytes);
+            let mut r = Reader::new("t.obj", Path::new("."), &options, &files);
             for line in [
                 "v 0 0 0", "v 1 0 0", "v 1 1 0", "v 0 1 0", "vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1",
                 "vn 0 0 1",
@@ -767,7 +778,7 @@ mod tests {
                 if fast {
                     let mut window = format!("{face}\n").into_bytes();
                     window.extend(&later);
-                    window.extend([0; crate::scene::file::SLACK]);
+                    window.extend([0; crate::scene::lines::SLACK]);
                     assert!(r.fast_line(&window, 2).is_some(), "{face}");
                 } else {
                     r.statement(Cursor::new(face.as_bytes()), 2).unwrap();

@@ -38,14 +38,14 @@ mod mtl;
 
 use std::path::Path;
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::LoadOptions;
-use super::file::{self, Cursor, Lines};
+use super::file::{self, FileId, Files};
+use super::lines::{self, Cursor, Lines};
 use super::mesh::{Geometry, MaterialRun};
 use super::polygon::{self, Point, Triangulator};
 use crate::color::{ColorSpace, Lin};
@@ -70,19 +70,32 @@ pub struct Loaded {
 
 /// Loads an OBJ file (and its MTL files, found beside it).
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let (file, _) = file::open(path, options.max_bytes)?;
+    let files = Files::new(options.max_bytes);
+    let mut loaded = load_in(path, options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
+}
+
+/// [`load`], every file opened through `files`.
+pub(crate) fn load_in(path: &Path, options: &LoadOptions, files: &Files) -> Result<Loaded> {
+    let file = files.open(path)?;
     read(
         file,
         &path.display().to_string(),
         path.parent().unwrap_or(Path::new(".")),
         options,
+        files,
     )
 }
 
 /// Parses OBJ bytes; `name` is used in messages, material libraries are
 /// looked for in `dir`.
 pub fn parse(src: &[u8], name: &str, dir: &Path) -> Result<Loaded> {
-    read(src, name, dir, &LoadOptions::default())
+    let options = LoadOptions::default();
+    let files = Files::new(options.max_bytes);
+    let mut loaded = read(src, name, dir, &options, &files)?;
+    loaded.notes.extend(files.take_notes());
+    Ok(loaded)
 }
 
 /// No index (a corner without a normal).
@@ -108,6 +121,11 @@ struct Reader<'a> {
     name: &'a str,
     dir: &'a Path,
     options: &'a LoadOptions,
+    /// Where every file is opened.
+    files: &'a Files,
+    /// The material libraries read so far (one named again is not read
+    /// again).
+    libraries: FxHashSet<FileId>,
     /// The file's `v`, `vn`, `vt` (`v` flipped to run down the image) and
     /// vertex colours.
     pos: Vec<Vec3>,
@@ -134,7 +152,7 @@ struct Reader<'a> {
     library: FxHashMap<Vec<u8>, Material>,
     /// The images decoded so far, and which file each came from.
     textures: Vec<Arc<Texture>>,
-    texture_ids: FxHashMap<PathBuf, u32>,
+    texture_ids: FxHashMap<FileId, u32>,
     /// What is left of the texel budget.
     #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     texels_left: u64,
@@ -161,8 +179,14 @@ struct Reader<'a> {
     cut: Vec<[Point; 3]>,
 }
 
-fn read(src: impl std::io::Read, name: &str, dir: &Path, options: &LoadOptions) -> Result<Loaded> {
-    read_with(src, name, dir, options, true)
+fn read(
+    src: impl std::io::Read,
+    name: &str,
+    dir: &Path,
+    options: &LoadOptions,
+    files: &Files,
+) -> Result<Loaded> {
+    read_with(src, name, dir, options, files, true)
 }
 
 /// [`read`], with the fast path (`fast.rs`) or without it.
@@ -171,9 +195,10 @@ fn read_with(
     name: &str,
     dir: &Path,
     options: &LoadOptions,
+    files: &Files,
     fast: bool,
 ) -> Result<Loaded> {
-    let mut r = Reader::new(name, dir, options);
+    let mut r = Reader::new(name, dir, options, files);
     let mut lines = Lines::new(src);
     loop {
         // The first line goes to the general reader (a byte order mark);
@@ -199,11 +224,13 @@ fn read_with(
 }
 
 impl<'a> Reader<'a> {
-    fn new(name: &'a str, dir: &'a Path, options: &'a LoadOptions) -> Reader<'a> {
+    fn new(name: &'a str, dir: &'a Path, options: &'a LoadOptions, files: &'a Files) -> Reader<'a> {
         Reader {
             name,
             dir,
             options,
+            files,
+            libraries: FxHashSet::default(),
             pos: Vec::new(),
             bad_pos: Vec::new(),
             any_bad: false,
@@ -238,7 +265,7 @@ impl<'a> Reader<'a> {
 
     /// An error at byte `offset` of line `n`'s text `line`.
     fn at_byte(&self, line: &[u8], n: usize, offset: usize, message: impl Into<String>) -> Error {
-        self.at(n, file::column(line, offset), message)
+        self.at(n, lines::column(line, offset), message)
     }
 
     fn at(&self, line: usize, column: usize, message: impl Into<String>) -> Error {
@@ -459,28 +486,29 @@ impl<'a> Reader<'a> {
     /// `usemtl` selects it; an image that cannot be read is an error at
     /// the MTL line that names it.
     fn texture(&mut self, map: Map) -> Result<Option<u32>> {
-        if let Some(&id) = self.texture_ids.get(&map.path) {
-            return Ok(Some(id));
-        }
         #[cfg(feature = "textures")]
         {
-            let texture = super::image::load(
-                &map.path,
-                map.sampler,
-                self.options.max_bytes,
-                self.texels_left,
-            )
-            .map_err(|message| Error::Parse {
+            let at_map = |message: String| Error::Parse {
                 path: map.mtl.clone(),
                 line: map.line,
                 column: map.column,
                 message: file::explain(map.why.as_deref(), message),
-            })?;
+            };
+            let opened = self
+                .files
+                .open(&map.path)
+                .map_err(|e| at_map(e.to_string()))?;
+            if let Some(&id) = self.texture_ids.get(opened.id()) {
+                return Ok(Some(id));
+            }
+            let key = opened.id().clone();
+            let texture = super::image::load(opened, &map.path, map.sampler, self.texels_left)
+                .map_err(at_map)?;
             let (w, h) = texture.original_size();
             self.texels_left -= u64::from(w) * u64::from(h);
             let id = self.textures.len() as u32;
             self.textures.push(Arc::new(texture));
-            self.texture_ids.insert(map.path, id);
+            self.texture_ids.insert(key, id);
             Ok(Some(id))
         }
         #[cfg(not(feature = "textures"))]
@@ -526,8 +554,13 @@ impl<'a> Reader<'a> {
                     .push(format!("{at}{what} not found: drawn in the default colour"));
                 continue;
             }
+            // A library named again (on this line or another) is read once.
+            let opened = self.files.open(&r.path)?;
+            if !self.libraries.insert(opened.id().clone()) {
+                continue;
+            }
             self.reference_notes.extend(r.note);
-            let (mtl, notes) = mtl(&r.path, self.options)?;
+            let (mtl, notes) = mtl(opened, &r.path, self.options)?;
             self.library.extend(mtl);
             self.reference_notes.extend(notes);
         }

@@ -6,6 +6,7 @@
 //! silently lost.
 
 use super::*;
+use std::path::PathBuf;
 
 /// A material of an MTL file.
 #[derive(Clone, Debug, Default)]
@@ -77,10 +78,10 @@ pub(super) struct Map {
 /// notes on the files it names.
 #[allow(clippy::type_complexity)]
 pub(super) fn mtl(
+    file: file::Opened<'_>,
     path: &Path,
     options: &LoadOptions,
 ) -> Result<(FxHashMap<Vec<u8>, Material>, Vec<String>)> {
-    let (file, _) = file::open(path, options.max_bytes)?;
     let name = path.display().to_string();
     let at = |line: usize, column: usize, message: String| Error::Parse {
         path: name.clone(),
@@ -89,7 +90,7 @@ pub(super) fn mtl(
         message,
     };
     let at_byte = |text: &[u8], line: usize, offset: usize, message: String| {
-        at(line, file::column(text, offset), message)
+        at(line, lines::column(text, offset), message)
     };
     let mut out = FxHashMap::default();
     let mut notes = Vec::new();
@@ -187,7 +188,7 @@ pub(super) fn mtl(
                         "`map_Kd` before any `newmtl`".into(),
                     ));
                 };
-                let column = file::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
+                let column = lines::column(line, file.as_ptr() as usize - line.as_ptr() as usize);
                 let r =
                     file::reference(path.parent().unwrap_or(Path::new(".")), &name, &lossy(file));
                 let map = Map {
