@@ -134,5 +134,5 @@ pub use options::{
     Pipeline, RenderOptions, Threads, Wire,
 };
 pub use plan::{Bands, Decision, Extras, Plan};
-pub use render::{FrameStats, FrameTimes, Renderer, render};
+pub use render::{FrameStats, FrameTimes, Renderer, render, try_render};
 pub use shade::{Lights, Shading, specular_reference};

@@ -74,6 +74,14 @@ pub struct RenderOptions {
     pub rim: Option<Rgb>,
     /// Faces, their edges as lines, or both (`--wire`, `w` in `spin`).
     pub wire: Wire,
+    /// The most sample tests a frame may make ([`RenderOptions::sample_tests`];
+    /// [`DEFAULT_MAX_SAMPLES`]): the frame's memory and time grow with it.
+    pub max_samples: u64,
+    /// The most triangles (and vertices) a scene drawn may have, each mesh
+    /// counted by the larger of its faces and its vertices
+    /// ([`crate::scene::DEFAULT_MAX_TRIANGLES`]): the renderer's vertex
+    /// buffers grow with it.
+    pub max_triangles: u64,
 }
 
 /// How many threads draw a frame. Each draws one band of the sample rows;
@@ -261,6 +269,8 @@ impl Default for RenderOptions {
             threads: Threads::Auto,
             rim: None,
             wire: Wire::Solid,
+            max_samples: DEFAULT_MAX_SAMPLES,
+            max_triangles: crate::scene::DEFAULT_MAX_TRIANGLES,
         }
     }
 }
@@ -296,6 +306,31 @@ impl RenderOptions {
             self.aa.passes(),
             self.aa.name()
         )))
+    }
+
+    /// Refuses options no frame can be drawn with: a side of more than
+    /// [`MAX_CELLS`] cells, more sample tests than
+    /// [`RenderOptions::max_samples`], a cell aspect that is not a finite
+    /// number above 0, or a turn that is not finite. The renderer's `try_`
+    /// forms return this error; the others panic with it.
+    pub fn check(&self) -> crate::error::Result<()> {
+        let bad = |m: String| Err(crate::error::Error::Invalid(m));
+        if self.cols > MAX_CELLS || self.rows > MAX_CELLS {
+            return bad(format!(
+                "a frame of {}×{} cells: each side may be at most {MAX_CELLS} cells",
+                self.cols, self.rows
+            ));
+        }
+        if !(self.cell_aspect.is_finite() && self.cell_aspect > 0.0) {
+            return bad(format!(
+                "a cell aspect of {}: it must be a finite number above 0",
+                self.cell_aspect
+            ));
+        }
+        if !self.turn.is_finite() {
+            return bad(format!("a turn of {}: it must be finite", self.turn));
+        }
+        self.check_samples(self.max_samples)
     }
 
     /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:

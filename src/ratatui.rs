@@ -23,6 +23,12 @@
 //! it (the viewer example does); a [`SceneState`]'s renderer poses it only
 //! when the time changes.
 //!
+//! An area or a scene over the options' budgets (wider or taller than
+//! [`MAX_CELLS`](crate::MAX_CELLS), more sample tests than
+//! [`RenderOptions::max_samples`], more triangles than
+//! [`RenderOptions::max_triangles`]) is not drawn: the buffer is left as
+//! it was, and [`SceneState::error`] says why.
+//!
 //! The stateless [`SceneWidget`] renders with a fresh renderer each time;
 //! [`SceneState`] keeps a renderer, a frame and a colour cache between
 //! frames (`render_stateful_widget`), so that a steady view allocates
@@ -90,6 +96,8 @@ pub struct SceneState {
     /// The palette of the last frame and its quantizer (whose cache of
     /// matched colours is kept while the palette stays the same).
     quantizer: Option<(Palette, Quantizer)>,
+    /// Why the last frame was not drawn, if it was not.
+    error: Option<crate::error::Error>,
 }
 
 impl SceneState {
@@ -106,6 +114,12 @@ impl SceneState {
     /// The last frame drawn, as `rastty render` would print it.
     pub fn frame(&self) -> &Frame {
         &self.frame
+    }
+
+    /// Why the last render drew nothing: the area or the scene over the
+    /// options' budgets ([`crate::Renderer::try_render`]'s error).
+    pub fn error(&self) -> Option<&crate::error::Error> {
+        self.error.as_ref()
     }
 }
 
@@ -131,9 +145,13 @@ impl StatefulWidget for SceneWidget<'_> {
             color: self.palette.depth,
             ..*self.options
         };
-        state
+        state.error = state
             .renderer
-            .render_into(self.scene, &options, &mut state.frame);
+            .try_render_into(self.scene, &options, &mut state.frame)
+            .err();
+        if state.error.is_some() {
+            return;
+        }
         let (_, q) = match &mut state.quantizer {
             Some(kept) if kept.0 == self.palette => kept,
             slot => slot.insert((self.palette, Quantizer::of(self.palette))),

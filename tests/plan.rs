@@ -621,17 +621,27 @@ fn threads_are_planned_from_the_frame_and_the_options() {
         assert_eq!(b.count, 1, "{opts:?}");
         assert!(!b.why.is_empty());
     }
-    // An empty frame, and one whose grid is cut to the largest side (not
-    // to whole cells), are drawn by one thread.
-    for (cols, rows, glyphs) in [(0, 5, GlyphMode::Half), (1, 30_000, GlyphMode::Sextant)] {
-        let opts = RenderOptions {
-            cols,
-            rows,
-            glyphs,
-            ..exactly(3)
-        };
-        assert_eq!(bands(opts).count, 1, "{cols}×{rows}");
-    }
+    // An empty frame is drawn by one thread; one taller than MAX_CELLS
+    // is refused, not cut.
+    let empty = RenderOptions {
+        cols: 0,
+        rows: 5,
+        ..exactly(3)
+    };
+    assert_eq!(bands(empty).count, 1);
+    let tall = RenderOptions {
+        cols: 1,
+        rows: 30_000,
+        glyphs: GlyphMode::Sextant,
+        ..exactly(3)
+    };
+    assert_eq!(
+        Renderer::new()
+            .try_render(&scene, &tall)
+            .unwrap_err()
+            .to_string(),
+        "a frame of 1×30000 cells: each side may be at most 4096 cells"
+    );
     assert_eq!("auto".parse::<Threads>(), Ok(Threads::Auto));
     assert_eq!("7".parse::<Threads>(), Ok(Threads::Exactly(7)));
     for bad in ["0", "65", "-1", "two", ""] {

@@ -53,24 +53,19 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
-    // A preview of a given width gets an error that fits it.
-    let fit = match &cli.command {
-        Some(Command::Render(args)) if args.preview => args
-            .view
-            .cols
-            .map(|w| (usize::from(w), args.input.scene.clone())),
-        _ => None,
-    };
+    // A preview of a given width gets notes and errors that fit it.
+    if let Some(Command::Render(args)) = &cli.command
+        && args.preview
+        && let Some(w) = args.view.cols
+    {
+        let _ = FIT.set((usize::from(w), args.input.scene.clone()));
+    }
     let code = match try_main(cli) {
         Ok(code) => code,
         // A closed pipe (`rastty render | head`) is not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            let line = format!("error: {}", rastty::text::line(&e.to_string()));
-            say_lines(&match fit {
-                Some((width, path)) => fitted(line, width, path.as_deref()),
-                None => line,
-            });
+            say("error", &e.to_string());
             ExitCode::FAILURE
         }
     };
@@ -81,12 +76,17 @@ fn main() -> ExitCode {
     code
 }
 
+/// For `render --preview --cols N`: the width every line on stderr is cut
+/// to, and the model's path (shortened to its file name where a line is
+/// wider).
+static FIT: std::sync::OnceLock<(usize, Option<std::path::PathBuf>)> = std::sync::OnceLock::new();
+
 /// `line` in `width` characters: the model's path shortened to its file
 /// name where the line is wider, then the end cut off with `…` (the start
 /// says which file and what is wrong).
-fn fitted(line: String, width: usize, path: Option<&Path>) -> String {
-    let width = width.max(10);
-    let mut line = line;
+fn fitted(line: &str, width: usize, path: Option<&Path>) -> String {
+    let width = width.max(1);
+    let mut line = line.to_string();
     if line.chars().count() > width
         && let Some(path) = path
         && let Some(name) = path.file_name()
@@ -120,7 +120,12 @@ fn say_lines(text: &str) {
     let mut err = io::stderr().lock();
     let mut ok = terminal::is_open(2);
     for l in text.lines() {
-        ok &= writeln!(err, "{}", rastty::text::escape(l)).is_ok();
+        let l = rastty::text::escape(l);
+        let l = match FIT.get() {
+            Some((width, path)) => fitted(&l, *width, path.as_deref()).into(),
+            None => l,
+        };
+        ok &= writeln!(err, "{l}").is_ok();
     }
     ok &= err.flush().is_ok();
     if !ok {
@@ -335,7 +340,7 @@ fn clip(scene: &Scene, named: Option<&str>) -> rastty::Result<Option<usize>> {
 
 fn render(args: &RenderArgs) -> rastty::Result<()> {
     let format = args.output.as_deref().map(Format::of).transpose()?;
-    let mut opts = options(&args.view, &args.knobs, 1);
+    let mut opts = options(&args.view, &args.knobs, &args.budgets, 1);
     if let Some(format) = format {
         // A file is not the terminal: sizes and colours are its own.
         opts.color = args.view.color.depth().unwrap_or(if format.has_color() {
@@ -353,7 +358,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
     // Everything that can be refused is refused before the work: the
     // frame's size, the files to write, then the scene, and a file to
     // write that the scene is read from.
-    opts.check_samples(max_samples(&args.budgets))?;
+    opts.check()?;
     let mut output = args.output.as_deref().map(OutFile::create).transpose()?;
     let mut record = args.record.as_deref().map(OutFile::create).transpose()?;
     let scene = scene(&args.input, &args.budgets)?;
@@ -375,7 +380,7 @@ fn render(args: &RenderArgs) -> rastty::Result<()> {
         s
     };
     let mut renderer = Renderer::new();
-    let frame = renderer.render(&scene, &opts);
+    let frame = renderer.try_render(&scene, &opts)?;
     let palette = rastty::color::Palette {
         depth: opts.color,
         dither: args.view.dither,
@@ -484,14 +489,9 @@ fn with_view(mut scene: Scene, view: &ViewArgs) -> rastty::Result<(Scene, View)>
     Ok((scene, v))
 }
 
-/// The frame budget `--max-samples` sets.
-fn max_samples(budgets: &cli::BudgetArgs) -> u64 {
-    budgets.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES)
-}
-
 fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
-    let opts = options(&args.view, &args.knobs, 0);
-    opts.check_samples(max_samples(&args.budgets))?;
+    let opts = options(&args.view, &args.knobs, &args.budgets, 0);
+    opts.check()?;
     let record = args.record.as_deref().map(OutFile::create).transpose()?;
     let scene = scene(&args.input, &args.budgets)?;
     check_outputs(&scene, &[record.as_ref()])?;
@@ -656,7 +656,12 @@ fn color_choice(view: &ViewArgs) -> (ColorDepth, String) {
 
 /// Resolves sizes, glyphs and colour against the terminal; `spare_rows`
 /// are left free below the frame (for the shell prompt after `render`).
-fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOptions {
+fn options(
+    view: &ViewArgs,
+    knobs: &cli::KnobArgs,
+    budgets: &cli::BudgetArgs,
+    spare_rows: u16,
+) -> RenderOptions {
     let tty = terminal::stdout_is_terminal();
     let term = terminal::stdout_size();
     let cells = term.map(|t| t.cells());
@@ -706,5 +711,9 @@ fn options(view: &ViewArgs, knobs: &cli::KnobArgs, spare_rows: u16) -> RenderOpt
         filter: view.filter,
         threads: knobs.threads,
         rim: view.rim,
+        max_samples: budgets.max_samples.unwrap_or(rastty::DEFAULT_MAX_SAMPLES),
+        max_triangles: budgets
+            .max_triangles
+            .unwrap_or(rastty::scene::DEFAULT_MAX_TRIANGLES),
     }
 }

@@ -451,15 +451,21 @@ impl Player {
         // the rows above it, never under it.
         let hud_row = self.hud && self.opts.rows > 1;
         // Framed to fit however it turns about the spin's axis.
-        let opts = RenderOptions {
+        let opts = within_budget(RenderOptions {
             turn,
             turn_axis: self.spin.axis,
             rows: self.opts.rows - u16::from(hud_row),
             ..self.opts
-        };
-        self.renderer.render(&self.scene, &opts);
-        if hud_row {
-            // A blank row below, for the status line.
+        });
+        if let Err(e) = self.renderer.try_render(&self.scene, &opts) {
+            // Not within the budgets even at one cell (a scene of too many
+            // triangles): an empty frame, and why.
+            self.renderer.frame_mut().resize(0, 0);
+            self.notice = Some(e.to_string());
+        }
+        if (opts.cols, opts.rows) != (self.opts.cols, self.opts.rows) {
+            // Blank cells around a frame cut to its budget, and a row
+            // below for the status line.
             self.renderer
                 .frame_mut()
                 .resize(self.opts.cols, self.opts.rows);
@@ -598,6 +604,29 @@ pub fn play(
         player.advance(1);
     }
     Ok(())
+}
+
+/// `opts` with its frame cut, keeping its shape, to as many cells as its
+/// sample budget allows ([`RenderOptions::max_samples`]): a terminal larger
+/// than the budget is drawn in its top left part, where a still frame
+/// would be refused.
+fn within_budget(mut opts: RenderOptions) -> RenderOptions {
+    let (cols, rows) = (u64::from(opts.cols), u64::from(opts.rows));
+    let per_cell = opts.glyphs.samples() as u64 * opts.aa.passes();
+    let cells = opts.max_samples / per_cell.max(1);
+    if cols * rows <= cells {
+        return opts;
+    }
+    let k = (cells as f64 / (cols * rows) as f64).sqrt();
+    let (mut c, mut r) = (
+        ((cols as f64 * k) as u64).max(1),
+        ((rows as f64 * k) as u64).max(1),
+    );
+    while c * r > cells && (c > 1 || r > 1) {
+        if c >= r { c -= 1 } else { r -= 1 }
+    }
+    (opts.cols, opts.rows) = (c as u16, r as u16);
+    opts
 }
 
 #[cfg(test)]

@@ -42,6 +42,7 @@ use glam::{Mat4, Vec3};
 use crate::blit;
 use crate::clip::{Clipper, Polygon};
 use crate::color::Rgb;
+use crate::error::Result;
 use crate::fill::Eye;
 use crate::frame::Frame;
 use crate::framebuffer::{Framebuffer, Target};
@@ -348,11 +349,44 @@ impl Renderer {
     }
 
     /// Renders `scene` and returns the frame, kept in the renderer.
+    ///
+    /// # Panics
+    ///
+    /// With [`Renderer::try_render`]'s error, where it gives one.
     pub fn render(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
+        if let Err(e) = check(scene, opts) {
+            panic!("{e}");
+        }
+        self.render_checked(scene, opts)
+    }
+
+    /// [`Renderer::render`], or an error for options or a scene over their
+    /// budgets: a frame side over [`MAX_CELLS`](crate::MAX_CELLS) cells,
+    /// more sample tests than [`RenderOptions::max_samples`], a scene of
+    /// more triangles or vertices than [`RenderOptions::max_triangles`]
+    /// (see [`RenderOptions::check`]). Nothing is drawn or allocated then.
+    pub fn try_render(&mut self, scene: &Scene, opts: &RenderOptions) -> Result<&Frame> {
+        check(scene, opts)?;
+        Ok(self.render_checked(scene, opts))
+    }
+
+    fn render_checked(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
         let mut frame = std::mem::take(&mut self.frame);
-        self.render_into(scene, opts, &mut frame);
+        self.render_into_checked(scene, opts, &mut frame);
         self.frame = frame;
         &self.frame
+    }
+
+    /// [`Renderer::render_into`], or [`Renderer::try_render`]'s error.
+    pub fn try_render_into(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        frame: &mut Frame,
+    ) -> Result<()> {
+        check(scene, opts)?;
+        self.render_into_checked(scene, opts, frame);
+        Ok(())
     }
 
     /// Renders `scene` into the caller's `frame`, resizing it to the
@@ -375,7 +409,18 @@ impl Renderer {
     /// assert_eq!((frame.cols(), frame.rows()), (40, 12));
     /// assert!(frame.cells().iter().any(|c| c.ch != ' '));
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// With [`Renderer::try_render`]'s error, where it gives one.
     pub fn render_into(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
+        if let Err(e) = check(scene, opts) {
+            panic!("{e}");
+        }
+        self.render_into_checked(scene, opts, frame);
+    }
+
+    fn render_into_checked(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
         let grid = opts.glyphs.grid(opts.cols, opts.rows);
         frame.set_plain(matches!(
             opts.glyphs,
@@ -674,9 +719,40 @@ impl Renderer {
 }
 
 /// Renders one frame of `scene`.
+///
+/// # Panics
+///
+/// With [`try_render`]'s error, where it gives one.
 #[must_use]
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Frame {
     Renderer::new().render(scene, opts).clone()
+}
+
+/// [`render`], or an error for options or a scene over their budgets, as
+/// [`Renderer::try_render`] gives.
+pub fn try_render(scene: &Scene, opts: &RenderOptions) -> Result<Frame> {
+    Ok(Renderer::new().try_render(scene, opts)?.clone())
+}
+
+/// Refuses what no frame is drawn from: options [`RenderOptions::check`]
+/// refuses, or a scene larger than the triangle budget (each mesh counted
+/// by the larger of its faces and its vertices, which size the vertex
+/// buffers).
+fn check(scene: &Scene, opts: &RenderOptions) -> Result<()> {
+    opts.check()?;
+    let size = scene.triangles.len() as u64
+        + scene
+            .meshes
+            .iter()
+            .map(|m| m.faces.len().max(m.positions.len()) as u64)
+            .sum::<u64>();
+    if size > opts.max_triangles {
+        return Err(crate::error::Error::Invalid(format!(
+            "the scene has {size} triangles (or vertices), more than the triangle budget of {} (--max-triangles, RenderOptions::max_triangles, raises it)",
+            opts.max_triangles
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

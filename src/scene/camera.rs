@@ -352,8 +352,20 @@ impl Camera {
         let yaw = glam::Quat::from_axis_angle(self.up.normalize_or_zero(), yaw.to_radians());
         let right = offset.cross(self.up).normalize_or_zero();
         let pitch = glam::Quat::from_axis_angle(right, pitch.to_radians());
+        // The far plane goes out with an eye taken farther (and a framed
+        // camera's planes follow its eye when it is resolved): what was in
+        // view stays in view.
+        let mut projection = self.projection;
+        if self.fit.is_none()
+            && zoom > 1.0
+            && let Projection::Perspective { far, .. } | Projection::Orthographic { far, .. } =
+                &mut projection
+        {
+            *far *= zoom;
+        }
         Camera {
             eye: self.target + yaw * (pitch * offset),
+            projection,
             ..*self
         }
     }
@@ -464,9 +476,28 @@ impl Camera {
             (1.0, 0.0)
         };
         let target = self.target + up * lift;
+        let distance = d * zoom;
+        // The planes follow the eye: the far one moved out past the
+        // model's farthest point, the near one in before its nearest, where
+        // the eye so placed would leave part of it outside (a narrow field
+        // of view, or a zoom out, puts the eye far away).
+        let (near_z, far_z) = depth
+            .iter()
+            .fold((f32::MIN, f32::MAX), |(hi, lo), &z| (hi.max(z), lo.min(z)));
+        let (nearest, farthest) = (distance - near_z, distance - far_z);
+        let mut projection = self.projection;
+        if let Projection::Perspective { near, far, .. } = &mut projection {
+            if farthest.is_finite() && farthest * 1.01 >= *far {
+                *far = farthest * 1.01;
+            }
+            if nearest.is_finite() && nearest > 0.0 && nearest * 0.99 <= *near {
+                *near = (nearest * 0.5).max(*far * 1e-6);
+            }
+        }
         Camera {
             eye: target + back * d * zoom,
             target,
+            projection,
             fit: None,
             ..*self
         }
@@ -759,7 +790,11 @@ mod tests {
                 fit: None,
                 ..camera
             };
-            let got = camera.resolved(aspect);
+            // The planes follow the eye (checked apart, below).
+            let got = Camera {
+                projection: camera.projection,
+                ..camera.resolved(aspect)
+            };
             proptest::prop_assert!(got.same_bits(&want), "{:?} against {:?}", got, want);
         }
     }

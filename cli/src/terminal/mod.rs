@@ -39,24 +39,60 @@ pub fn stdout_is_terminal() -> bool {
     io::stdout().is_terminal()
 }
 
-/// Whether file descriptor `fd` (0, 1 or 2) was open when the program
-/// started. The standard library, before `main`, opens `/dev/null` for a
-/// standard descriptor that was closed (`>&-`), read-write, and then takes
-/// every write as done: a descriptor that is `/dev/null` opened read-write
-/// is taken as closed (a shell's `>/dev/null` opens it write-only).
+/// Whether standard descriptor `fd` (0, 1 or 2) is open. The standard
+/// library, before `main`, opens `/dev/null` in place of a standard
+/// descriptor that was closed (`>&-`) and then takes every write as done;
+/// which ones were closed is recorded before that, by [`CLOSED_AT_START`]'s
+/// constructor, so that a closed stdout is told from one that is
+/// `/dev/null` (a shell's `> /dev/null`, `1<>/dev/null`, Python's
+/// `subprocess.DEVNULL`, systemd's `StandardOutput=null`), whatever its
+/// mode.
 pub fn is_open(fd: i32) -> bool {
-    // SAFETY: fstat and fcntl read the descriptor's state into a local
-    // and change nothing; a closed descriptor gives -1.
-    unsafe {
-        let mut st: libc::stat = std::mem::zeroed();
-        if libc::fstat(fd, &mut st) != 0 {
-            return false;
-        }
-        let null = st.st_mode & libc::S_IFMT == libc::S_IFCHR && st.st_rdev == libc::makedev(1, 3);
-        let rw = libc::fcntl(fd, libc::F_GETFL) & libc::O_ACCMODE == libc::O_RDWR;
-        !(null && rw)
+    let closed = CLOSED_AT_START.load(std::sync::atomic::Ordering::Relaxed);
+    if (0..3).contains(&fd) && closed & (1 << fd) != 0 {
+        return false;
     }
+    // SAFETY: fcntl reads the descriptor's flags and changes nothing; a
+    // closed descriptor gives -1.
+    unsafe { libc::fcntl(fd, libc::F_GETFD) != -1 }
 }
+
+/// Bit `fd` set for each standard descriptor that was closed when the
+/// process started.
+static CLOSED_AT_START: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+
+/// Records which standard descriptors are closed. Run by the loader before
+/// `main` and before the standard library's start-up code, from the
+/// initializer list below.
+extern "C" fn record_closed_descriptors() {
+    let mut closed = 0;
+    for fd in 0..3 {
+        // SAFETY: as in `is_open`.
+        if unsafe { libc::fcntl(fd, libc::F_GETFD) } == -1 {
+            closed |= 1 << fd;
+        }
+    }
+    CLOSED_AT_START.store(closed, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// The initializer that runs [`record_closed_descriptors`]: in ELF's
+/// `.init_array` (Linux, the BSDs) or Mach-O's `__mod_init_func` (macOS).
+#[cfg(any(
+    target_os = "linux",
+    target_os = "android",
+    target_os = "freebsd",
+    target_os = "netbsd",
+    target_os = "openbsd",
+    target_os = "dragonfly"
+))]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static RECORD_CLOSED: extern "C" fn() = record_closed_descriptors;
+
+#[cfg(target_vendor = "apple")]
+#[used]
+#[unsafe(link_section = "__DATA,__mod_init_func")]
+static RECORD_CLOSED: extern "C" fn() = record_closed_descriptors;
 
 /// Ends the process by `sig`'s default action (a core dump for SIGXCPU
 /// and SIGXFSZ, as if the signal had not been caught), for a program that
@@ -175,7 +211,9 @@ pub fn detect_color_why(
         return (ColorDepth::None, "stdout is not a terminal".into());
     }
     let term = set("TERM");
-    let shown = |v: &str| rastty::text::line(v);
+    // A value from the environment, quoted, escaped and cut: a TERM of
+    // thousands of characters is said in a few dozen.
+    let shown = |v: &str| rastty::text::cut(v, 40);
     if is_dumb(term.as_deref()) {
         let why = match &term {
             None => "TERM is unset".to_string(),
