@@ -237,7 +237,7 @@ fn bad_ply_files_get_one_error() {
             &cloud[..],
             "q.ply: no face element: a point cloud has nothing to draw",
         ),
-        (truncated, "q.ply: "),
+        (truncated, "q.ply:"),
     ] {
         let err = ply::parse(bytes, "q.ply").unwrap_err().to_string();
         assert!(err.starts_with(want), "{err}");

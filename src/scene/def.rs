@@ -65,7 +65,10 @@ pub(super) struct MeshDef {
 
 /// `clip = 2` or `clip = "walk"`.
 #[derive(Deserialize, Clone)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "expected a clip's number, 0 or more (clip = 2), or its name (clip = \"walk\")"
+)]
 pub(super) enum ClipDef {
     Number(u32),
     Name(String),
@@ -73,7 +76,10 @@ pub(super) enum ClipDef {
 
 /// `scale = 2.0` or `scale = [1.0, 2.0, 1.0]`.
 #[derive(Deserialize, Clone, Copy)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "expected a scale: one number (scale = 2.0) or three, one an axis (scale = [1.0, 2.0, 1.0])"
+)]
 pub(super) enum ScaleDef {
     Uniform(f32),
     Axes(Exact<f32, 3>),

@@ -118,7 +118,7 @@ fn open(bytes: &[u8], max_texels: u64) -> Result<image::DynamicImage, String> {
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
     limits.max_alloc = Some(MAX_DECODE_BYTES);
     reader.limits(limits);
-    let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
+    let decoder = reader.into_decoder().map_err(in_words)?;
     let (w, h) = decoder.dimensions();
     let texels = u64::from(w) * u64::from(h);
     if texels > max_texels {
@@ -126,5 +126,72 @@ fn open(bytes: &[u8], max_texels: u64) -> Result<image::DynamicImage, String> {
             "a {w}×{h} image is {texels} texels, more than the {max_texels} left in the texel budget (--max-texels raises it)"
         ));
     }
-    image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())
+    image::DynamicImage::from_decoder(decoder).map_err(in_words)
+}
+
+/// A decoder's error in words: what is wrong with the image, never the
+/// decoder's own types (`ChunkType { type: IHDR, … }`) or its line breaks.
+fn in_words(e: image::ImageError) -> String {
+    use image::ImageError;
+    match e {
+        ImageError::Decoding(d) => {
+            let format = match d.format_hint() {
+                image::error::ImageFormatHint::Exact(ImageFormat::Png) => "PNG",
+                image::error::ImageFormatHint::Exact(ImageFormat::Jpeg) => "JPEG",
+                _ => "an",
+            };
+            let why =
+                std::error::Error::source(&d).map_or(String::new(), |s| plain(&s.to_string()));
+            let article = if format == "an" { "" } else { "a " };
+            let what = if format == "an" {
+                "a damaged image".to_string()
+            } else {
+                format!("{article}damaged {format} image")
+            };
+            if why.is_empty() {
+                what
+            } else {
+                format!("{what} ({why})")
+            }
+        }
+        ImageError::Limits(_) => format!(
+            "an image that needs more memory to decode than the {} MiB allowed, or more than {MAX_IMAGE_SIDE} pixels a side",
+            MAX_DECODE_BYTES >> 20
+        ),
+        ImageError::Unsupported(u) => {
+            format!("an image rastty cannot read ({})", plain(&u.to_string()))
+        }
+        ImageError::IoError(e) => plain(&e.to_string()),
+        other => plain(&other.to_string()),
+    }
+}
+
+/// A decoder's message on one line, in words: line breaks and tabs taken
+/// out, a type shown by its `Debug` (`ChunkType { type: IHDR, … }`) by
+/// its name, the decoders' prefixes (`I/O errors`) dropped.
+fn plain(message: &str) -> String {
+    let mut s: String = message
+        .split(['\n', '\r', '\t'])
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    while let Some(i) = s.find("ChunkType { type: ") {
+        let rest = &s[i + "ChunkType { type: ".len()..];
+        let name = rest.split([',', ' ', '}']).next().unwrap_or("").to_string();
+        let end = rest
+            .find('}')
+            .map_or(s.len(), |j| i + "ChunkType { type: ".len() + j + 1);
+        s.replace_range(i..end, &name);
+    }
+    let s = s.trim_start_matches("I/O errors").trim();
+    let s = s.trim_end_matches('.');
+    // A sentence's capital dropped (not an acronym's: `CRC error`).
+    let mut chars = s.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c), Some(d)) if d.is_lowercase() => {
+            c.to_lowercase().chain([d]).chain(chars).collect()
+        }
+        _ => s.to_string(),
+    }
 }

@@ -588,6 +588,52 @@ crate::choice::choice!(Cull {
 
 /// The bounding box `[min, max]` of `positions`; `None` when one is not
 /// finite, or there are none.
+/// Drops the faces with a corner whose position is not a finite number,
+/// keeping the material runs on the faces they colour. Returns how many
+/// positions are not finite and how many faces were dropped, for the
+/// loader's note (see [`unfinite_note`]).
+pub(crate) fn drop_unfinite_faces(
+    positions: &[Vec3],
+    faces: &mut Vec<[u32; 3]>,
+    runs: &mut [MaterialRun],
+) -> (usize, usize) {
+    let bad = positions.iter().filter(|p| !p.is_finite()).count();
+    if bad == 0 {
+        return (0, 0);
+    }
+    let finite = |f: &[u32; 3]| f.iter().all(|&i| positions[i as usize].is_finite());
+    // Each run's first face, as a count of the faces kept before it.
+    let mut kept = 0u32;
+    let mut run = 0;
+    let mut out = 0;
+    for i in 0..faces.len() {
+        while run < runs.len() && runs[run].first as usize == i {
+            runs[run].first = kept;
+            run += 1;
+        }
+        if finite(&faces[i]) {
+            faces[out] = faces[i];
+            out += 1;
+            kept += 1;
+        }
+    }
+    for r in &mut runs[run..] {
+        r.first = kept;
+    }
+    let dropped = faces.len() - out;
+    faces.truncate(out);
+    (bad, dropped)
+}
+
+/// The loader's note on what [`drop_unfinite_faces`] dropped, if anything.
+pub(crate) fn unfinite_note(name: &str, (bad, dropped): (usize, usize)) -> Option<String> {
+    (bad > 0).then(|| {
+        format!(
+            "{name}: {bad} vertices are not finite numbers; the {dropped} faces that use them are not drawn"
+        )
+    })
+}
+
 fn bounds(positions: &[Vec3]) -> Option<[Vec3; 2]> {
     let mut b = Bounds::default();
     positions.iter().for_each(|&p| b.add(p));

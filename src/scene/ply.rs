@@ -54,7 +54,7 @@ pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
 
 fn read(r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
     let bad = |what: String| Error::Invalid(format!("{name}: {what}"));
-    let ply_error = |e: ply_rs_bw::parser::ParseError| bad(one_line(&e.to_string()));
+    let ply_error = |e: ply_rs_bw::parser::ParseError| in_words(name, &e);
     let ascii = Rc::new(Cell::new(true));
     let mut reader = Reader::new(LineCap {
         inner: BufReader::new(r),
@@ -197,6 +197,17 @@ fn read(r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
         ));
     }
     let added = positions.len() > n;
+    // A position that is not a finite number takes its faces with it, as
+    // in OBJ files.
+    let dropped = super::mesh::drop_unfinite_faces(&positions, &mut triangles, &mut []);
+    notes.extend(super::mesh::unfinite_note(name, dropped));
+    if triangles.is_empty() {
+        return Err(bad(if dropped.1 > 0 {
+            "no faces to draw: every one has a vertex that is not a finite number".into()
+        } else {
+            "no faces to draw".into()
+        }));
+    }
     let mut g = Geometry::new_raw(name, positions, triangles);
     g.colors = colors;
     match normals {
@@ -204,7 +215,7 @@ fn read(r: impl Read, name: &str, crease: f32) -> Result<Loaded> {
         _ => g.compute_normals(crease),
     }
     g.analyze();
-    notes.extend(polygon::fallback_note(name, cutter.fallbacks));
+    notes.extend(polygon::fallback_note(name, &cutter));
     Ok(Loaded { geometry: g, notes })
 }
 
@@ -265,25 +276,190 @@ impl<R: BufRead> BufRead for LineCap<R> {
     }
 }
 
-/// The parser's message on one line, without the line it quotes (a
-/// `String: '…'` part, which may be megabytes of the file).
-fn one_line(message: &str) -> String {
-    let mut kept = String::new();
-    let mut rest = message;
-    while let Some(i) = rest.find("\n\tString: '") {
-        kept.push_str(&rest[..i]);
-        rest = rest[i..].find("\n\tError: ").map_or("", |j| &rest[i + j..]);
+/// The parser's error in words, at its line (and column, where the parser
+/// gives one): what is wrong and what was expected, never the parser's own
+/// types (`ParseError { location: LineCol { … } }`, `ParseIntError { kind:
+/// … }`), nor the line it quotes (which may be megabytes of the file).
+fn in_words(name: &str, e: &ply_rs_bw::parser::ParseError) -> Error {
+    let text = e.to_string();
+    let text = match (e.line(), text.split_once(": ")) {
+        (Some(_), Some((head, rest))) if head.starts_with("Line ") => rest,
+        _ => &text,
+    };
+    // The message, then `\n\tString: '…'`, `\n\tValue: '…'`, `\n\tError: …`.
+    let mut parts = text.split("\n\t");
+    let head = parts.next().unwrap_or("").trim();
+    let (mut value, mut inner) = ("", "");
+    for part in parts {
+        if let Some(v) = part.strip_prefix("Value: '") {
+            value = v.trim_end_matches(", ").trim_end_matches('\'');
+        } else if let Some(e) = part.strip_prefix("Error: ") {
+            inner = e.trim().trim_end_matches(',');
+        }
     }
-    kept.push_str(rest);
-    kept.split('\n')
-        .map(|part| {
-            part.trim()
-                .trim_start_matches("Error: ")
-                .trim_end_matches('.')
+    let mut column = None;
+    let what = if head.starts_with("Expected magic number") {
+        "not a PLY file: its first line is not `ply`".to_string()
+    } else if head == "Couldn't parse line." {
+        let (at, expected) = peg_error(inner);
+        column = at;
+        format!("not a header line PLY knows (expected {expected})")
+    } else if head == "Unexpected 'ply' found." {
+        "a second `ply` line".into()
+    } else if head.starts_with("Found contradicting format definition") {
+        "a second `format` line, unlike the first".into()
+    } else if head == "Invalid version" {
+        "the format's version is not 1.0".into()
+    } else if head == "Invalid element" {
+        "not an element line PLY knows (`element NAME COUNT`)".into()
+    } else if head.starts_with("Property '") {
+        "a property before any element".into()
+    } else if head.starts_with("Unexpected end of file while reading header") {
+        "the file ends before the header's end_header line".into()
+    } else if head == "Parse error." {
+        format!("{} {}", shown(value), not_a(inner))
+    } else if let Some(rest) = head.strip_prefix("Couldn't parse element at index ") {
+        let (i, err) = rest.split_once(": ").unwrap_or((rest, ""));
+        format!("item {i} of a list {}", not_a(err))
+    } else if head.starts_with("Couldn't read element line.")
+        || head.starts_with("Couldn't parse element line.")
+    {
+        // The cause, one level down.
+        if !value.is_empty() {
+            format!("{} {}", shown(value), not_a(inner))
+        } else if let Some(rest) = inner.strip_prefix("Couldn't parse element at index ") {
+            let (i, err) = rest.split_once(": ").unwrap_or((rest, ""));
+            format!("item {i} of a list {}", not_a(err))
+        } else if let Some(rest) = inner.strip_prefix("error at ") {
+            // The element grammar's error: `error at 1:3: expected one of …`.
+            let (at, list) = rest.split_once(": ").unwrap_or((rest, ""));
+            column = at.split(':').nth(1).and_then(|c| c.parse().ok());
+            let list = list
+                .trim_start_matches("expected one of ")
+                .trim_start_matches("expected ");
+            format!(
+                "not a number where one belongs (expected {})",
+                expected_words(list.split(", ").map(str::to_string))
+            )
+        } else if let Some(rest) = inner.strip_prefix("Expected ") {
+            let numbers: Vec<&str> = rest
+                .split(|c: char| !c.is_ascii_digit())
+                .filter(|n| !n.is_empty())
+                .collect();
+            match numbers[..] {
+                [n, m] if rest.contains("list elements") => {
+                    format!("a list that says it has {n} items has {m}")
+                }
+                _ => "the line ends before the element's last property".into(),
+            }
+        } else {
+            format!("an element line that cannot be read: {}", scrubbed(inner))
+        }
+    } else if head.starts_with("Expected element of type") {
+        "the line ends before the element's last property".into()
+    } else if let Some(rest) = head.strip_prefix("PLY property '") {
+        let property = rest.split('\'').next().unwrap_or("");
+        format!(
+            "property {} has a type rastty does not read there",
+            shown(property)
+        )
+    } else {
+        scrubbed(head)
+    };
+    match e.line() {
+        Some(line) => Error::Parse {
+            path: name.to_string(),
+            line,
+            column: column.unwrap_or(1),
+            message: what,
+        },
+        None => Error::Invalid(format!("{name}: {what}")),
+    }
+}
+
+/// A value from the file, quoted and cut.
+fn shown(value: &str) -> String {
+    crate::text::name(value, 40)
+}
+
+/// What a number that failed to parse is not, from the standard library's
+/// error (`ParseIntError { kind: InvalidDigit }`).
+fn not_a(error: &str) -> &'static str {
+    if error.contains("PosOverflow") || error.contains("NegOverflow") {
+        "is too large for its type"
+    } else if error.contains("ParseIntError") {
+        "is not a whole number of its type"
+    } else if error.contains("ParseFloatError") {
+        "is not a number"
+    } else {
+        "cannot be read"
+    }
+}
+
+/// The column and the expected tokens of a header grammar's error
+/// (`ParseError { location: LineCol { line: 1, column: 16, offset: 15 },
+/// expected: ExpectedSet { expected: {"['0'..='9']", …} } }`), in words.
+fn peg_error(debug: &str) -> (Option<usize>, String) {
+    let column = debug
+        .split_once("column: ")
+        .and_then(|(_, r)| r.split(|c: char| !c.is_ascii_digit()).next())
+        .and_then(|n| n.parse().ok());
+    let set = debug
+        .split_once("expected: {")
+        .map_or("", |(_, r)| r.split('}').next().unwrap_or(""));
+    // Each token as its Debug shows it, `"\"comment\""`: the outer quotes
+    // off, then the escapes undone.
+    let tokens = set.split(", ").map(|t| {
+        let t = t.strip_prefix('"').unwrap_or(t);
+        let t = t.strip_suffix('"').unwrap_or(t);
+        t.replace("\\\"", "\"").replace("\\\\", "\\")
+    });
+    (column, expected_words(tokens))
+}
+
+/// A grammar's expected tokens (`['0'..='9']`, `"\r\n"`, `EOF`) in words.
+fn expected_words(tokens: impl Iterator<Item = String>) -> String {
+    let mut words: Vec<String> = tokens
+        .map(|t| t.trim().to_string())
+        .filter(|t| !t.is_empty())
+        .map(|t| match t.as_str() {
+            "['0'..='9']" => "a digit".to_string(),
+            "['-'|'+']" => "a sign".to_string(),
+            "[' '|'\\t']" | "[' ' | '\\t']" => "a space".to_string(),
+            "EOF" | "\"\\r\\n\"" | "['\\n'|'\\r']" => "the end of the line".to_string(),
+            _ if t.starts_with('"') => format!("`{}`", t.trim_matches('"')),
+            _ => "another character".to_string(),
         })
-        .filter(|part| !part.is_empty())
+        .collect();
+    words.sort();
+    words.dedup();
+    match words.len() {
+        0 => "something else".to_string(),
+        1 => words.remove(0),
+        _ => {
+            let last = words.pop().unwrap_or_default();
+            format!("{} or {last}", words.join(", "))
+        }
+    }
+}
+
+/// A message of the parser's with any type shown by its `Debug` (`Name {
+/// … }`, `Name(…)`) and tabs and line breaks taken out.
+fn scrubbed(message: &str) -> String {
+    let one: String = message
+        .split(['\n', '\t'])
+        .map(str::trim)
+        .filter(|p| !p.is_empty() && !p.starts_with("String: "))
         .collect::<Vec<_>>()
-        .join(": ")
+        .join(": ");
+    match one.find(" {").or_else(|| one.find('(')) {
+        Some(i) => one[..i]
+            .trim_end_matches(|c: char| c.is_alphanumeric() || c == '\'')
+            .trim_end()
+            .trim_end_matches(':')
+            .to_string(),
+        None => one.trim_end_matches('.').to_string(),
+    }
 }
 
 /// A `vertex` element as read: only what is drawn, 28 bytes.

@@ -123,7 +123,25 @@ pub struct Triangulator {
     flat: Vec<[f64; 2]>,
     /// Polygons spade failed on, cut as fans instead.
     pub fallbacks: usize,
+    /// Polygons that cross themselves at more than [`MAX_CROSSINGS`]
+    /// allows, cut as fans instead.
+    pub crossed: usize,
 }
+
+/// The most points at which a polygon of `n` corners is cut where its edges
+/// cross: `n + 64` (a star of a few points crosses itself at more points
+/// than it has corners). Each adds a corner and about two triangles, so a
+/// polygon's cut holds at most `2n + 64` corners and `4n + 128` triangles
+/// whatever it is: its memory a small multiple of its corners, where a
+/// polygon whose every edge crosses every other (a few thousand random
+/// corners) would have a crossing for each pair. A polygon that needs more
+/// is cut as a fan, and the loader says so.
+pub fn max_crossings(n: usize) -> usize {
+    n + 64
+}
+
+/// The cut went past [`max_crossings`].
+struct TooCrossed;
 
 thread_local! {
     /// Whether a panic on this thread is spade's, caught and answered.
@@ -172,12 +190,17 @@ impl Triangulator {
     }
 
     /// Projects and triangulates with the edges as constraints, keeping
-    /// the even-odd inside; a fan where spade fails.
+    /// the even-odd inside; a fan where spade fails, or where the polygon
+    /// crosses itself too often.
     fn general(&mut self, corners: &[Vec3], out: &mut Vec<[Point; 3]>) {
         let before = out.len();
-        if quietly(|| self.cdt(corners, out)).is_none() {
+        let cut = quietly(|| self.cdt(corners, out));
+        if !matches!(cut, Some(Ok(()))) {
             out.truncate(before);
-            self.fallbacks += 1;
+            match cut {
+                Some(Err(TooCrossed)) => self.crossed += 1,
+                _ => self.fallbacks += 1,
+            }
             let n = corners.len() as u32;
             out.extend(
                 (1..n - 1).map(|i| [Point::Corner(0), Point::Corner(i), Point::Corner(i + 1)]),
@@ -186,10 +209,10 @@ impl Triangulator {
     }
 
     /// The constrained Delaunay triangulation of [`Triangulator::general`].
-    fn cdt(&mut self, corners: &[Vec3], out: &mut Vec<[Point; 3]>) {
+    fn cdt(&mut self, corners: &[Vec3], out: &mut Vec<[Point; 3]>) -> Result<(), TooCrossed> {
         let n = corners.len();
         let Some(axes) = plane(corners) else {
-            return; // every corner on one line: no area
+            return Ok(()); // every corner on one line: no area
         };
         self.flat.clear();
         self.flat.extend(corners.iter().map(|p| {
@@ -218,7 +241,7 @@ impl Triangulator {
             })
             .collect();
         if unique.len() < 3 {
-            return;
+            return Ok(());
         }
         let edges: Vec<[usize; 2]> = (0..n)
             .map(|i| [vertex[i], vertex[(i + 1) % n]])
@@ -232,12 +255,16 @@ impl Triangulator {
             edges,
             |e| crossing.push(e),
         ) else {
-            return; // non-finite coordinates
+            return Ok(()); // non-finite coordinates
         };
         let known = cdt.num_vertices();
+        let most = known + max_crossings(n);
         // Vertices made by splits, with the polygon edge they lie on.
         let mut made: FxHashMap<usize, Point> = FxHashMap::default();
         for [a, b] in crossing {
+            if cdt.num_vertices() > most {
+                return Err(TooCrossed);
+            }
             let sub = cdt.add_constraint_and_split(
                 FixedVertexHandle::from_index(a),
                 FixedVertexHandle::from_index(b),
@@ -259,6 +286,9 @@ impl Triangulator {
                     });
                 }
             }
+        }
+        if cdt.num_vertices() > most {
+            return Err(TooCrossed);
         }
         // Parity from outside: each outline edge crossed flips it.
         let mut parity: FxHashMap<usize, bool> = FxHashMap::default();
@@ -298,14 +328,29 @@ impl Triangulator {
                 }
             }));
         }
+        Ok(())
     }
 }
 
-/// The loader's note for `n` polygons cut as fans, if any.
-pub fn fallback_note(name: &str, n: usize) -> Option<String> {
-    (n > 0).then(|| {
+/// The loader's note for the polygons `cutter` cut as fans, if any.
+pub fn fallback_note(name: &str, cutter: &Triangulator) -> Option<String> {
+    let mut what = Vec::new();
+    if cutter.fallbacks > 0 {
+        what.push(format!(
+            "{} polygon(s) too degenerate to triangulate exactly (far off one plane)",
+            cutter.fallbacks
+        ));
+    }
+    if cutter.crossed > 0 {
+        what.push(format!(
+            "{} polygon(s) crossing themselves at more points than they have corners (and 64)",
+            cutter.crossed
+        ));
+    }
+    (!what.is_empty()).then(|| {
         format!(
-            "{name}: {n} polygon(s) too degenerate to triangulate exactly (far off one plane) were cut as fans from their first corner"
+            "{name}: {} were cut as fans from their first corner",
+            what.join(", and ")
         )
     })
 }

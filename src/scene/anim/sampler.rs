@@ -229,7 +229,13 @@ impl Sampler {
             (Ok(_), Interpolation::CubicSpline) => {
                 let mut out = [0.0; 4];
                 self.sample(t, &mut out);
-                q(&out).normalize().as_quat()
+                // A spline may pass through zero between keys: no rotation.
+                let q = q(&out);
+                if q.length_squared() > 0.0 {
+                    q.normalize().as_quat()
+                } else {
+                    Quat::IDENTITY
+                }
             }
         }
     }

@@ -43,6 +43,7 @@
 
 mod buffers;
 mod material;
+mod numbers;
 mod rig;
 
 use std::collections::BTreeMap;
@@ -133,6 +134,9 @@ fn parse_in(
     }
     let Gltf { document, blob } =
         Gltf::from_slice_without_validation(bytes).map_err(|e| bad(describe(&e)))?;
+    if let Some(json) = numbers::json_of(bytes) {
+        numbers::check(json).map_err(bad)?;
+    }
     let root = document.into_json();
     // Those it draws may be required: only the others are refused.
     let required: Vec<&str> = (root.extensions_required.iter())
@@ -200,6 +204,8 @@ fn parse_in(
             .meshes()
             .any(|m| m.primitives().any(|p| p.morph_targets().len() > 0));
     let mut rig = animated.then(|| RigParts::new(options.max_bytes));
+    // Nodes whose rotation is four zeros, drawn unrotated.
+    let mut unrotated: Vec<usize> = Vec::new();
     let mut stack: Vec<(::gltf::Node, Mat4, usize, Option<u32>)> = scene
         .nodes()
         .map(|n| (n, Mat4::IDENTITY, 0, None))
@@ -211,7 +217,7 @@ fn parse_in(
                 node.index()
             )));
         }
-        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local(&node, &mut unrotated);
         let me = rig.as_mut().map(|r| r.node(&node, rig_parent));
         if node.camera().is_some() {
             *ignored.entry("cameras").or_default() += 1;
@@ -268,6 +274,17 @@ fn parse_in(
         None => None,
     };
     notes.append(&mut out.images.notes);
+    unrotated.sort_unstable();
+    unrotated.dedup();
+    if let Some(first) = unrotated.first() {
+        notes.push(format!(
+            "{name}: node {first}{} has a rotation of four zeros, which is no rotation: drawn unrotated",
+            match unrotated.len() - 1 {
+                0 => String::new(),
+                k => format!(" (and {k} more)"),
+            }
+        ));
+    }
     let mut what: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
     what.extend(
         document
@@ -278,14 +295,45 @@ fn parse_in(
     if !what.is_empty() {
         notes.push(format!("{name}: not drawn: {}", what.join(", ")));
     }
+    // A position that is not a finite number (in the file, or placed by a
+    // node) takes its faces with it, as in OBJ files.
+    let dropped =
+        super::mesh::drop_unfinite_faces(&out.positions, &mut out.faces, &mut out.materials);
+    notes.extend(super::mesh::unfinite_note(name, dropped));
     if out.faces.is_empty() {
-        return Err(bad("no triangles to draw".into()));
+        return Err(bad(if dropped.1 > 0 {
+            "no triangles to draw: every one has a vertex that is not a finite number".into()
+        } else {
+            "no triangles to draw".into()
+        }));
     }
     let lights = std::mem::take(&mut out.lights);
     let mut geometry = out.geometry(name, options.crease);
     geometry.lights = lights;
     geometry.rig = rig.map(Arc::new);
     Ok(Loaded { geometry, notes })
+}
+
+/// A node's transform in its parent's space. A rotation of four zeros is
+/// no rotation at all (the matrix would flatten the node to a point): it
+/// is taken as none, and the node's index added to `unrotated`.
+pub(super) fn local(node: &::gltf::Node, unrotated: &mut Vec<usize>) -> Mat4 {
+    let transform = match node.transform() {
+        ::gltf::scene::Transform::Decomposed {
+            translation,
+            rotation: [0.0, 0.0, 0.0, 0.0],
+            scale,
+        } => {
+            unrotated.push(node.index());
+            ::gltf::scene::Transform::Decomposed {
+                translation,
+                rotation: [0.0, 0.0, 0.0, 1.0],
+                scale,
+            }
+        }
+        t => t,
+    };
+    Mat4::from_cols_array_2d(&transform.matrix())
 }
 
 /// A count for a message: exact up to 2^64, a power of two beyond.

@@ -72,7 +72,12 @@ impl RigParts {
                 scale,
             } => Ok(Trs {
                 translation: Vec3::from(translation),
-                rotation: Quat::from_array(rotation).normalize(),
+                // Four zeros are no rotation (noted where the node is read).
+                rotation: if rotation == [0.0; 4] {
+                    Quat::IDENTITY
+                } else {
+                    Quat::from_array(rotation).normalize()
+                },
                 scale: Vec3::from(scale),
             }),
         };
@@ -184,9 +189,10 @@ impl RigParts {
                 for v in per_vertex {
                     starts.push(influences.len() as u32);
                     // Normalised, as the format allows weights that sum
-                    // to nearly one.
-                    let sum: f32 = v.iter().map(|(_, w)| w).sum();
-                    influences.extend(v.into_iter().map(|(j, w)| (j, w / sum)));
+                    // to nearly one; in f64, where weights near f32's
+                    // largest do not sum to infinity.
+                    let sum: f64 = v.iter().map(|&(_, w)| f64::from(w)).sum();
+                    influences.extend(v.into_iter().map(|(j, w)| (j, (f64::from(w) / sum) as f32)));
                 }
                 starts.push(influences.len() as u32);
                 self.keep(8 * influences.len() as u64 + 4 * starts.len() as u64)?;
@@ -319,6 +325,7 @@ impl RigParts {
             });
         }
         let mut left_out = 0;
+        let mut zero_rotations = 0;
         for anim in document.animations() {
             let name = anim.name().unwrap_or("");
             let label = if name.is_empty() {
@@ -415,6 +422,23 @@ impl RigParts {
                     ReadOutputs::Rotations(r) => r.into_f32().flatten().collect(),
                     ReadOutputs::MorphTargetWeights(w) => w.into_f32().collect(),
                 };
+                let mut values = values;
+                if property == Property::Rotation {
+                    // A key of four zeros is no rotation at all: taken as
+                    // none (the identity), and said.
+                    let (stride, at) = if interpolation == Interpolation::CubicSpline {
+                        (12, 4)
+                    } else {
+                        (4, 0)
+                    };
+                    for key in values.chunks_exact_mut(stride) {
+                        let q = &mut key[at..at + 4];
+                        if q.iter().all(|&x| x == 0.0) {
+                            q[3] = 1.0;
+                            zero_rotations += 1;
+                        }
+                    }
+                }
                 self.keep(8 * times.len() as u64 + 4 * values.len() as u64)?;
                 let width = match property {
                     Property::Translation | Property::Scale => 3,
@@ -448,6 +472,11 @@ impl RigParts {
         if left_out > 0 {
             notes.push(format!(
                 "{left_out} animation channels move nodes outside the scene drawn: left out"
+            ));
+        }
+        if zero_rotations > 0 {
+            notes.push(format!(
+                "{zero_rotations} rotation keys of animations are four zeros, which is no rotation: taken as none"
             ));
         }
         self.rig.settle();

@@ -577,7 +577,7 @@ impl<'a> Reader<'a> {
             };
             notes.push(format!("{first}{more}: drawn in the default colour"));
         }
-        notes.extend(polygon::fallback_note(self.name, self.cutter.fallbacks));
+        notes.extend(polygon::fallback_note(self.name, &self.cutter));
         if let Some(&first) = self.bad_pos.first() {
             notes.push(format!(
                 "{}:{first}: {} vertices are not finite numbers; the {} faces that use them are not drawn",
