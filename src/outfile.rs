@@ -189,8 +189,8 @@ impl OutFile {
             if same && !(self.is_stream() && other.is_stream()) {
                 return Err(Error::Invalid(format!(
                     "{} and {} name the same file: give each output its own",
-                    other.path.display(),
-                    self.path.display()
+                    self.path.display(),
+                    other.path.display()
                 )));
             }
         }

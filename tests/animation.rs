@@ -69,6 +69,16 @@ fn arm_boxes(bent: bool) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
 /// turns the second joint from straight at 0 s to 90° about z at 1 s and
 /// back at 2 s (where the clip loops). `examples/models/arm.glb`.
 fn skinned_arm() -> Vec<u8> {
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    skinned_arm_with(
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s, 0.0, 0.0, s, s],
+    )
+}
+
+/// [`skinned_arm`] with the hand's vertices weighted `hand` between the
+/// two joints (in that order), and the clip's three rotation keys `turns`.
+fn skinned_arm_with(hand: [f32; 4], turns: [f32; 12]) -> Vec<u8> {
     let mut d = Doc::default();
     let (p, f) = arm_boxes(false);
     let pos = d.vec3(&p);
@@ -78,17 +88,15 @@ fn skinned_arm() -> Vec<u8> {
         .flat_map(u16::to_le_bytes)
         .collect();
     let joints = d.add(joints, 16, "VEC4", 5123);
-    let weights = d.floats(&[1.0, 0.0, 0.0, 0.0].repeat(16), "VEC4", 4);
+    let weights: Vec<f32> = (0..16)
+        .flat_map(|v| if v >= 8 { hand } else { [1.0, 0.0, 0.0, 0.0] })
+        .collect();
+    let weights = d.floats(&weights, "VEC4", 4);
     let mut ibm = glam::Mat4::IDENTITY.to_cols_array().to_vec();
     ibm.extend(glam::Mat4::from_translation(Vec3::new(-2.0, 0.0, 0.0)).to_cols_array());
     let ibm = d.floats(&ibm, "MAT4", 16);
     let times = d.floats(&[0.0, 1.0, 2.0], "SCALAR", 1);
-    let s = std::f32::consts::FRAC_1_SQRT_2;
-    let turns = d.floats(
-        &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s, 0.0, 0.0, s, s],
-        "VEC4",
-        4,
-    );
+    let turns = d.floats(&turns, "VEC4", 4);
     d.glb(&format!(
         r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"JOINTS_0":{joints},"WEIGHTS_0":{weights}}},"indices":{idx}}}]}}],
 "skins":[{{"joints":[1,2],"inverseBindMatrices":{ibm}}}],
@@ -682,4 +690,45 @@ fn a_model_tilted_or_turning_about_x_or_z_is_framed_whole() {
             assert!(inside_the_edges(&r), "about {axis:?}, turned {turn}");
         }
     }
+}
+
+#[test]
+fn weights_near_f32s_largest_are_normalised_as_the_spec_says() {
+    // [3e38, 3e38, 0, 0] sums past f32's range: normalised in f64 it is a
+    // half for each joint, as [0.5, 0.5, 0, 0] is (in f32 it was zeros).
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let turns = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s, 0.0, 0.0, s, s];
+    let huge = load(&skinned_arm_with([3e38, 3e38, 0.0, 0.0], turns), "huge.glb");
+    let half = load(&skinned_arm_with([0.5, 0.5, 0.0, 0.0], turns), "half.glb");
+    let whole = load(&skinned_arm_with([0.0, 1.0, 0.0, 0.0], turns), "whole.glb");
+    for time in [0.5, 1.0, 1.5] {
+        let at = |g: &Geometry| coverage(&scene_of(g.clone(), time), &opts());
+        assert_eq!(at(&huge), at(&half), "{time} s");
+        assert_ne!(at(&half), at(&whole), "{time} s: the weights matter");
+    }
+}
+
+#[test]
+fn a_rotation_key_of_four_zeros_is_no_rotation() {
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let identity = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s, 0.0, 0.0, 0.0, 1.0];
+    let zeros = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, s, s, 0.0, 0.0, 0.0, 0.0];
+    let one = load(&skinned_arm_with([1.0, 0.0, 0.0, 0.0], identity), "one.glb");
+    let zero = load(&skinned_arm_with([1.0, 0.0, 0.0, 0.0], zeros), "zero.glb");
+    for time in [0.0, 0.5, 1.0, 1.5] {
+        let at = |g: &Geometry| coverage(&scene_of(g.clone(), time), &opts());
+        assert_eq!(at(&zero), at(&one), "{time} s");
+    }
+    let notes = rastty::scene::gltf::parse(
+        &skinned_arm_with([1.0, 0.0, 0.0, 0.0], zeros),
+        None,
+        "zero.glb",
+        &Default::default(),
+    )
+    .unwrap()
+    .notes;
+    assert_eq!(
+        notes,
+        ["2 rotation keys of animations are four zeros, which is no rotation: taken as none"]
+    );
 }

@@ -23,6 +23,16 @@ thread_local! {
 /// Allocations made on rayon's threads.
 static WORKER_ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
 
+thread_local! {
+    // The largest block this thread has asked for, since last reset.
+    static LARGEST: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count_size(size: usize) {
+    LARGEST.with(|l| l.set(l.get().max(size)));
+    count();
+}
+
 fn count() {
     if rayon::current_thread_index().is_some() {
         WORKER_ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
@@ -36,14 +46,14 @@ fn count() {
 // thread index is a const-initialised thread local too: none allocates.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
+        count_size(layout.size());
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
+        count_size(new_size);
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -282,4 +292,147 @@ fn the_stateful_widget_allocates_nothing_once_warmed() {
         });
         assert_eq!(n, 0, "{depth:?}");
     }
+}
+
+/// The largest block this thread asks for while `f` runs.
+fn largest_block(f: impl FnOnce()) -> usize {
+    LARGEST.with(|l| l.set(0));
+    f();
+    LARGEST.with(Cell::get)
+}
+
+#[test]
+fn every_size_at_and_past_each_budget_is_an_error_never_an_abort() {
+    let scene = Scene::of_mesh(Shape::Cube.mesh(Rgb::WHITE));
+    let small = RenderOptions {
+        max_samples: 200,
+        max_triangles: 24,
+        ..RenderOptions::default()
+    };
+    let sized = |cols, rows, glyphs| RenderOptions {
+        cols,
+        rows,
+        glyphs,
+        ..small
+    };
+    // At each budget: drawn.
+    for opts in [
+        sized(10, 10, GlyphMode::Half),  // 200 sample tests
+        sized(25, 1, GlyphMode::Octant), // 200
+        sized(4096, 1, GlyphMode::Ascii).with_samples(4096),
+        sized(1, 4096, GlyphMode::Ascii).with_samples(4096),
+    ] {
+        let mut frame = Frame::default();
+        Renderer::new()
+            .try_render_into(&scene, &opts, &mut frame)
+            .unwrap_or_else(|e| panic!("{opts:?}: {e}"));
+        assert_eq!((frame.cols(), frame.rows()), (opts.cols, opts.rows));
+        assert!(rastty::try_render(&scene, &opts).is_ok());
+    }
+    // Past it: an error, before anything the size of the frame is
+    // allocated. 65535×65535 octants would be 34 GB of samples.
+    let past = [
+        (
+            sized(10, 11, GlyphMode::Half),
+            "a frame of 10×11 cells at 2 samples a cell and 1 pass(es) of --aa none is 220 sample tests, more than the budget of 200 (--max-samples raises it)",
+        ),
+        (
+            sized(4097, 1, GlyphMode::Ascii).with_samples(u64::MAX),
+            "a frame of 4097×1 cells: each side may be at most 4096 cells",
+        ),
+        (
+            sized(1, 65535, GlyphMode::Half).with_samples(u64::MAX),
+            "a frame of 1×65535 cells: each side may be at most 4096 cells",
+        ),
+        (
+            sized(65535, 65535, GlyphMode::Octant).with_samples(u64::MAX),
+            "a frame of 65535×65535 cells: each side may be at most 4096 cells",
+        ),
+        (
+            RenderOptions {
+                aa: Aa::X16,
+                ..sized(4096, 4096, GlyphMode::Octant)
+            }
+            .with_samples((1 << 31) - 1),
+            "a frame of 4096×4096 cells at 8 samples a cell and 16 pass(es) of --aa 16x is 2147483648 sample tests, more than the budget of 2147483647 (--max-samples raises it)",
+        ),
+        (
+            RenderOptions {
+                cell_aspect: f32::NAN,
+                ..sized(2, 2, GlyphMode::Half)
+            },
+            "a cell aspect of NaN: it must be a finite number above 0",
+        ),
+        (
+            RenderOptions {
+                max_triangles: 23,
+                ..sized(2, 2, GlyphMode::Half)
+            },
+            "the scene has 24 triangles (or vertices), more than the triangle budget of 23 (--max-triangles, RenderOptions::max_triangles, raises it)",
+        ),
+    ];
+    for (opts, want) in past {
+        let mut frame = Frame::default();
+        let mut renderer = Renderer::new();
+        let largest = largest_block(|| {
+            let e = renderer
+                .try_render_into(&scene, &opts, &mut frame)
+                .unwrap_err();
+            assert_eq!(e.to_string(), want, "{opts:?}");
+            assert_eq!(
+                renderer.try_render(&scene, &opts).unwrap_err().to_string(),
+                want
+            );
+            assert_eq!(
+                rastty::try_render(&scene, &opts).unwrap_err().to_string(),
+                want
+            );
+        });
+        assert!(largest < 1 << 16, "{largest} bytes for {opts:?}");
+        // The forms without `try_` panic with the same words, not abort
+        // (quietly: the hook says nothing for this thread meanwhile).
+        let panicked = quietly(|| {
+            let _ = rastty::render(&scene, &opts);
+        });
+        assert_eq!(
+            panicked.downcast_ref::<String>().map(String::as_str),
+            Some(want)
+        );
+    }
+}
+
+/// Options with a sample budget of `n`.
+trait WithSamples {
+    fn with_samples(self, n: u64) -> Self;
+}
+
+impl WithSamples for RenderOptions {
+    fn with_samples(self, n: u64) -> Self {
+        RenderOptions {
+            max_samples: n,
+            ..self
+        }
+    }
+}
+
+thread_local! {
+    static QUIET: Cell<bool> = const { Cell::new(false) };
+}
+
+/// The payload of the panic `f` makes, the panic hook silent on this
+/// thread while it runs (and as it was for every other thread).
+fn quietly(f: impl FnOnce()) -> Box<dyn std::any::Any + Send> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    QUIET.with(|q| q.set(true));
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    QUIET.with(|q| q.set(false));
+    r.expect_err("it panics")
 }

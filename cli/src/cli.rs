@@ -54,7 +54,9 @@ pub struct BenchArgs {
     /// ../shared/models, or the built-in scenes alone when it is missing]
     #[arg(long, value_name = "DIR")]
     pub models: Option<PathBuf>,
-    /// Where to write the plot of error against time
+    /// Where to write the plot of error against time. An existing file is
+    /// replaced only when the run has succeeded; a device, a pipe or
+    /// /dev/stdout is written through
     #[arg(long, value_name = "PATH", default_value = "bench.svg")]
     pub svg: PathBuf,
     /// Frames timed per measurement (the median is reported)
@@ -72,14 +74,17 @@ pub struct RenderArgs {
     /// skipped, why, what it did and how long it took
     #[arg(long, help_heading = "Output")]
     pub explain: bool,
-    /// For a file manager's preview: an error is one line within --cols
-    /// characters (the file's name, then what is wrong, cut with …)
+    /// For a file manager's preview: each note and error is one line within
+    /// --cols characters (the file's name, then what is wrong, cut with …)
     #[arg(long, help_heading = "Output")]
     pub preview: bool,
     /// Write the frame to PATH instead of stdout, in the format its
     /// extension names: .png or .svg (a picture: each cell painted at
     /// --cell-px, no font needed), .ans (the ANSI frame) or .txt (plain
-    /// text). --color auto is truecolor for these, none for .txt
+    /// text). --color auto is truecolor for these, none for .txt. An
+    /// existing file is replaced only when the run has succeeded (no
+    /// --force needed, as with cp); a device, a pipe or /dev/stdout is
+    /// written through; a file the model reads is refused
     #[arg(help_heading = "Output", long, short = 'o', value_name = "PATH")]
     pub output: Option<PathBuf>,
     /// Pixels a cell in .png and .svg pictures, W×H (or WxH); the frame is
@@ -91,7 +96,8 @@ pub struct RenderArgs {
         default_value = "8x16"
     )]
     pub cell_px: CellPx,
-    /// Also write the frame as a one-frame asciicast v2 recording
+    /// Also write the frame as a one-frame asciicast v2 recording, written
+    /// as --output is
     #[arg(help_heading = "Output", long, value_name = "FILE.cast")]
     pub record: Option<PathBuf>,
     /// Draw a model that moves at this many seconds into its clip
@@ -141,7 +147,10 @@ pub struct SpinArgs {
     pub input: InputArgs,
     /// Record the frames as asciicast v2 (asciinema play FILE replays
     /// them): in a terminal, what was shown, when it was shown; otherwise
-    /// (with --frames N) frame k at k/fps seconds, and nothing on stdout
+    /// (with --frames N) frame k at k/fps seconds, and nothing on stdout.
+    /// An existing file is replaced only when the run ends well (q, its
+    /// frame count, or a signal that quits); a device, a pipe or
+    /// /dev/stdout is written through; a file the model reads is refused
     #[arg(long, value_name = "FILE.cast", help_heading = "Output")]
     pub record: Option<PathBuf>,
     #[command(flatten)]

@@ -631,3 +631,353 @@ fn the_smaller_holes_are_closed() {
         "error: /nonexistent: not a folder of models (--models)\n"
     );
 }
+
+/// Makes a FIFO at `path`.
+fn mkfifo(path: &Path) {
+    let c = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+    // SAFETY: a valid C string; mkfifo touches only the file system.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o644) }, 0);
+}
+
+#[test]
+fn a_fifo_swapped_in_while_a_model_is_opened_is_refused_within_a_bounded_count_of_tries() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let d = dir("swap");
+    let model = d.join("m.obj");
+    let pristine = put(&d, "pristine", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::fs::copy(&pristine, &model).unwrap();
+    let stop = std::sync::Arc::new(AtomicBool::new(false));
+    // Swaps the model for a FIFO and back, each by one rename, as fast as
+    // it can: a run may look at a file and open a FIFO.
+    let swapper = {
+        let (stop, d, model, pristine) = (stop.clone(), d.clone(), model.clone(), pristine.clone());
+        std::thread::spawn(move || {
+            let (file, fifo) = (d.join("next-file"), d.join("next-fifo"));
+            while !stop.load(Ordering::Relaxed) {
+                std::fs::hard_link(&pristine, &file).unwrap();
+                std::fs::rename(&file, &model).unwrap();
+                mkfifo(&fifo);
+                std::fs::rename(&fifo, &model).unwrap();
+            }
+        })
+    };
+    // Every run ends (none waits on the FIFO), with the model drawn or one
+    // of two refusals; the one that shows the race is seen within a
+    // bounded number of runs.
+    const TRIES: usize = 3000;
+    let mut seen = None;
+    for k in 0..TRIES {
+        let r = run(&["render", s(&model), "--cols", "4", "--rows", "2"]);
+        let pipe = format!("error: {}: is a named pipe, not a file\n", s(&model));
+        let changed = format!(
+            "error: {}: changed while being opened: it is now a named pipe\n",
+            s(&model)
+        );
+        match (r.code, r.stderr.as_str()) {
+            (Some(0), "") => {}
+            (Some(1), e) if e == pipe => {}
+            (Some(1), e) if e == changed => {
+                seen = Some(k);
+                break;
+            }
+            (code, e) => panic!("run {k}: {code:?} {e}"),
+        }
+    }
+    stop.store(true, Ordering::Relaxed);
+    swapper.join().unwrap();
+    assert!(
+        seen.is_some(),
+        "no run opened the FIFO in {TRIES} tries: the race was not met"
+    );
+}
+
+/// A GLB of two triangles sharing an edge, its four positions `p`, with
+/// `node` the one node's JSON members and `mesh` the mesh's.
+fn two_triangles(p: [[f32; 3]; 4], node: &str, mesh: &str) -> Vec<u8> {
+    let mut bin = f32s(p.as_flattened());
+    bin.extend([0u16, 1, 2, 1, 3, 2].iter().flat_map(|i| i.to_le_bytes()));
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0{node}}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]{mesh}}}],
+"buffers":[{{"byteLength":{}}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":12}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
+        bin.len().next_multiple_of(4)
+    );
+    glb(&json, &bin)
+}
+
+/// A binary PLY of one triangle whose vertices are `p`.
+fn ply_triangle(p: [[f32; 3]; 3]) -> Vec<u8> {
+    let mut out = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+    out.extend(f32s(p.as_flattened()));
+    out.push(3);
+    out.extend([0i32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    out
+}
+
+#[test]
+fn numbers_at_the_edge_of_f32_are_said_not_drawn_blank() {
+    let d = dir("numbers");
+    let square = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+    ];
+    let mut one_nan = square;
+    one_nan[3][0] = f32::NAN;
+    let mut all_bad = square;
+    all_bad[0][1] = f32::INFINITY;
+    all_bad[2][2] = f32::NAN;
+    let notes: [(&str, Vec<u8>, &str); 3] = [
+        (
+            "nan.glb",
+            two_triangles(one_nan, "", ""),
+            "note: NAME: 1 vertices are not finite numbers; the 1 faces that use them are not drawn\n",
+        ),
+        (
+            "zero.glb",
+            two_triangles(square, r#","rotation":[0,0,0,0]"#, ""),
+            "note: NAME: node 0 has a rotation of four zeros, which is no rotation: drawn unrotated\n",
+        ),
+        (
+            "tiny.glb",
+            two_triangles(square, r#","scale":[3.4e38,3.4e38,1]"#, ""),
+            "",
+        ),
+    ];
+    for (name, bytes, want) in notes {
+        let p = put(&d, name, bytes);
+        let r = render(&p, &[]);
+        assert_eq!(r.code, Some(0), "{name}: {}", r.stderr);
+        assert_eq!(r.stderr, want.replace("NAME", s(&p)), "{name}");
+        assert!(
+            r.stdout.contains(&0xe2),
+            "{name}: something is drawn"
+        );
+    }
+    let errors: [(&str, Vec<u8>, &str); 6] = [
+        (
+            "all.glb",
+            two_triangles(all_bad, "", ""),
+            "NAME: no triangles to draw: every one has a vertex that is not a finite number",
+        ),
+        (
+            "far.glb",
+            two_triangles(square, r#","translation":[0,1e39,0]"#, ""),
+            "NAME: nodes[0].translation[1]: 1e39 is past the range of the 32-bit floats glTF's numbers are read as (±3.4e38)",
+        ),
+        (
+            "matrix.glb",
+            two_triangles(
+                square,
+                r#","matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,-5e38,1]"#,
+                "",
+            ),
+            "NAME: nodes[0].matrix[14]: -5e38 is past the range of the 32-bit floats glTF's numbers are read as (±3.4e38)",
+        ),
+        (
+            "weights.glb",
+            two_triangles(square, "", r#","weights":[1e40]"#),
+            "NAME: meshes[0].weights[0]: 1e40 is past the range of the 32-bit floats glTF's numbers are read as (±3.4e38)",
+        ),
+        (
+            "nan.ply",
+            ply_triangle([[0.0, 0.0, 0.0], [f32::NAN, 0.0, 0.0], [0.0, 1.0, 0.0]]),
+            "NAME: no faces to draw: every one has a vertex that is not a finite number",
+        ),
+        (
+            "inf.ply",
+            ply_triangle([
+                [0.0, 0.0, f32::NEG_INFINITY],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ]),
+            "NAME: no faces to draw: every one has a vertex that is not a finite number",
+        ),
+    ];
+    for (name, bytes, want) in errors {
+        let p = put(&d, name, bytes);
+        let r = refused(&p);
+        assert_eq!(
+            r.stderr,
+            format!("error: {}\n", want.replace("NAME", s(&p))),
+            "{name}"
+        );
+    }
+    // An eye fitted far away (a narrow lens, a zoom out) takes its far
+    // plane with it: the teapot is drawn, as at the default lens.
+    let teapot = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/models/teapot.obj");
+    for more in [
+        &["--fov", "0.6", "--cols", "20", "--rows", "6"][..],
+        &[
+            "--fov", "10", "--zoom", "0.05", "--cols", "200", "--rows", "60",
+        ],
+    ] {
+        let r = run(&[&["render", teapot][..], more].concat());
+        assert_eq!(r.code, Some(0), "{more:?}: {}", r.stderr);
+        assert!(
+            r.stdout.contains(&0xe2),
+            "{more:?}: a blank frame"
+        );
+    }
+}
+
+#[test]
+fn errors_from_other_crates_are_said_in_words() {
+    let d = dir("words");
+    let header = "ply\nformat ascii 1.0\n";
+    let texture = |image: &str| {
+        put(
+            &d,
+            &format!("{image}.mtl"),
+            format!("newmtl m\nmap_Kd {image}\n"),
+        );
+        put(
+            &d,
+            &format!("{image}.obj"),
+            format!(
+                "mtllib {image}.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n"
+            ),
+        )
+    };
+    let mut bad_crc = png_header(2, 2);
+    bad_crc[29] ^= 1; // the IHDR chunk's CRC
+    put(&d, "crc.png", bad_crc);
+    let jpeg = b"\xff\xd8\xff\xe0\x00\x10JFIF\x00";
+    put(&d, "cut.jpg", jpeg);
+    let cases: [(PathBuf, String); 6] = [
+        (
+            put(&d, "count.ply", format!("{header}element vertex -3\nproperty float x\nend_header\n")),
+            "count.ply:3:16: not a header line PLY knows (expected a digit or a space)".into(),
+        ),
+        (
+            put(&d, "word.ply", format!("{header}elemnt vertex 3\nend_header\n")),
+            "word.ply:3:1: not a header line PLY knows (expected `comment`, `element`, `end_header`, `format`, `obj_info`, `ply` or `property`)".into(),
+        ),
+        (
+            put(&d, "value.ply", format!("{header}element vertex 3\nproperty uchar x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n300 0 0\n")),
+            "value.ply:10:1: \"300\" is too large for its type".into(),
+        ),
+        (
+            put(&d, "clip.toml", "[[mesh]]\nshape = \"cube\"\nclip = -1\n"),
+            "clip.toml:3:8: expected a clip's number, 0 or more (clip = 2), or its name (clip = \"walk\")".into(),
+        ),
+        (
+            texture("crc.png"),
+            "crc.png.mtl:2:8: DIR/crc.png: a damaged PNG image (CRC error: expected 0x5bcd3089 have 0x5acd3089 while decoding IHDR chunk)".into(),
+        ),
+        (
+            texture("cut.jpg"),
+            "cut.jpg.mtl:2:8: DIR/cut.jpg: a damaged JPEG image (not enough bytes, expected 1 but found 0)".into(),
+        ),
+    ];
+    for (path, want) in cases {
+        let r = refused(&path);
+        let want = want.replace("DIR", s(&d));
+        assert_eq!(
+            r.stderr,
+            format!("error: {}/{want}\n", s(&d)),
+            "{}",
+            path.display()
+        );
+        assert!(
+            !r.stderr.contains(['{', '}']) || want.contains('{'),
+            "{}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn stdout_that_is_dev_null_opened_read_write_is_written_to() {
+    // Python's subprocess.DEVNULL, `1<>/dev/null`, systemd's
+    // StandardOutput=null: /dev/null, read and write.
+    let r = run_with(&["render", "cube", "--cols", "8", "--rows", "3"], |cmd| {
+        let null = std::fs::File::options()
+            .read(true)
+            .write(true)
+            .open("/dev/null")
+            .unwrap();
+        cmd.stdout(null);
+    });
+    assert_eq!((r.code, r.stderr.as_str()), (Some(0), ""));
+    // Closed, it is refused.
+    let r = run_with(&["render", "cube", "--cols", "8", "--rows", "3"], |cmd| {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: only close(2) runs between fork and exec.
+        unsafe {
+            cmd.pre_exec(|| {
+                libc::close(1);
+                Ok(())
+            });
+        }
+    });
+    assert_eq!(
+        (r.code, r.stderr.as_str()),
+        (
+            Some(1),
+            "error: <stdout>: Bad file descriptor (os error 9)\n"
+        )
+    );
+}
+
+#[test]
+fn a_preview_cuts_every_line_to_its_width_and_explain_cuts_the_environment() {
+    let d = dir("preview");
+    let model = put(
+        &d,
+        "notes.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 1 2 4\nl 1 2\n",
+    );
+    for width in ["5", "12", "30"] {
+        let r = run(&[
+            "render",
+            s(&model),
+            "--preview",
+            "--cols",
+            width,
+            "--rows",
+            "3",
+        ]);
+        assert_eq!(r.code, Some(0), "{}", r.stderr);
+        let w: usize = width.parse().unwrap();
+        assert!(!r.stderr.is_empty());
+        for line in r.stderr.lines() {
+            assert!(line.chars().count() <= w, "{width}: {line}");
+        }
+        let r = run(&["render", "typo.obj", "--preview", "--cols", width]);
+        assert_eq!(r.code, Some(1));
+        assert_eq!(
+            r.stderr.trim_end().chars().count(),
+            w.min(45),
+            "{}",
+            r.stderr
+        );
+    }
+    let term = "x".repeat(5000);
+    let r = run_with(
+        &[
+            "render",
+            "cube",
+            "--cols",
+            "8",
+            "--rows",
+            "3",
+            "--explain",
+            "--color",
+            "auto",
+        ],
+        |cmd| {
+            cmd.env("TERM", &term);
+        },
+    );
+    assert_eq!(r.code, Some(0));
+    assert!(
+        r.stderr.lines().all(|l| l.chars().count() < 300),
+        "{}",
+        r.stderr
+    );
+}

@@ -144,3 +144,108 @@ fn a_ply_of_a_million_vertices_takes_a_few_times_its_size() {
     // bytes a vertex): seven times this dense 19 MB file.
     assert!(r.peak < 8 * size, "{} bytes for a file of {size}", r.peak);
 }
+
+#[test]
+fn a_file_that_grows_while_it_is_read_is_read_to_the_size_it_had() {
+    // Vertex lines of 32 bytes, 128 to a 4 KiB page: the file is written a
+    // page at a time, so its size is always a whole number of lines.
+    let line = b"v 0.1234567 0.1234567 0.1234567\n";
+    assert_eq!(line.len(), 32);
+    let page: Vec<u8> = line.repeat(128);
+    let path = write("grow.obj", |out| {
+        let mut head = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec();
+        head.resize(4096, b'#');
+        head[4095] = b'\n';
+        out.write_all(&head).unwrap();
+        for _ in 0..1024 {
+            out.write_all(&page).unwrap(); // 4 MiB
+        }
+    });
+    // Another thread appends, a page at a time, up to 96 MiB more, until
+    // the run is over.
+    let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let writer = {
+        let (done, path) = (done.clone(), path.clone());
+        std::thread::spawn(move || {
+            let mut f = std::fs::OpenOptions::new()
+                .append(true)
+                .open(&path)
+                .unwrap();
+            for _ in 0..96 * 256 {
+                if done.load(std::sync::atomic::Ordering::Relaxed) {
+                    break;
+                }
+                f.write_all(&page).unwrap();
+            }
+        })
+    };
+    let mut r = support::run(&[
+        "render",
+        path.to_str().unwrap(),
+        "--cols",
+        "20",
+        "--rows",
+        "6",
+        "--max-file-size",
+        "24M",
+    ]);
+    done.store(true, std::sync::atomic::Ordering::Relaxed);
+    writer.join().unwrap();
+    let base = support::run(&["render", "cube", "--cols", "20", "--rows", "6"]).peak;
+    r.peak = r.peak.saturating_sub(base);
+    // Read to the size it had when opened, and said; or refused, if it
+    // was past the limit by then. Never read on as it grows.
+    let name = path.display().to_string();
+    match r.code {
+        Some(0) => assert!(
+            r.stderr
+                .starts_with(&format!("note: {name}: grew while it was read: its first "))
+                && r.stderr
+                    .ends_with(" bytes, its size when opened, were read\n"),
+            "{}",
+            r.stderr
+        ),
+        _ => assert!(
+            r.stderr
+                .contains("is more than the limit of 24.0 MiB (--max-file-size raises it)"),
+            "{}",
+            r.stderr
+        ),
+    }
+    assert!(r.peak < 40 << 20, "{} bytes", r.peak);
+    std::fs::remove_file(&path).unwrap();
+}
+
+#[test]
+fn a_polygon_crossing_itself_everywhere_takes_memory_by_its_corners() {
+    // 3,000 corners at random: nearly every edge crosses hundreds of
+    // others (about a million crossings in all). Cut by the even-odd rule
+    // it would take some 330 MB; past n + 64 crossings it is cut as a fan.
+    let mut x = 7u32;
+    let mut r = || {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        f64::from(x % 1_000_000) / 1e6
+    };
+    let path = write("crossed.obj", |out| {
+        for _ in 0..3000 {
+            writeln!(out, "v {:.6} {:.6} 0", r(), r()).unwrap();
+        }
+        out.write_all(b"f").unwrap();
+        for i in 1..=3000 {
+            write!(out, " {i}").unwrap();
+        }
+        out.write_all(b"\n").unwrap();
+    });
+    let r = render(&path);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    assert_eq!(
+        r.stderr,
+        format!(
+            "note: {}: 1 polygon(s) crossing themselves at more points than they have corners (and 64) were cut as fans from their first corner\n",
+            path.display()
+        )
+    );
+    assert!(r.peak < 16 << 20, "{} bytes", r.peak);
+}

@@ -440,3 +440,276 @@ fn bad_outputs_are_refused_with_one_line_and_no_file() {
         "no file was made"
     );
 }
+
+/// What a folder holds: each entry's name, and its bytes (a file), where
+/// it points (a link), or what else it is.
+fn contents(dir: &Path) -> std::collections::BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let path = e.path();
+            let kind = e.file_type().unwrap();
+            let what = if kind.is_symlink() {
+                format!("link to {}", std::fs::read_link(&path).unwrap().display())
+            } else if kind.is_file() {
+                format!("{:?}", std::fs::read(&path).unwrap())
+            } else {
+                format!("{kind:?}")
+            };
+            (e.file_name().to_string_lossy().into_owned(), what)
+        })
+        .collect()
+}
+
+/// A folder as a user has it: a textured OBJ (its MTL and PNG), a second
+/// name of the model (a hard link), a link to the texture, an existing
+/// `out.EXT` and a link to it.
+fn users_folder(name: &str, ext: &str) -> PathBuf {
+    let dir = scratch(name);
+    std::fs::write(
+        dir.join("model.obj"),
+        "mtllib model.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("model.mtl"), "newmtl m\nmap_Kd tex.png\n").unwrap();
+    std::fs::write(
+        dir.join("tex.png"),
+        common::png_rgb(2, 2, &[[255, 0, 0], [0, 255, 0], [0, 0, 255], [9, 9, 9]]),
+    )
+    .unwrap();
+    std::fs::hard_link(dir.join("model.obj"), dir.join("hard.obj")).unwrap();
+    std::os::unix::fs::symlink("tex.png", dir.join("tex-link.png")).unwrap();
+    std::fs::write(dir.join(format!("out.{ext}")), "old").unwrap();
+    std::os::unix::fs::symlink(format!("out.{ext}"), dir.join(format!("link.{ext}"))).unwrap();
+    dir
+}
+
+/// Every writing flag, as `(name, extension, arguments writing to TARGET,
+/// the same failing after the work has begun)`.
+fn writing_flags() -> Vec<(
+    &'static str,
+    &'static str,
+    Vec<&'static str>,
+    Vec<&'static str>,
+)> {
+    let view = ["--cols", "8", "--rows", "3"];
+    let render = |flag| [&["render", "model.obj"][..], &view, &[flag, "TARGET"]].concat();
+    let spin = [
+        &["spin", "model.obj", "--frames", "2"][..],
+        &view,
+        &["--record", "TARGET"],
+    ]
+    .concat();
+    // The camera is refused once the model is read: the file to write has
+    // been begun by then.
+    let late = |mut args: Vec<&'static str>| {
+        args.extend(["--distance", "1e38"]);
+        args
+    };
+    vec![
+        (
+            "render --output",
+            "png",
+            render("--output"),
+            late(render("--output")),
+        ),
+        (
+            "render --record",
+            "cast",
+            render("--record"),
+            late(render("--record")),
+        ),
+        ("spin --record", "cast", spin.clone(), late(spin)),
+        (
+            "bench --svg",
+            "svg",
+            vec!["bench", "--reps", "1", "--models", ".", "--svg", "TARGET"],
+            vec![
+                "bench", "--reps", "1", "--models", "nothing", "--svg", "TARGET",
+            ],
+        ),
+    ]
+}
+
+/// `args` run in `dir` with `TARGET` replaced by `target`.
+fn write_to(dir: &Path, args: &[&str], target: &str) -> std::process::Output {
+    let args: Vec<&str> = args
+        .iter()
+        .map(|&a| if a == "TARGET" { target } else { a })
+        .collect();
+    rastty(&args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_failed_run_leaves_every_file_as_it_was_and_a_good_one_changes_only_its_target() {
+    for (name, ext, good, bad) in writing_flags() {
+        let dir = users_folder(&format!("keep-{ext}-{}", name.len()), ext);
+        let before = contents(&dir);
+        let out = format!("out.{ext}");
+        for target in [out.as_str(), "new.x", "link.x"].map(|t| t.replace(".x", &format!(".{ext}")))
+        {
+            let r = write_to(&dir, &bad, &target);
+            assert!(!r.status.success(), "{name} {target}");
+            assert_eq!(contents(&dir), before, "{name} {target}: a failed run");
+        }
+        // Written through the link: the link stays, the file it names is
+        // replaced, nothing else changes and nothing is left beside it.
+        let r = write_to(&dir, &good, &format!("link.{ext}"));
+        assert!(
+            r.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+        let after = contents(&dir);
+        assert_ne!(after[&out], before[&out], "{name}");
+        let mut others = after.clone();
+        others.insert(out.clone(), before[&out].clone());
+        assert_eq!(others, before, "{name}: only the target changes");
+        if ext == "cast" {
+            assert!(
+                std::fs::read_to_string(dir.join(&out))
+                    .unwrap()
+                    .starts_with("{\"version\":2"),
+                "{name}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_file_the_model_reads_is_never_written_whatever_it_is_called() {
+    for (name, ext, good, _) in writing_flags() {
+        if name.starts_with("bench") {
+            continue; // bench reads no model.
+        }
+        let dir = users_folder(&format!("sources-{ext}-{}", name.len()), ext);
+        let before = contents(&dir);
+        for target in [
+            "model.obj",
+            "./model.obj",
+            "hard.obj",
+            "model.mtl",
+            "tex.png",
+            "tex-link.png",
+        ] {
+            let r = write_to(&dir, &good, target);
+            let err = String::from_utf8_lossy(&r.stderr);
+            assert_eq!(r.status.code(), Some(1), "{name} {target}: {err}");
+            // A picture is named by its extension: `--output model.obj` is
+            // refused for that before anything.
+            let by_identity = name != "render --output" || target.ends_with(".png");
+            assert!(
+                !by_identity
+                    || (err.starts_with(&format!("error: {target}: "))
+                        && err.ends_with(
+                            "rastty writes nothing over a file it reads (name another)\n"
+                        )),
+                "{name} {target}: {err}"
+            );
+            assert_eq!(contents(&dir), before, "{name} {target}");
+        }
+    }
+    // Two outputs naming one file.
+    let dir = users_folder("two-outputs", "cast");
+    let r = write_to(
+        &dir,
+        &[
+            "render",
+            "model.obj",
+            "-o",
+            "out.cast.txt",
+            "--record",
+            "./out.cast.txt",
+        ],
+        "",
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&r.stderr),
+        "error: out.cast.txt and ./out.cast.txt name the same file: give each output its own\n"
+    );
+}
+
+#[test]
+fn a_pipe_or_a_device_is_written_through_and_never_removed() {
+    let dir = users_folder("streams", "cast");
+    // A FIFO, read by another process as it is written.
+    let fifo = dir.join("out.fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let reader = Command::new("cat")
+        .arg(&fifo)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let r = write_to(
+        &dir,
+        &["render", "model.obj", "--record", "TARGET"],
+        "out.fifo",
+    );
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let read = reader.wait_with_output().unwrap().stdout;
+    assert!(read.starts_with(b"{\"version\":2"));
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    // /dev/stdout is the descriptor as it is: the recording follows the
+    // frame on the same pipe.
+    let r = write_to(
+        &dir,
+        &[
+            "render",
+            "model.obj",
+            "--cols",
+            "8",
+            "--rows",
+            "3",
+            "--record",
+            "TARGET",
+        ],
+        "/dev/stdout",
+    );
+    assert!(r.status.success());
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert!(text.contains("{\"version\":2"), "{text}");
+    // A device, failed and not: in a mount namespace of the test's own, a
+    // device node made for it (as root; /dev/null itself is not risked).
+    if Command::new("unshare")
+        .args(["-m", "true"])
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let script = format!(
+            "mount -t tmpfs none {d} && mknod {d}/null c 1 3 && cd {m} && \
+             {bin} render model.obj --record {d}/null --distance 1e38; \
+             {bin} render model.obj --record {d}/null --cols 8 --rows 3 >/dev/null && test -c {d}/null && echo kept",
+            d = dir.join("dev").display(),
+            m = dir.display(),
+            bin = BIN
+        );
+        std::fs::create_dir_all(dir.join("dev")).unwrap();
+        let out = Command::new("unshare")
+            .args(["-m", "sh", "-c", &script])
+            .output()
+            .unwrap();
+        assert_eq!(
+            String::from_utf8_lossy(&out.stdout),
+            "kept\n",
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    } else {
+        eprintln!(
+            "no mount namespace here (not root): the device case is checked through /dev/null alone"
+        );
+        let r = write_to(
+            &dir,
+            &["render", "model.obj", "--record", "TARGET"],
+            "/dev/null",
+        );
+        assert!(r.status.success());
+    }
+}
