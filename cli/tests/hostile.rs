@@ -753,10 +753,7 @@ fn numbers_at_the_edge_of_f32_are_said_not_drawn_blank() {
         let r = render(&p, &[]);
         assert_eq!(r.code, Some(0), "{name}: {}", r.stderr);
         assert_eq!(r.stderr, want.replace("NAME", s(&p)), "{name}");
-        assert!(
-            r.stdout.contains(&0xe2),
-            "{name}: something is drawn"
-        );
+        assert!(r.stdout.contains(&0xe2), "{name}: something is drawn");
     }
     let errors: [(&str, Vec<u8>, &str); 6] = [
         (
@@ -818,10 +815,7 @@ fn numbers_at_the_edge_of_f32_are_said_not_drawn_blank() {
     ] {
         let r = run(&[&["render", teapot][..], more].concat());
         assert_eq!(r.code, Some(0), "{more:?}: {}", r.stderr);
-        assert!(
-            r.stdout.contains(&0xe2),
-            "{more:?}: a blank frame"
-        );
+        assert!(r.stdout.contains(&0xe2), "{more:?}: a blank frame");
     }
 }
 

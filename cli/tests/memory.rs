@@ -57,15 +57,30 @@ fn write(name: &str, fill: impl FnOnce(&mut dyn Write)) -> PathBuf {
 /// a cube (the program itself, and what the kernel counts of this test
 /// process at the spawn: see `support`).
 fn render(path: &Path) -> support::Run {
-    let base = support::run(&["render", "cube", "--cols", "20", "--rows", "6"]).peak;
-    let mut r = support::run(&[
-        "render",
-        path.to_str().unwrap(),
-        "--cols",
-        "20",
-        "--rows",
-        "6",
-    ]);
+    let base = base_peak();
+    render_above(base, path, &[])
+}
+
+/// The peak of drawing a cube.
+fn base_peak() -> u64 {
+    support::run(&["render", "cube", "--cols", "20", "--rows", "6"]).peak
+}
+
+/// [`render`] with `more` arguments, its peak less `base`.
+fn render_above(base: u64, path: &Path, more: &[&str]) -> support::Run {
+    let args = [
+        &[
+            "render",
+            path.to_str().unwrap(),
+            "--cols",
+            "20",
+            "--rows",
+            "6",
+        ][..],
+        more,
+    ]
+    .concat();
+    let mut r = support::run(&args);
     r.peak = r.peak.saturating_sub(base);
     r
 }
@@ -161,6 +176,7 @@ fn a_file_that_grows_while_it_is_read_is_read_to_the_size_it_had() {
             out.write_all(&page).unwrap(); // 4 MiB
         }
     });
+    let base = base_peak();
     // Another thread appends, a page at a time, up to 96 MiB more, until
     // the run is over.
     let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
@@ -179,20 +195,9 @@ fn a_file_that_grows_while_it_is_read_is_read_to_the_size_it_had() {
             }
         })
     };
-    let mut r = support::run(&[
-        "render",
-        path.to_str().unwrap(),
-        "--cols",
-        "20",
-        "--rows",
-        "6",
-        "--max-file-size",
-        "24M",
-    ]);
+    let r = render_above(base, &path, &["--max-file-size", "24M"]);
     done.store(true, std::sync::atomic::Ordering::Relaxed);
     writer.join().unwrap();
-    let base = support::run(&["render", "cube", "--cols", "20", "--rows", "6"]).peak;
-    r.peak = r.peak.saturating_sub(base);
     // Read to the size it had when opened, and said; or refused, if it
     // was past the limit by then. Never read on as it grows.
     let name = path.display().to_string();

@@ -31,10 +31,7 @@ use crate::error::{Error, Result};
 
 /// Loads a PLY file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let files = file::Files::new(options.max_bytes);
-    let mut loaded = load_in(path, options, &files)?;
-    loaded.notes.extend(files.take_notes());
-    Ok(loaded)
+    Loaded::with_files(options.max_bytes, |files| load_in(path, options, files))
 }
 
 /// [`load`], the file opened through `files`.

@@ -76,10 +76,7 @@ const MAX_DEPTH: usize = 256;
 
 /// Loads a `.gltf` (with the files it names, beside it) or `.glb` file.
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let files = Files::new(options.max_bytes);
-    let mut loaded = load_in(path, options, &files)?;
-    loaded.notes.extend(files.take_notes());
-    Ok(loaded)
+    Loaded::with_files(options.max_bytes, |files| load_in(path, options, files))
 }
 
 /// [`load`], every file opened through `files`.
@@ -102,10 +99,9 @@ pub fn parse(
     name: &str,
     options: &LoadOptions,
 ) -> Result<Loaded> {
-    let files = Files::new(options.max_bytes);
-    let mut loaded = parse_in(bytes, base, name, options, &files)?;
-    loaded.notes.extend(files.take_notes());
-    Ok(loaded)
+    Loaded::with_files(options.max_bytes, |files| {
+        parse_in(bytes, base, name, options, files)
+    })
 }
 
 /// [`parse`], every file it names opened through `files`.

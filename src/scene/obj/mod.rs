@@ -68,12 +68,23 @@ pub struct Loaded {
     pub notes: Vec<String>,
 }
 
+impl Loaded {
+    /// What `load` loads with a fresh set of files of at most `max_bytes`
+    /// each, and what reading them said among its notes.
+    pub(crate) fn with_files(
+        max_bytes: u64,
+        load: impl FnOnce(&Files) -> Result<Loaded>,
+    ) -> Result<Loaded> {
+        let files = Files::new(max_bytes);
+        let mut loaded = load(&files)?;
+        loaded.notes.extend(files.take_notes());
+        Ok(loaded)
+    }
+}
+
 /// Loads an OBJ file (and its MTL files, found beside it).
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Loaded> {
-    let files = Files::new(options.max_bytes);
-    let mut loaded = load_in(path, options, &files)?;
-    loaded.notes.extend(files.take_notes());
-    Ok(loaded)
+    Loaded::with_files(options.max_bytes, |files| load_in(path, options, files))
 }
 
 /// [`load`], every file opened through `files`.
@@ -92,10 +103,9 @@ pub(crate) fn load_in(path: &Path, options: &LoadOptions, files: &Files) -> Resu
 /// looked for in `dir`.
 pub fn parse(src: &[u8], name: &str, dir: &Path) -> Result<Loaded> {
     let options = LoadOptions::default();
-    let files = Files::new(options.max_bytes);
-    let mut loaded = read(src, name, dir, &options, &files)?;
-    loaded.notes.extend(files.take_notes());
-    Ok(loaded)
+    Loaded::with_files(options.max_bytes, |files| {
+        read(src, name, dir, &options, files)
+    })
 }
 
 /// No index (a corner without a normal).
