@@ -592,6 +592,7 @@ crate::choice::choice!(Cull {
 /// keeping the material runs on the faces they colour. Returns how many
 /// positions are not finite and how many faces were dropped, for the
 /// loader's note (see [`unfinite_note`]).
+#[cfg(any(feature = "gltf", feature = "ply"))]
 pub(crate) fn drop_unfinite_faces(
     positions: &[Vec3],
     faces: &mut Vec<[u32; 3]>,
@@ -626,6 +627,7 @@ pub(crate) fn drop_unfinite_faces(
 }
 
 /// The loader's note on what [`drop_unfinite_faces`] dropped, if anything.
+#[cfg(any(feature = "gltf", feature = "ply"))]
 pub(crate) fn unfinite_note(name: &str, (bad, dropped): (usize, usize)) -> Option<String> {
     (bad > 0).then(|| {
         format!(

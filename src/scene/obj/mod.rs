@@ -162,6 +162,7 @@ struct Reader<'a> {
     library: FxHashMap<Vec<u8>, Material>,
     /// The images decoded so far, and which file each came from.
     textures: Vec<Arc<Texture>>,
+    #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     texture_ids: FxHashMap<FileId, u32>,
     /// What is left of the texel budget.
     #[cfg_attr(not(feature = "textures"), allow(dead_code))]
@@ -523,7 +524,7 @@ impl<'a> Reader<'a> {
         }
         #[cfg(not(feature = "textures"))]
         {
-            let _ = (&map.sampler, &map.mtl, map.line, map.column, &map.why);
+            let _ = (&map.path, &map.sampler, &map.mtl, map.line, map.column, &map.why);
             self.unread_textures += 1;
             Ok(None)
         }
