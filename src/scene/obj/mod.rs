@@ -524,7 +524,14 @@ impl<'a> Reader<'a> {
         }
         #[cfg(not(feature = "textures"))]
         {
-            let _ = (&map.path, &map.sampler, &map.mtl, map.line, map.column, &map.why);
+            let _ = (
+                &map.path,
+                &map.sampler,
+                &map.mtl,
+                map.line,
+                map.column,
+                &map.why,
+            );
             self.unread_textures += 1;
             Ok(None)
         }
