@@ -8,11 +8,12 @@
 //!   removes only its temporary file. A symbolic link is followed: the
 //!   file it points to is replaced and the link kept. The replaced file's
 //!   permissions are kept.
-//! * **Anything else** (a device such as `/dev/null`, a FIFO, a terminal)
-//!   is written through as a stream, never renamed over or removed; so is
-//!   a name for one of the process's descriptors (`/dev/stdout`,
-//!   `/dev/stderr`, `/dev/fd/N`, `/proc/self/fd/N`), which writes to that
-//!   descriptor as it is (appending where the shell opened it with `>>`).
+//! * **Anything else** (a device such as `/dev/null`, a FIFO, a terminal;
+//!   on Windows `NUL`, `CON` and the device namespace) is written through
+//!   as a stream, never renamed over or removed; so is a name for one of
+//!   the process's descriptors (`/dev/stdout`, `/dev/stderr`, `/dev/fd/N`,
+//!   `/proc/self/fd/N`), which writes to that descriptor as it is
+//!   (appending where the shell opened it with `>>`).
 //! * **A file the scene was read from** (the model, its MTL library, a
 //!   texture, a glTF buffer, a scene's models) is never a target:
 //!   [`OutFile::check`] refuses it by identity (device and inode), so a
@@ -63,6 +64,18 @@ impl OutFile {
     /// [`OutFile::commit`].
     pub fn create(path: &Path) -> Result<OutFile> {
         let io = |e| Error::io(path, e);
+        if cfg!(windows) && crate::scene::file::windows_device(path).is_some() {
+            // `NUL`, `CON`: Windows' devices, written through.
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(io)?;
+            return Ok(OutFile {
+                path: path.to_path_buf(),
+                replaces: None,
+                how: How::Stream(BufWriter::new(file)),
+            });
+        }
         if let Some(file) = descriptor(path).map_err(io)? {
             let replaces = file.metadata().ok().map(|m| FileId::of(&m, path));
             return Ok(OutFile {

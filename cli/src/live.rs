@@ -43,9 +43,8 @@ use std::time::{Duration, Instant};
 
 use crate::gesture::Pointer;
 use crate::terminal::input::{Input, Key, Parser};
-use crate::terminal::probe::{self, Capabilities};
-use crate::terminal::signals::{self, Signals};
-use crate::terminal::{self, Interest, Read, Screen, Tty, TtyError};
+use crate::terminal::probe::Capabilities;
+use crate::terminal::{Read, Session, TtyError, has_signal, sig};
 use rastty::animate::{Command, LiveStatus, Player};
 use rastty::cast::Recorder;
 use rastty::color::ColorDepth;
@@ -108,7 +107,8 @@ pub enum Action {
 pub fn action_for(key: Key) -> Option<Action> {
     let cmd = match key {
         Key::Char('q') | Key::Esc | Key::Ctrl('c') | Key::Ctrl('\\') => Command::Quit,
-        Key::Ctrl('z') => return Some(Action::Suspend),
+        // Job control is unix's: a console has none.
+        Key::Ctrl('z') if cfg!(unix) => return Some(Action::Suspend),
         Key::Ctrl('l') => Command::Redraw,
         Key::Char(' ') => Command::TogglePause,
         Key::Char('t') => Command::ToggleTurn,
@@ -325,32 +325,33 @@ impl Link {
     }
 }
 
-/// Signals that end the loop.
-pub const ENDING: [libc::c_int; 10] = [
-    libc::SIGINT,
-    libc::SIGTERM,
-    libc::SIGHUP,
-    libc::SIGQUIT,
-    libc::SIGUSR1,
-    libc::SIGUSR2,
-    libc::SIGALRM,
-    libc::SIGPIPE,
-    libc::SIGXCPU,
-    libc::SIGXFSZ,
+/// Signals that end the loop (on Windows, the console's control events
+/// stand for the first four).
+pub const ENDING: [i32; 10] = [
+    sig::INT,
+    sig::TERM,
+    sig::HUP,
+    sig::QUIT,
+    sig::USR1,
+    sig::USR2,
+    sig::ALRM,
+    sig::PIPE,
+    sig::XCPU,
+    sig::XFSZ,
 ];
 
 /// The first of [`ENDING`] in a mask of pending signals.
-fn ending(sigs: u64) -> Option<libc::c_int> {
-    ENDING.into_iter().find(|&sig| signals::has(sigs, sig))
+fn ending(sigs: u64) -> Option<i32> {
+    ENDING.into_iter().find(|&s| has_signal(sigs, s))
 }
 
 /// Signals the loop handles: those that end it, and those that suspend,
 /// continue and resize it.
-const HANDLED: [libc::c_int; ENDING.len() + 3] = {
+const HANDLED: [i32; ENDING.len() + 3] = {
     let mut all = [
-        libc::SIGTSTP,
-        libc::SIGCONT,
-        libc::SIGWINCH,
+        sig::TSTP,
+        sig::CONT,
+        sig::WINCH,
         0,
         0,
         0,
@@ -397,14 +398,9 @@ pub fn run(
     opts: &LiveOptions,
     record: Option<&mut Recorder<dyn Write + '_>>,
 ) -> Result<Outcome, TtyError> {
-    let tty = Tty::open()?;
-    let signals = Signals::install(&HANDLED).map_err(io_err("installing signal handlers"))?;
-    // Dropped before `signals`: the terminal is restored while the
-    // handlers are still ours.
-    let screen = Screen::enter(tty, opts.full_screen).map_err(io_err("entering raw mode"))?;
+    let session = Session::open(opts.full_screen, &HANDLED)?;
     let mut live = Live {
-        screen,
-        signals,
+        session,
         player,
         opts: *opts,
         parser: Parser::new(),
@@ -425,8 +421,7 @@ pub fn run(
 
 /// The loop's state.
 struct Live<'a, 'b> {
-    screen: Screen,
-    signals: Signals,
+    session: Session,
     player: &'a mut Player,
     opts: LiveOptions,
     parser: Parser,
@@ -458,20 +453,13 @@ impl Live<'_, '_> {
     /// status request is answered or [`LAST_ANSWERS`] passes.
     fn collect_answers(&mut self, link: &mut Link) {
         let end = Instant::now() + LAST_ANSWERS;
-        let mut buf = [0u8; 256];
         while link.outstanding() > 0 {
             let left = end.saturating_duration_since(Instant::now());
-            if left.is_zero()
-                || terminal::wait_readable(self.screen.tty().input_fd(), left).is_err()
-            {
+            if left.is_zero() || self.session.wait_input(left).is_err() {
                 return;
             }
-            loop {
-                match self.screen.tty().read(&mut buf) {
-                    Read::Bytes(n) => self.parser.feed(&buf[..n], &mut self.inputs),
-                    Read::Nothing => break,
-                    Read::Gone => return,
-                }
+            if self.session.read(&mut self.parser, &mut self.inputs) == Read::Gone {
+                return;
             }
             let now = Instant::now();
             for input in self.inputs.drain(..) {
@@ -483,24 +471,22 @@ impl Live<'_, '_> {
     }
 
     fn frames(&mut self, link_out: &mut Option<Link>) -> std::io::Result<Exit> {
-        let caps = if self.opts.probe && self.opts.full_screen {
+        let asks = self.session.reads_answers();
+        let caps = if self.opts.probe && self.opts.full_screen && asks {
             let mut early = Vec::new();
-            let caps = probe::probe(
-                self.screen.tty(),
-                &mut self.parser,
-                &mut early,
-                probe::DEADLINE,
-            )?;
+            let caps = self.session.probe(&mut self.parser, &mut early)?;
             self.inputs.extend(early);
             caps
         } else {
             Capabilities::default()
         };
         self.adopt(&caps);
+        // Where answers cannot be read, none is asked for: the link is
+        // paced by the writes, as for a terminal that answered no probe.
         let link = link_out.insert(Link::new(
             self.opts.fps,
             &caps,
-            self.opts.probe && self.opts.full_screen,
+            (self.opts.probe && self.opts.full_screen) || !asks,
         ));
         let fps = self.opts.fps.max(1) as f64;
         let start = Instant::now();
@@ -510,29 +496,28 @@ impl Live<'_, '_> {
         let mut measured = fps as f32;
         let mut last_frame: Option<Instant> = None;
         let mut notice = (self.player.notice_serial(), Instant::now());
-        let mut buf = [0u8; 1024];
         loop {
             // Signals.
-            let mut sigs = self.signals.take();
-            if let Some(sig) = ending(sigs) {
-                return Ok(Exit::Signal(sig));
+            let mut sigs = self.session.take_signals();
+            if let Some(s) = ending(sigs) {
+                return Ok(Exit::Signal(s));
             }
-            if signals::has(sigs, libc::SIGTSTP) {
-                if let Some(sig) = self.suspend(link)? {
-                    return Ok(Exit::Signal(sig));
+            if has_signal(sigs, sig::TSTP) {
+                if let Some(s) = self.suspend(link)? {
+                    return Ok(Exit::Signal(s));
                 }
                 // The SIGCONT that woke us is handled by now.
-                sigs = (sigs | self.signals.take()) & !(1 << libc::SIGCONT);
+                sigs = (sigs | self.session.take_signals()) & !(1 << sig::CONT);
                 dirty = true;
             }
-            if signals::has(sigs, libc::SIGCONT) {
-                self.screen.resume()?;
+            if has_signal(sigs, sig::CONT) {
+                self.session.resume()?;
                 self.abandon_frame(link);
                 self.player.apply(Command::Redraw);
                 dirty = true;
             }
-            let resized = signals::has(sigs, libc::SIGWINCH) || signals::has(sigs, libc::SIGCONT);
-            if let Some(ws) = self.screen.tty().size().filter(|_| resized) {
+            let resized = has_signal(sigs, sig::WINCH) || has_signal(sigs, sig::CONT);
+            if let Some(ws) = self.session.size().filter(|_| resized) {
                 let (cols, rows) = ws.cells();
                 let o = self.player.options();
                 if (o.cols, o.rows) != (cols, rows) {
@@ -542,15 +527,10 @@ impl Live<'_, '_> {
             }
 
             // Keys and answers.
-            loop {
-                match self.screen.tty().read(&mut buf) {
-                    Read::Bytes(n) => {
-                        self.parser.feed(&buf[..n], &mut self.inputs);
-                        self.last_input = Instant::now();
-                    }
-                    Read::Nothing => break,
-                    Read::Gone => return Ok(Exit::Signal(libc::SIGHUP)),
-                }
+            match self.session.read(&mut self.parser, &mut self.inputs) {
+                Read::Bytes(_) => self.last_input = Instant::now(),
+                Read::Nothing => {}
+                Read::Gone => return Ok(Exit::Signal(sig::HUP)),
             }
             if self.parser.is_pending() && self.last_input.elapsed() >= ESC_WAIT {
                 self.parser.flush(&mut self.inputs);
@@ -566,7 +546,7 @@ impl Live<'_, '_> {
                             }
                             dirty = true;
                         }
-                        Some(Action::Suspend) => suspend = true,
+                        Some(Action::Suspend) => suspend = self.session.can_suspend(),
                         None => {}
                     },
                     Input::Mouse(m) => {
@@ -580,8 +560,8 @@ impl Live<'_, '_> {
                 }
             }
             if suspend {
-                if let Some(sig) = self.suspend(link)? {
-                    return Ok(Exit::Signal(sig));
+                if let Some(s) = self.suspend(link)? {
+                    return Ok(Exit::Signal(s));
                 }
                 dirty = true;
             }
@@ -594,9 +574,9 @@ impl Live<'_, '_> {
 
             // The frame on its way.
             if self.written < self.out.len() {
-                match self.screen.tty().write(&self.out[self.written..]) {
+                match self.session.write(&self.out[self.written..]) {
                     Ok(n) => self.written += n,
-                    Err(_) => return Ok(Exit::Signal(libc::SIGHUP)),
+                    Err(_) => return Ok(Exit::Signal(sig::HUP)),
                 }
                 if self.written == self.out.len() {
                     link.written(Instant::now());
@@ -651,9 +631,8 @@ impl Live<'_, '_> {
                     self.player.frame_number() + 1 >= n && !self.player.is_paused()
                 });
                 if last {
-                    self.screen
-                        .tty()
-                        .write_all(&self.out[self.written..], LAST_WRITE)?;
+                    let rest = self.written;
+                    self.session.write_all(&self.out[rest..], LAST_WRITE)?;
                     return Ok(Exit::Done);
                 }
                 continue;
@@ -671,14 +650,7 @@ impl Live<'_, '_> {
             if self.parser.is_pending() {
                 wait = wait.min(ESC_WAIT);
             }
-            let tty = self.screen.tty();
-            let fds = [
-                (tty.input_fd(), Interest::Read),
-                (self.signals.fd(), Interest::Read),
-                (tty.output_fd(), Interest::Write),
-            ];
-            let n = if sending { 3 } else { 2 };
-            terminal::poll(&fds[..n], wait)?;
+            self.session.wait(sending, wait)?;
         }
     }
 
@@ -741,21 +713,20 @@ impl Live<'_, '_> {
     /// continued, the terminal taken over again and redrawn in full. A
     /// signal that ends the loop, come while stopped, is returned instead
     /// (the terminal is left as the shell has it).
-    fn suspend(&mut self, link: &mut Link) -> std::io::Result<Option<libc::c_int>> {
+    fn suspend(&mut self, link: &mut Link) -> std::io::Result<Option<i32>> {
         self.collect_answers(link);
-        self.screen.suspend();
-        self.signals.stop_self()?;
+        self.session.stop()?;
         // Handlers run before raise() returns: what came while stopped is
         // pending now. Keep the rest (SIGCONT, SIGWINCH) for the loop.
-        let sigs = self.signals.take();
-        if let Some(sig) = ending(sigs) {
-            return Ok(Some(sig));
+        let sigs = self.session.take_signals();
+        if let Some(s) = ending(sigs) {
+            return Ok(Some(s));
         }
-        self.signals.keep(sigs);
-        self.screen.resume()?;
+        self.session.keep_signals(sigs);
+        self.session.resume()?;
         self.abandon_frame(link);
         self.player.apply(Command::Redraw);
-        if let Some(ws) = self.screen.tty().size() {
+        if let Some(ws) = self.session.size() {
             let (cols, rows) = ws.cells();
             self.resize(cols, rows)?;
         }

@@ -137,7 +137,11 @@ fn say_lines(text: &str) {
 /// take every write to it as done.
 fn stdout() -> rastty::Result<io::StdoutLock<'static>> {
     if !terminal::is_open(1) {
-        return Err(stdout_error(io::Error::from_raw_os_error(libc::EBADF)));
+        #[cfg(unix)]
+        let closed = io::Error::from_raw_os_error(libc::EBADF);
+        #[cfg(not(unix))]
+        let closed = io::Error::other("stdout is closed");
+        return Err(stdout_error(closed));
     }
     Ok(io::stdout().lock())
 }
@@ -599,7 +603,7 @@ fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         Exit::Signal(sig) => {
             if !matches!(
                 sig,
-                libc::SIGINT | libc::SIGTERM | libc::SIGHUP | libc::SIGQUIT
+                terminal::sig::INT | terminal::sig::TERM | terminal::sig::HUP | terminal::sig::QUIT
             ) {
                 // The terminal is restored: now the signal's own action.
                 terminal::die_by(sig);

@@ -95,6 +95,40 @@ fn not_a_file(kind: std::fs::FileType) -> Option<&'static str> {
     (!kind.is_file()).then_some("not a regular file")
 }
 
+/// What `path` names on Windows that is not a file, in words: a reserved
+/// device name (`CON`, `PRN`, `AUX`, `NUL`, `COM0` to `COM9`, `LPT0` to
+/// `LPT9`, `CONIN$`, `CONOUT$`, in any case, whatever extension and
+/// trailing dots or spaces follow: `nul.obj` is the null device there), or
+/// a path into the device namespace (`\\.\…`, `\\?\GLOBALROOT\…`).
+/// `None` for a file's name. A pure function of the name, tested on every
+/// platform; applied where Windows opens such names as devices.
+pub fn windows_device(path: &Path) -> Option<String> {
+    let text = path.to_string_lossy();
+    let lower = text.to_ascii_lowercase().replace('/', "\\");
+    if lower.starts_with("\\\\.\\") || lower.starts_with("\\\\?\\globalroot") {
+        return Some("a path into the device namespace".into());
+    }
+    let last = lower.rsplit('\\').next().unwrap_or("");
+    let stem = last
+        .split('.')
+        .next()
+        .unwrap_or("")
+        .trim_end_matches([' ', '.']);
+    let numbered = |prefix: &str| {
+        stem.strip_prefix(prefix).is_some_and(|n| {
+            let mut c = n.chars();
+            matches!(
+                (c.next(), c.next()),
+                (Some('0'..='9' | '¹' | '²' | '³'), None)
+            )
+        })
+    };
+    let device = matches!(stem, "con" | "prn" | "aux" | "nul" | "conin$" | "conout$")
+        || numbered("com")
+        || numbered("lpt");
+    device.then(|| format!("{}, a device name on Windows", stem.to_ascii_uppercase()))
+}
+
 /// Opens `path` for reading without waiting: a FIFO or a device opens at
 /// once (and is then refused), never blocks the open.
 fn open_at_once(path: &Path) -> io::Result<File> {
@@ -224,6 +258,11 @@ impl Read for Opened<'_> {
 pub fn open(path: &Path, max_bytes: u64) -> Result<Opened<'static>> {
     let io = |e| Error::io(path, e);
     let refuse = |what: &str| Error::Invalid(format!("{}: is {what}, not a file", path.display()));
+    if cfg!(windows)
+        && let Some(what) = windows_device(path)
+    {
+        return Err(refuse(&what));
+    }
     // Looked at first: a device is never opened.
     let meta = std::fs::metadata(path).map_err(io)?;
     if let Some(what) = not_a_file(meta.file_type()) {
@@ -475,6 +514,51 @@ pub fn human(n: u64) -> String {
 mod tests {
     use super::*;
 
+    #[test]
+    fn windows_device_names_are_known_whatever_their_case_and_extension() {
+        let device = |p: &str| windows_device(Path::new(p));
+        for (name, what) in [
+            ("CON", "CON, a device name on Windows"),
+            ("nul.obj", "NUL, a device name on Windows"),
+            ("models/Com3.glb", "COM3, a device name on Windows"),
+            ("C:\\x\\lpt1 .stl", "LPT1, a device name on Windows"),
+            ("aux.tar.gz", "AUX, a device name on Windows"),
+            ("conout$", "CONOUT$, a device name on Windows"),
+            ("\\\\.\\PhysicalDrive0", "a path into the device namespace"),
+            ("//./pipe/x", "a path into the device namespace"),
+        ] {
+            assert_eq!(device(name).as_deref(), Some(what), "{name}");
+        }
+        for name in [
+            "console.obj",
+            "com10.obj",
+            "nullable.ply",
+            "lpt.stl",
+            "x/con/y.obj",
+            "\\\\?\\C:\\m.obj",
+        ] {
+            assert_eq!(device(name), None, "{name}");
+        }
+    }
+
+    #[test]
+    fn a_missing_file_and_a_directory_give_their_message() {
+        let dir = std::env::temp_dir();
+        let e = open(&dir, DEFAULT_MAX_BYTES).unwrap_err().to_string();
+        assert_eq!(e, format!("{}: is a directory, not a file", dir.display()));
+        let missing = dir.join("rastty-no-such-model.obj");
+        let e = open(&missing, DEFAULT_MAX_BYTES).unwrap_err();
+        assert!(
+            matches!(&e, Error::Io { source, .. } if source.kind() == io::ErrorKind::NotFound),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with(&format!("{}: ", missing.display()))
+        );
+    }
+
+    #[cfg(unix)]
     #[test]
     fn what_is_not_a_regular_file_is_refused_at_once() {
         for (path, what) in [("/dev/zero", "a device"), ("/tmp", "a directory")] {

@@ -63,7 +63,7 @@
 pub mod anim;
 mod builder;
 mod camera;
-mod file;
+pub(crate) mod file;
 mod lines;
 mod finish;
 mod load;

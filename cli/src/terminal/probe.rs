@@ -20,8 +20,11 @@
 //! with the bytes, so that tests run it on a fake clock.
 
 use std::io;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+#[cfg(unix)]
+use std::time::Instant;
 
+#[cfg(unix)]
 use super::Tty;
 use super::input::{Input, Parser};
 use rastty::{GlyphFamily, GlyphMode, GlyphSupport};
@@ -118,11 +121,13 @@ pub trait Answers {
 }
 
 /// The terminal's answers, timed by the wall clock from `start`.
+#[cfg(unix)]
 struct FromTty<'t> {
     tty: &'t Tty,
     start: Instant,
 }
 
+#[cfg(unix)]
 impl Answers for FromTty<'_> {
     fn elapsed(&self) -> Duration {
         self.start.elapsed()
@@ -141,6 +146,7 @@ impl Answers for FromTty<'_> {
 /// Sends the probe and reads the answers until the status report comes
 /// back or `deadline` passes. Keys read meanwhile are appended to `keys`,
 /// for the caller to act on.
+#[cfg(unix)]
 pub fn probe(
     tty: &Tty,
     parser: &mut Parser,

@@ -19,18 +19,37 @@ static WAKE: AtomicI32 = AtomicI32::new(-1);
 /// Whether a [`Signals`] is alive (there can be one at a time).
 static INSTALLED: AtomicBool = AtomicBool::new(false);
 
+/// Where this thread's `errno` is: each libc names it its own way.
+fn errno_location() -> *mut libc::c_int {
+    // SAFETY: each returns the calling thread's errno, always valid.
+    unsafe {
+        #[cfg(any(target_os = "linux", target_os = "emscripten", target_os = "redox"))]
+        return libc::__errno_location();
+        #[cfg(any(
+            target_vendor = "apple",
+            target_os = "freebsd",
+            target_os = "dragonfly"
+        ))]
+        return libc::__error();
+        #[cfg(any(target_os = "android", target_os = "netbsd", target_os = "openbsd"))]
+        return libc::__errno();
+        #[cfg(any(target_os = "solaris", target_os = "illumos"))]
+        return libc::___errno();
+    }
+}
+
 extern "C" fn on_signal(sig: libc::c_int) {
     // SAFETY: errno is thread-local; saving and restoring it keeps the
     // interrupted code's value. write(2) is async-signal-safe.
     unsafe {
-        let errno = *libc::__errno_location();
+        let errno = *errno_location();
         PENDING.fetch_or(1 << (sig as u64 & 63), Ordering::SeqCst);
         let fd = WAKE.load(Ordering::SeqCst);
         if fd >= 0 {
             let byte = sig as u8;
             libc::write(fd, (&byte as *const u8).cast(), 1);
         }
-        *libc::__errno_location() = errno;
+        *errno_location() = errno;
     }
 }
 
@@ -48,14 +67,14 @@ impl Signals {
         if INSTALLED.swap(true, Ordering::SeqCst) {
             return Err(io::Error::other("signal handlers are already installed"));
         }
-        let mut fds = [0; 2];
-        // SAFETY: a valid two-element array; both ends are owned below.
-        if unsafe { libc::pipe2(fds.as_mut_ptr(), libc::O_CLOEXEC | libc::O_NONBLOCK) } != 0 {
-            INSTALLED.store(false, Ordering::SeqCst);
-            return Err(io::Error::last_os_error());
-        }
-        // SAFETY: pipe2 returned two fresh descriptors that nothing else owns.
-        let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+        let (read, write) = match wake_pipe() {
+            Ok(ends) => ends,
+            Err(e) => {
+                INSTALLED.store(false, Ordering::SeqCst);
+                return Err(e);
+            }
+        };
+        let fds = [fd_of(&read), fd_of(&write)];
         WAKE.store(fds[1], Ordering::SeqCst);
         PENDING.store(0, Ordering::SeqCst);
         let mut s = Signals {
@@ -116,6 +135,33 @@ impl Drop for Signals {
     }
 }
 
+/// A pipe whose ends close on exec and never block (POSIX `pipe`, then
+/// `fcntl`: macOS has no `pipe2`).
+fn wake_pipe() -> io::Result<(OwnedFd, OwnedFd)> {
+    let mut fds = [0; 2];
+    // SAFETY: a valid two-element array; both ends are owned below.
+    if unsafe { libc::pipe(fds.as_mut_ptr()) } != 0 {
+        return Err(io::Error::last_os_error());
+    }
+    // SAFETY: pipe returned two fresh descriptors that nothing else owns.
+    let ends = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    for fd in fds {
+        // SAFETY: flags of descriptors owned by `ends`.
+        let ok = unsafe {
+            libc::fcntl(fd, libc::F_SETFD, libc::FD_CLOEXEC) == 0
+                && libc::fcntl(
+                    fd,
+                    libc::F_SETFL,
+                    libc::fcntl(fd, libc::F_GETFL) | libc::O_NONBLOCK,
+                ) == 0
+        };
+        if !ok {
+            return Err(io::Error::last_os_error());
+        }
+    }
+    Ok(ends)
+}
+
 fn fd_of(fd: &OwnedFd) -> libc::c_int {
     use std::os::fd::AsRawFd;
     fd.as_raw_fd()
@@ -139,11 +185,6 @@ fn set_action(sig: libc::c_int, handler: libc::sighandler_t) -> io::Result<libc:
     }
 }
 
-/// Whether `mask` (from [`Signals::take`]) holds `sig`.
-pub fn has(mask: u64, sig: libc::c_int) -> bool {
-    mask >> (sig as u64 & 63) & 1 == 1
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -161,7 +202,7 @@ mod tests {
         assert!(Signals::install(&[libc::SIGUSR2]).is_err(), "one at a time");
         unsafe { libc::raise(libc::SIGUSR2) };
         let mask = s.take();
-        assert!(has(mask, libc::SIGUSR2));
+        assert!(super::super::has_signal(mask, libc::SIGUSR2));
         assert_eq!(s.take(), 0);
         drop(s);
         let after = unsafe {
