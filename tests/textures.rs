@@ -448,7 +448,10 @@ fn map_kd_options_are_read_past_and_those_that_move_the_texture_are_noted() {
     assert_eq!(moved.geometry.textures.len(), 1);
     assert_eq!(moved.notes.len(), 1, "{:?}", moved.notes);
     assert!(
-        moved.notes[0].ends_with("/q.mtl: not drawn: `map_Kd -o`, `map_Kd -cc`"),
+        moved.notes[0].ends_with(&format!(
+            "{}q.mtl: not drawn: `map_Kd -o`, `map_Kd -cc`",
+            std::path::MAIN_SEPARATOR
+        )),
         "{:?}",
         moved.notes
     );
