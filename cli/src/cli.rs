@@ -22,6 +22,10 @@ use rastty::{GlyphMode, color::ColorDepth, raster::Traversal};
 use rastty::{raster::Precision, scene::Cull};
 
 use rastty::MAX_CELLS;
+use rastty::scene::Scene;
+use std::process::ExitCode;
+
+use crate::say::say_lines;
 use rastty::texture::FilterMode;
 
 #[derive(Parser, Debug)]
@@ -33,6 +37,22 @@ use rastty::texture::FilterMode;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+}
+
+impl Cli {
+    /// The command bare `rastty` runs: `spin` in a terminal, `render`
+    /// otherwise, with every option at its default.
+    pub fn default_command() -> Command {
+        let sub = if crate::terminal::stdout_is_terminal() {
+            "spin"
+        } else {
+            "render"
+        };
+        Cli::try_parse_from(["rastty", sub])
+            .ok()
+            .and_then(|c| c.command)
+            .expect("the defaults parse")
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -575,4 +595,47 @@ impl<T: Choice + Send + Sync> TypedValueParser for Named<T> {
     fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
         Some(Box::new(Self::values()))
     }
+}
+
+/// `--help` and `--version` print as clap has them; a usage error prints
+/// clap's message (with the possible values, and a suggestion where one is
+/// close) and exits with 2. A model or scene named where a command belongs
+/// (`rastty bunny.obj`) gets the command that shows it.
+pub fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let named = match e.get(ContextKind::InvalidSubcommand) {
+        Some(ContextValue::String(arg)) if e.kind() == ErrorKind::InvalidSubcommand => Some(arg),
+        _ => None,
+    };
+    if let Some(arg) = named {
+        let path = std::path::Path::new(arg);
+        if path.exists() || Scene::is_model(path) || arg.ends_with(".toml") {
+            let arg = rastty::text::line(arg);
+            say_lines(&format!(
+                "error: '{arg}' is not a command; to show it, run\n\n  rastty spin {arg}\n\nor `rastty render {arg}` for one frame (rastty --help lists the commands)"
+            ));
+            return ExitCode::from(2);
+        }
+    }
+    // clap's message without its colours, each line escaped: it quotes
+    // the arguments it refuses.
+    say_lines(&e.render().to_string());
+    // `rastty --hud`: an option of a command given before any command.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if e.kind() == ErrorKind::UnknownArgument
+        && args.first().is_some_and(|a| a.starts_with('-'))
+        && !args
+            .iter()
+            .any(|a| matches!(a.as_str(), "render" | "spin" | "bench"))
+    {
+        say_lines(&format!(
+            "hint: options follow a command: rastty spin {}",
+            rastty::text::line(&args.join(" "))
+        ));
+    }
+    ExitCode::from(2)
 }

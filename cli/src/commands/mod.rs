@@ -1,0 +1,5 @@
+//! The commands, one module each: `render`, `spin` and `bench`.
+
+pub mod bench;
+pub mod render;
+pub mod spin;

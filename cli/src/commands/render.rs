@@ -1,0 +1,107 @@
+//! `rastty render`: one frame of a scene, to stdout or a file, and a
+//! recording of it; `--explain`'s report.
+
+use std::io::Write;
+use std::time::Duration;
+
+use crate::cli::RenderArgs;
+use crate::say::{say_lines, stdout, stdout_error};
+use crate::setup::{check_outputs, clip, colour_line, options, scene, with_view};
+use rastty::cast::{self, Recorder};
+use rastty::encode::{self, Encoder};
+use rastty::outfile::OutFile;
+use rastty::picture::{self, Format, Theme};
+use rastty::scene::View;
+use rastty::{Renderer, color::ColorDepth};
+
+/// Draws the frame `args` ask for and writes it where they say.
+pub fn render(args: &RenderArgs) -> rastty::Result<()> {
+    let format = args.output.as_deref().map(Format::of).transpose()?;
+    let mut opts = options(&args.view, &args.knobs, &args.budgets, 1);
+    if let Some(format) = format {
+        // A file is not the terminal: sizes and colours are its own.
+        opts.color = args.view.color.depth().unwrap_or(if format.has_color() {
+            ColorDepth::TrueColor
+        } else {
+            ColorDepth::None
+        });
+        if matches!(format, Format::Png | Format::Svg) && args.view.cell_aspect.is_none() {
+            opts.cell_aspect = args.cell_px.aspect();
+        }
+        if matches!(format, Format::Png | Format::Svg) {
+            picture::check_size(opts.cols, opts.rows, args.cell_px)?;
+        }
+    }
+    // Everything that can be refused is refused before the work: the
+    // frame's size, the files to write, then the scene, and a file to
+    // write that the scene is read from.
+    opts.check()?;
+    let mut output = args.output.as_deref().map(OutFile::create).transpose()?;
+    let mut record = args.record.as_deref().map(OutFile::create).transpose()?;
+    let scene = scene(&args.input, &args.budgets)?;
+    check_outputs(&scene, &[output.as_ref(), record.as_ref()])?;
+    let scene = {
+        let mut s = scene;
+        // A scene file's own poses stand unless a clip or time is asked.
+        if (args.input.clip.is_some() || args.time.is_some())
+            && let Some(c) = clip(&s, args.input.clip.as_deref())?
+        {
+            s.set_pose(c, args.time.unwrap_or(0.0));
+        }
+        let (mut s, view) = with_view(s, &args.view)?;
+        // The view as `spin` applies it, where one is asked for (else
+        // the camera as it is, to the bit).
+        if view != View::AS_GIVEN {
+            s.camera = view.apply(&s.camera);
+        }
+        s
+    };
+    let mut renderer = Renderer::new();
+    let frame = renderer.try_render(&scene, &opts)?;
+    let palette = rastty::color::Palette {
+        depth: opts.color,
+        dither: args.view.dither,
+        ..Default::default()
+    };
+    let start = std::time::Instant::now();
+    let mut buf = Vec::new();
+    let written = match (&mut output, format) {
+        (Some(out), Some(format)) => {
+            picture::write(frame, out, format, palette, Theme::default(), args.cell_px)?
+        }
+        _ => {
+            let mut stdout = stdout()?;
+            encode::write_lines(frame, palette, args.view.rep(), &mut buf, &mut stdout)
+                .and_then(|()| stdout.flush())
+                .map_err(stdout_error)?;
+            buf.len()
+        }
+    };
+    let record = match record.take() {
+        Some(file) => {
+            let path = file.path().to_path_buf();
+            let mut encoder = Encoder::new(opts.color).with_dither(args.view.dither);
+            let rec = Recorder::new(file, opts.cols, opts.rows, &cast::Terminal::from_env())
+                .and_then(|mut rec| {
+                    encoder.prepare(frame);
+                    rec.output(Duration::ZERO, encoder.last_bytes())?;
+                    rec.end()?;
+                    rec.finish()
+                })
+                .map_err(|e| rastty::Error::io(&path, e))?;
+            Some(rec)
+        }
+        None => None,
+    };
+    // The last step: each file written takes its place.
+    for file in output.into_iter().chain(record) {
+        file.commit()?;
+    }
+    if args.explain {
+        let encode = start.elapsed();
+        let mut lines = renderer.explain(&scene, &opts, encode, written);
+        lines.push_str(&colour_line(&args.view, palette));
+        say_lines(&lines);
+    }
+    Ok(())
+}
