@@ -1,24 +1,202 @@
 #!/usr/bin/env bash
 # docs/figures.md, regenerated: every performance figure the documentation
-# quotes, from the repository's measuring scripts, run here and written
-# verbatim with the commit they measured. Needs valgrind and GNU time; takes
-# about half an hour (the 4M-triangle loads under callgrind, and building
-# the commit the memory rows are compared with). With PEER set to a
-# checkout of github.com/autopawn/3d-ascii-viewer (and gcc and ncurses'
-# headers) it also measures rastty against it.
+# quotes, measured here and written verbatim with the commit it measured.
+# The one way rastty is measured: instructions by callgrind (they repeat
+# exactly on the same binary, where this machine's clock wanders by
+# ±20 %), peak memory by GNU time, and the clock only where it is the
+# point (bands on several cores). The programs it runs that are not the
+# `rastty` binary are the `rastty-measure` crate's (measure/).
 #
-#   PEER=/tmp/3d-ascii-viewer scripts/figures.sh    # rewrites docs/figures.md
+#   scripts/figures.sh                               (needs valgrind, GNU time)
+#   PEER=/tmp/3d-ascii-viewer scripts/figures.sh     (also against that peer)
+#
+# PEER names a checkout of github.com/autopawn/3d-ascii-viewer, built
+# here with gcc -O2 (needs ncurses' headers). Takes about half an hour
+# (the 4M-triangle loads under callgrind).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=docs/figures.md
-commit=$(git rev-parse --short HEAD)
-dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (with uncommitted changes)" || true)
-section() { # title, what it shows, script
-  printf '\n## %s\n\n%s\n\n```\n$ %s\n' "$1" "$2" "$3"
-  # shellcheck disable=SC2086 # a script and its arguments
-  bash $3
+work=target/figures
+mkdir -p "$work"
+cargo build --release -q --locked -p rastty-cli
+cargo build --release -q --locked -p rastty-measure
+bin=target/release
+rastty=$bin/rastty
+tux=tests/models/linux-mascot-tux.obj
+
+# The one callgrind helper: instructions of a whole process.
+count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
+# Instructions a frame: the command given a frame count last, (40 frames −
+# 10) / 30, which leaves out loading and the first (full) frame.
+per_frame() { local a b; a=$(count "$@" 10); b=$(count "$@" 40); echo $(( (b - a) / 30 )); }
+# Peak memory in KiB, the median of three runs.
+peak() {
+  for _ in 1 2 3; do
+    /usr/bin/time -o "$work/time" -f '%M' "$@" >/dev/null 2>&1
+    cat "$work/time"
+  done | sort -n | sed -n 2p
+}
+# Inclusive instructions of the function whose name ends in $1, in the
+# callgrind run `profile` made: callgrind_annotate lists a function once
+# for each source file its inlined code comes from; the largest is the
+# whole function with its callees.
+profile() { valgrind --tool=callgrind --callgrind-out-file="$work/cg.out" "$@" >/dev/null 2>&1; }
+inclusive() {
+  callgrind_annotate --inclusive=yes --threshold=100 "$work/cg.out" 2>/dev/null |
+    grep -E "$1( \[[^]]*\])?\$" | grep -v '=>' | sed 's/ *(.*//; s/,//g' | sort -n | tail -1
+}
+mib() { echo "scale=1; $1 / 1024" | bc; }
+millions() { echo "scale=2; $1 / 1000000" | bc; }
+torus() { # the generated torus of $1 triangles
+  local f=$work/torus-$1.obj
+  [ -s "$f" ] || "$bin/torus_obj" "$1" >"$f"
+  echo "$f"
+}
+triangles() { awk '/^f /{t += NF - 3} END {print t}' "$1"; }
+
+frame_cost() {
+  local big bands
+  echo "Tux 200×60, render only: $(per_frame "$bin/profile_scene" "$tux") instructions a frame"
+  echo "Tux 200×60, spin (render + blit + encode): $(per_frame count_spin_tux) instructions a frame"
+  big=$(per_frame "$rastty" spin --cols 1000 --rows 300 --glyphs half --color truecolor --threads 1 --frames)
+  echo "torus 1000×300, spin (render + blit + encode), one thread: $big instructions a frame, $(( big / 300000 )) a cell"
+  bands=$(per_frame "$rastty" spin --cols 1000 --rows 300 --glyphs half --color truecolor --threads auto --frames)
+  echo "torus 1000×300, spin, in bands (every thread's instructions): $bands a frame, $(( bands / 300000 )) a cell"
+}
+# `per_frame` appends the frame count, so a command whose count is not
+# last is a function.
+count_spin_tux() { "$rastty" spin "$tux" --cols 200 --rows 60 --glyphs half --color truecolor --frames "$1"; }
+
+planner() {
+  echo "| scene | planned (instructions/frame) | full (instructions/frame) | full / planned |"
+  echo "|---|---:|---:|---:|"
+  while IFS='|' read -r name scene flags; do
+    local p f
+    # shellcheck disable=SC2086 # flags are words
+    p=$(per_frame_scene "$scene" "" $flags)
+    # shellcheck disable=SC2086
+    f=$(per_frame_scene "$scene" full $flags)
+    printf '| %s | %s | %s | %s |\n' "$name" "$p" "$f" "$(awk "BEGIN { printf \"%.2f\", $f / $p }")"
+  done <<'SCENES'
+2D flat tiles|examples/scenes/tiles.toml|
+flat-shaded convex sphere|sphere|flat
+smooth-lit bunny|tests/models/bunny.obj|
+overlapping meshes|examples/scenes/overlap.toml|
+SCENES
+}
+# profile_scene SCENE FRAMES [full] [flat], per frame.
+per_frame_scene() {
+  local scene=$1 full=$2 a b
+  shift 2
+  # shellcheck disable=SC2086 # an empty $full is no word
+  a=$(count "$bin/profile_scene" "$scene" 10 $full "$@")
+  # shellcheck disable=SC2086
+  b=$(count "$bin/profile_scene" "$scene" 40 $full "$@")
+  echo $(( (b - a) / 30 ))
+}
+
+posing() {
+  local s h p humanoid v
+  s=$(per_frame "$bin/pose_cost" static); h=$(per_frame "$bin/pose_cost" held); p=$(per_frame "$bin/pose_cost" playing)
+  echo "| tube, 12,800 vertices | instructions a frame |"
+  echo "|---|---:|"
+  echo "| no rig | $s |"
+  echo "| skinned, clip held (posed once) | $h |"
+  echo "| skinned, clip playing (posed every frame) | $p |"
+  echo "| posing, a vertex: (playing − held) / 12,800 | $(( (p - h) / 12800 )) |"
+  if humanoid=$(scripts/humanoid.sh 2>/dev/null); then
+    v=$("$rastty" render "$humanoid" --cols 200 --rows 60 --time 1 --explain 2>&1 | sed -n 's/^ *\([0-9]*\) vertices posed$/\1/p')
+    h=$(per_frame "$rastty" spin "$humanoid" --cols 200 --rows 60 --glyphs half --color truecolor --speed 0 --frames)
+    p=$(per_frame "$rastty" spin "$humanoid" --cols 200 --rows 60 --glyphs half --color truecolor --speed 1 --frames)
+    echo
+    echo "| skinned figure ($v vertices, 54 joints), spin | instructions a frame |"
+    echo "|---|---:|"
+    echo "| clip held (\`--speed 0\`: posed once) | $h |"
+    echo "| clip playing (posed every frame) | $p |"
+    echo "| posing, a vertex: (playing − held) / $v | $(( (p - h) / v )) |"
+  else
+    echo
+    echo "(the skinned figure is left out: scripts/humanoid.sh could not make it)"
+  fi
+}
+
+against_euc() {
+  for who in rastty euc; do
+    echo "$who: $(per_frame "$bin/vs_euc" "$who") instructions a frame"
+  done
+}
+
+loading() {
+  local args=(--cols 200 --rows 60 --color truecolor) model tris size instr kb secs
+  printf '| model | triangles | file | instructions | per triangle | peak memory | per triangle | time |\n'
+  printf '|---|---:|---:|---:|---:|---:|---:|---:|\n'
+  for model in "$tux" tests/models/bunny.obj "$(torus 10000)" "$(torus 100000)" "$(torus 1000000)" "$(torus 4000000)"; do
+    tris=$(triangles "$model")
+    size=$(stat -c %s "$model")
+    instr=$(count "$rastty" render "$model" "${args[@]}")
+    read -r kb secs < <( { /usr/bin/time -f '%M %e' "$rastty" render "$model" "${args[@]}" >/dev/null; } 2>&1 | tail -1)
+    printf '| %s | %d | %.1f MiB | %.1fM | %d | %.1f MiB | %d B | %s s |\n' \
+      "$(basename "$model")" "$tris" "$(echo "$size / 1048576" | bc -l)" \
+      "$(echo "$instr / 1000000" | bc -l)" $(( instr / tris )) \
+      "$(echo "$kb / 1024" | bc -l)" $(( kb * 1024 / tris )) "$secs"
+  done
+}
+
+memory() {
+  local args=(--cols 200 --rows 60 --color truecolor) m1 m4 mn normals smooth load finish
+  m1=$(torus 1000000); m4=$(torus 4000000)
+  echo "| what | figure |"
+  echo "|---|---:|"
+  echo "| peak memory, one frame of Tux | $(mib "$(peak "$rastty" render "$tux" "${args[@]}")") MiB |"
+  echo "| peak memory, \`rastty --version\` (the process's floor) | $(mib "$(peak "$rastty" --version)") MiB |"
+  local kb4; kb4=$(peak "$rastty" render "$m4" "${args[@]}")
+  echo "| peak memory, one frame of the 4M-triangle torus | $(mib "$kb4") MiB ($(( kb4 * 1024 / 4000000 )) B a triangle) |"
+  profile "$rastty" render "$m1" "${args[@]}"
+  normals=$(inclusive 'Geometry::compute_normals')
+  smooth=$(inclusive 'normals::smooth_normals')
+  load=$(inclusive 'scene::obj::load')
+  finish=$(inclusive 'obj::Reader::finish')
+  echo "| normals at load, 1M-triangle torus: welding, closedness and normals, a triangle | $(( normals / 1000000 )) instructions |"
+  echo "| the normals alone (\`normals::smooth_normals\`), a triangle | $(( smooth / 1000000 )) instructions |"
+  echo "| OBJ parsing (\`obj::load\` less its normals), a byte | $(echo "scale=1; ($load - $finish) / $(stat -c %s "$m1")" | bc) instructions |"
+  # The torus with normals in the file: each `v` followed by a `vn`.
+  mn=$work/torus-1000000-vn.obj
+  [ -s "$mn" ] || awk '/^v /{print; print "vn 0 0 1"; next}
+    /^f /{printf "f"; for (i = 2; i <= NF; i++) printf " %s//%s", $i, $i; print ""; next}
+    {print}' "$m1" >"$mn"
+  profile "$rastty" render "$mn" "${args[@]}"
+  echo "| with normals in the file, the connectivity alone (\`Geometry::analyze\`), a triangle | $(( $(inclusive 'Geometry::analyze') / 1000000 )) instructions |"
+  echo "| whole process, \`rastty render cube\` | $(millions "$(count "$rastty" render cube)")M instructions |"
+  echo "| whole process, teapot, one frame | $(millions "$(count "$rastty" render tests/models/teapot.obj "${args[@]}")")M instructions |"
+  strip -o "$work/stripped" "$rastty"
+  echo "| the binary, with line tables / stripped | $(millions "$(stat -c %s "$rastty")") MB / $(millions "$(stat -c %s "$work/stripped")") MB |"
+}
+
+against_peer() {
+  local peer=$work/3d-ascii-viewer-O2 model tris a b ours theirs
+  gcc -O2 -o "$peer" "$PEER"/src/*.c -lm -lncurses
+  export TERM=xterm
+  printf '| model | triangles | rastty instructions | peer instructions | ratio | rastty peak memory | peer peak memory |\n'
+  printf '|---|---:|---:|---:|---:|---:|---:|\n'
+  for model in "$tux" tests/models/teapot.obj tests/models/bunny.obj "$(torus 1000000)" "$(torus 4000000)"; do
+    tris=$(triangles "$model")
+    ours=("$rastty" render "$model" --cols 200 --rows 60 --glyphs ascii --color none)
+    theirs=("$peer" --snap 0 0 -w 200 -h 60 "$model")
+    a=$(count "${ours[@]}")
+    b=$(count "${theirs[@]}")
+    printf '| %s | %d | %.1fM | %.1fM | %.2f× | %s MiB | %s MiB |\n' "$(basename "$model")" "$tris" \
+      "$(echo "$a / 1000000" | bc -l)" "$(echo "$b / 1000000" | bc -l)" "$(echo "$a / $b" | bc -l)" \
+      "$(mib "$(peak "${ours[@]}")")" "$(mib "$(peak "${theirs[@]}")")"
+  done
+}
+
+section() { # title, what it shows, function
+  printf '\n## %s\n\n%s\n\n```\n' "$1" "$2"
+  "$3"
   printf '```\n'
 }
+commit=$(git rev-parse --short HEAD)
+dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (with uncommitted changes)" || true)
 {
   cat <<HEAD
 # Figures
@@ -28,21 +206,22 @@ Every performance figure of rastty in one place, written by
 commit $commit$dirty, on $(nproc) cores of $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -1).
 Instruction counts come from callgrind and repeat exactly on the same
 binary; times wander by ±20 % on this machine and are given only where
-the script says so. Module documentation keeps the reasons and the
+the clock is the point. The documentation keeps the reasons and the
 invariants; the numbers live here. \`rastty bench\`'s accuracy and time
 of every knob is [its own page](bench.md) (\`cargo run --release -- bench
 --svg docs/bench.svg > docs/bench.md\`).
 HEAD
-  section "Frame cost" "Instructions a frame, (40 frames − 10) / 30: Tux at 200×60 cells in half blocks, render alone and through \`spin\` (render, blit, encode), and the torus at 1000×300 cells on one thread and in bands." scripts/frame-cost.sh
-  section "Bands" "Milliseconds a frame (wall clock, noisy: ±20 %, and the ratio as much from run to run), render only, half blocks, truecolor, one band against two drawn in turn ten frames each (docs/planner.md)." scripts/bands.sh
-  section "Posing" "Instructions a frame, (40 frames − 10) / 30, of a skinned tube of 12,800 vertices at 200×60 half blocks: without a rig, its clip held, its clip playing; the same for a skinned human figure of 54 joints through \`spin\` (scripts/humanoid.sh); and the posing's cost a vertex (docs/scenes.md)." scripts/pose-cost.sh
-  section "What the planner saves" "Instructions a frame, planned and full pipeline, for the planner's four scenes (docs/planner.md)." scripts/plan-cost.sh
-  section "Against euc" "Instructions a frame, rastty against the euc crate, the bunny at 200×120 samples (docs/accuracy.md)." scripts/vs-euc.sh
-  section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." scripts/load-cost.sh
-  section "Memory, loading and start-up" "Issue 37's rows, for the commit before it (3544dc4) and the one before the program's code was laid out (9d8112f), each built beside this one, and this one: peak memory of one frame of Tux (in brackets, of \`rastty --version\`, which loads no model: the process's floor) and of the 4M-triangle torus; instructions of normals at load (\`Geometry::compute_normals\`, with welding and closedness) a triangle (in brackets, the normals alone: \`normals::smooth_normals\`, without the connectivity) and of OBJ parsing a byte (all that \`obj::load\` does but the normals), on the 1M-triangle torus; a steady Tux frame (render only, 200×60 half blocks); whole-process \`render cube\` and teapot; the binary with line tables and stripped. Peak memory is the median of three runs. This commit's binary lays out the functions the common commands run side by side at the start of its code (\`cli/hot-functions.ld\`, why in \`cli/build.rs\`): the last line says how many of the functions those commands run it lays out there. The line above it is what loading the 1M torus costs where the file has normals (a \`vn\` for each position): \`Geometry::analyze\`, the welding, corner lists and closedness that every mesh pays, with normals or without, a triangle." "scripts/memory-and-loading.sh 3544dc4 9d8112f"
+  section "Frame cost" "Instructions a frame, (40 frames − 10) / 30: Tux at 200×60 cells in half blocks, render alone (\`measure/src/bin/profile_scene.rs\`) and through \`spin\` (render, blit, encode), and the torus at 1000×300 cells on one thread and in bands." frame_cost
+  section "Bands" "Milliseconds a frame by the clock (noisy: ±20 %, and the ratio as much from run to run), render only, half blocks, truecolor, one band against two drawn in turn ten frames each (docs/planner.md; \`measure/src/bin/bands.rs\`)." "$bin/bands"
+  section "Posing" "Instructions a frame of a skinned tube of 12,800 vertices at 200×60 half blocks: without a rig, its clip held, its clip playing (\`measure/src/bin/pose_cost.rs\`); the same for a skinned human figure of 54 joints through \`spin\` (\`scripts/humanoid.sh\` makes it); and the posing's cost a vertex (docs/scenes.md)." posing
+  section "What the planner saves" "Instructions a frame, planned and full pipeline, for the planner's four scenes (docs/planner.md)." planner
+  section "Against euc" "Instructions a frame, rastty against the euc crate drawing the bunny at 200×120 samples (docs/accuracy.md; \`measure/src/bin/vs_euc.rs\`)." against_euc
+  section "Bytes a frame" "The diffing encoder's bytes a frame, a square turning a full circle in 60 frames at 80×24 cells in every glyph mode, truecolor, against ratatui's \`Canvas\` (docs/usage.md; \`measure/src/bin/bytes_per_frame.rs\`)." "$bin/bytes_per_frame"
+  section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." loading
+  section "Memory and start-up" "Peak memory (the median of three runs), what loading costs a triangle and a byte (callgrind's inclusive counts, on the 1M-triangle torus), whole-process counts of two small commands, and the binary's size." memory
   if [ -n "${PEER:-}" ]; then
-    section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." "scripts/vs-3d-ascii-viewer.sh $PEER"
+    section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." against_peer
   fi
-} > "$out.tmp"
+} >"$out.tmp"
 mv "$out.tmp" "$out"
 echo "wrote $out"
