@@ -53,8 +53,8 @@ mod support;
 pub use support::{GlyphFamily, GlyphSupport};
 
 use crate::color::{ColorDepth, Lin, Rgb};
-use crate::frame::{Cell, Frame, Known};
-use crate::framebuffer::{Framebuffer, View};
+use crate::frame::{Cell, Known};
+use crate::framebuffer::View;
 use crate::transform::{Grid, Rect};
 
 /// How samples become glyphs.
@@ -467,25 +467,6 @@ fn ramp(steps: &[char], c: Rgb) -> char {
     steps[1 + (c.luma() * top).round() as usize]
 }
 
-/// Turns the framebuffer into `frame` (resized to fit), cell by cell. Sample
-/// row `H − 1 − r` shows on terminal row `r`.
-pub fn blit(
-    fb: &Framebuffer,
-    mode: GlyphMode,
-    depth: ColorDepth,
-    background: Option<Rgb>,
-    split: Split,
-    frame: &mut Frame,
-) {
-    let (w, h) = mode.cell_size();
-    let grid = fb.grid();
-    let (cols, rows) = ((grid.width / w) as u16, (grid.height / h) as u16);
-    // Every cell is written below.
-    frame.resize(cols, rows);
-    let known = blit_band(fb.view(), mode, depth, background, split, frame.cells_mut());
-    frame.set_known(known);
-}
-
 /// The cells (columns, and rows from the top of the frame) that show a
 /// sample of `fb`'s drawn rectangle in `mode`: every
 /// other cell shows undrawn samples only.
@@ -696,6 +677,25 @@ fn blit_cells<const W: usize, const H: usize>(
 mod tests {
     use super::*;
     use crate::choice::Choice;
+    use crate::frame::Frame;
+    use crate::framebuffer::Framebuffer;
+
+    /// `fb` into `frame` (resized to fit), cell by cell, as the renderer's
+    /// output does.
+    fn blit(
+        fb: &Framebuffer,
+        mode: GlyphMode,
+        depth: ColorDepth,
+        background: Option<Rgb>,
+        split: Split,
+        frame: &mut Frame,
+    ) {
+        let (w, h) = mode.cell_size();
+        let grid = fb.grid();
+        frame.resize((grid.width / w) as u16, (grid.height / h) as u16);
+        let known = blit_band(fb.view(), mode, depth, background, split, frame.cells_mut());
+        frame.set_known(known);
+    }
 
     const RED: Rgb = Rgb::new(255, 0, 0);
     const BLUE: Rgb = Rgb::new(0, 0, 255);

@@ -108,6 +108,7 @@ pub mod encode;
 // What runs them: the options, the planner that decides, the renderer that
 // obeys, and the animation loop's core.
 mod options;
+mod output;
 mod plan;
 mod render;
 pub mod animate;

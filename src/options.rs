@@ -285,10 +285,8 @@ impl RenderOptions {
     /// anti-aliasing passes. Time grows with it, and memory with the
     /// samples (about 12 bytes each, 28 with anti-aliasing).
     pub fn sample_tests(&self) -> u64 {
-        u64::from(self.cols)
-            * u64::from(self.rows)
-            * self.glyphs.samples() as u64
-            * self.aa.passes()
+        let (w, h) = self.cell_samples();
+        u64::from(self.cols) * u64::from(self.rows) * u64::from(w * h) * self.aa.passes()
     }
 
     /// Refuses, before any work, a frame of more than `max` sample tests,
@@ -302,7 +300,7 @@ impl RenderOptions {
             "a frame of {}×{} cells at {} samples a cell and {} pass(es) of --aa {} is {n} sample tests, more than the budget of {max} (--max-samples raises it)",
             self.cols,
             self.rows,
-            self.glyphs.samples(),
+            self.cell_samples().0 * self.cell_samples().1,
             self.aa.passes(),
             self.aa.name()
         )))
@@ -331,6 +329,20 @@ impl RenderOptions {
             return bad(format!("a turn of {}: it must be finite", self.turn));
         }
         self.check_samples(self.max_samples)
+    }
+
+    /// Samples a cell holds, across and down: the glyph mode's grid
+    /// ([`GlyphMode::cell_size`]).
+    pub fn cell_samples(&self) -> (u32, u32) {
+        self.glyphs.cell_size()
+    }
+
+    /// The frame's grid of samples: its cells, each of
+    /// [`RenderOptions::cell_samples`]. Every stage draws on it, whatever
+    /// the frame's samples then become ([`crate::output`]).
+    pub fn grid(&self) -> crate::transform::Grid {
+        let (w, h) = self.cell_samples();
+        crate::transform::Grid::new(u32::from(self.cols) * w, u32::from(self.rows) * h)
     }
 
     /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:

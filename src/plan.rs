@@ -238,7 +238,7 @@ fn bands(opts: &RenderOptions) -> Bands {
     if opts.traversal == Traversal::Scan {
         return one("a scan tests every sample of the grid");
     }
-    let (w, h) = opts.glyphs.cell_size();
+    let (w, h) = opts.cell_samples();
     if opts.cols == 0 || opts.rows == 0 {
         return one("an empty frame");
     }
@@ -487,7 +487,7 @@ impl Plan {
         } else {
             Decision::skip("every bounding box is inside the clip volume")
         };
-        let grid = opts.glyphs.grid(opts.cols, opts.rows);
+        let grid = opts.grid();
         let samples = grid.width as usize * grid.height as usize;
         self.defers.clear();
         self.defers.extend(

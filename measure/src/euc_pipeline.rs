@@ -77,7 +77,7 @@ pub fn setup<'a>(
         normals: &mesh.normals,
         lights: rastty::Lights::new(&scene.lights),
     };
-    let grid = opts.glyphs.grid(opts.cols, opts.rows);
+    let grid = opts.grid();
     let size = [grid.width as usize, grid.height as usize];
     (
         pipeline,

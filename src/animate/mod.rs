@@ -612,7 +612,8 @@ pub fn play(
 /// would be refused.
 fn within_budget(mut opts: RenderOptions) -> RenderOptions {
     let (cols, rows) = (u64::from(opts.cols), u64::from(opts.rows));
-    let per_cell = opts.glyphs.samples() as u64 * opts.aa.passes();
+    let (w, h) = opts.cell_samples();
+    let per_cell = u64::from(w * h) * opts.aa.passes();
     let cells = opts.max_samples / per_cell.max(1);
     if cols * rows <= cells {
         return opts;

@@ -27,7 +27,7 @@ impl Renderer {
         (vp, turn): (Mat4, Mat4),
         lap: &mut impl FnMut() -> Duration,
     ) {
-        let grid = opts.glyphs.grid(opts.cols, opts.rows);
+        let grid = opts.grid();
         let depth = stage.plan.depth.run;
         self.acc.clear();
         self.acc.resize(grid.len(), [0.0; 4]);

@@ -22,11 +22,10 @@ use super::stats::FrameStats;
 use super::triangle::Faces;
 use super::vertex::{Core, Kept, Transforms, Verts};
 use super::{Painter, Renderer, Sorted, Stage};
-use crate::blit;
 use crate::clip::Polygon;
-use crate::frame::{Cell, Frame, Known};
 use crate::framebuffer::Target;
 use crate::options::RenderOptions;
+use crate::output::Output;
 use crate::scene::Scene;
 use crate::transform::{Band, Rect};
 
@@ -47,8 +46,6 @@ pub(super) struct BandWork {
     acc: Vec<[f32; 4]>,
     /// Where the band drew this frame.
     drawn: Rect,
-    /// What its blit knows of its cells.
-    known: Known,
 }
 
 impl Default for BandWork {
@@ -62,7 +59,6 @@ impl Default for BandWork {
             kept: Kept::default(),
             acc: Vec::new(),
             drawn: Rect::EMPTY,
-            known: Known::default(),
         }
     }
 }
@@ -74,20 +70,21 @@ impl Renderer {
     /// into its rows of the one framebuffer, and blits them into its rows
     /// of `frame`. Band k holds cell rows `[k·m, (k+1)·m)` from the
     /// bottom, `m` rows a band (the top band may hold fewer).
-    pub(super) fn draw_bands(
+    pub(super) fn draw_bands<O: Output>(
         &mut self,
         scene: &Scene,
         opts: &RenderOptions,
         stage: &Stage<'_>,
         (vp, turn): (Mat4, Mat4),
-        frame: &mut Frame,
+        (out, fill): (&mut O, &O::Fill),
         lap: &mut impl FnMut() -> Duration,
     ) {
         let p = stage.plan;
         let depth = p.depth.run;
-        let grid = opts.glyphs.grid(opts.cols, opts.rows);
-        let (cell_w, cell_h) = opts.glyphs.cell_size();
-        let (cols, rows) = (grid.width / cell_w, grid.height / cell_h);
+        let grid = opts.grid();
+        // Bands are whole rows of the output's units.
+        let (unit_w, unit_h) = O::unit(opts);
+        let (cols, rows) = (grid.width / unit_w, grid.height / unit_h);
         let per = rows.div_ceil(p.bands.count as u32).max(1);
         let n = rows.div_ceil(per) as usize;
         // Cleared where the last frame drew.
@@ -117,18 +114,18 @@ impl Renderer {
         times.vertices += lap();
         let mut bands = std::mem::take(&mut self.bands);
         bands.resize_with(n, BandWork::default);
-        frame.resize(cols as u16, rows as u16);
         let (verts, kept, meshes, posed) = (&self.verts, &self.kept, &self.meshes, &self.posed);
         let blended = super::blended_meshes(scene, p, vp, turn);
         let job = |k: usize,
                    band: &mut BandWork,
                    samples: &mut [Option<crate::color::Lin>],
                    depths: &mut [f32],
-                   cells: &mut [Cell]| {
+                   units: &mut [O::Unit]|
+         -> O::Done {
             band.stats = FrameStats::default();
             band.drawn = Rect::EMPTY;
-            let y0 = k as u32 * per * cell_h;
-            let y1 = (y0 + per * cell_h).min(grid.height);
+            let y0 = k as u32 * per * unit_h;
+            let y1 = (y0 + per * unit_h).min(grid.height);
             let mut painter = Painter {
                 fb: Target::of_band(grid, Band { y0, y1 }, samples, depths, &mut band.drawn),
                 surface: Default::default(),
@@ -176,52 +173,45 @@ impl Renderer {
                 };
                 painter.faces(stage, &faces, of(i), super::Pass::Blend);
             }
-            band.known = blit::blit_band(
-                painter.fb.view(),
-                opts.glyphs,
-                opts.color,
-                scene.background,
-                opts.split,
-                cells,
-            );
+            O::fill(fill, painter.fb.view(), units)
         };
-        let band_samples = (per * cell_h * grid.width) as usize;
-        let band_cells = (per * cols) as usize;
+        let band_samples = (per * unit_h * grid.width) as usize;
+        let band_units = (per * cols) as usize;
         let (samples, depths) = self.fb.parts_mut();
-        let cells = frame.cells_mut();
-        // Cells are stored from the top: the bottom band's are the last.
+        let units = out.units_mut();
+        // Units are stored from the top: the bottom band's are the last.
         // The same zip twice, rayon's and the standard library's: their
         // iterators have the same shape but not the same types.
         #[cfg(feature = "parallel")]
-        {
+        let done = {
             use rayon::prelude::*;
             bands
                 .par_iter_mut()
                 .zip(samples.par_chunks_mut(band_samples))
                 .zip(depths.par_chunks_mut(band_samples))
-                .zip(cells.par_rchunks_mut(band_cells))
+                .zip(units.par_rchunks_mut(band_units))
                 .enumerate()
-                .for_each(|(k, (((band, s), d), c))| job(k, band, s, d, c));
-        }
+                .map(|(k, (((band, s), d), u))| job(k, band, s, d, u))
+                .reduce_with(O::merge)
+        };
         #[cfg(not(feature = "parallel"))]
-        bands
+        let done = bands
             .iter_mut()
             .zip(samples.chunks_mut(band_samples))
             .zip(depths.chunks_mut(band_samples))
-            .zip(cells.rchunks_mut(band_cells))
+            .zip(units.rchunks_mut(band_units))
             .enumerate()
-            .for_each(|(k, (((band, s), d), c))| job(k, band, s, d, c));
-        let (mut drawn, mut known) = (
-            Rect::EMPTY,
-            bands.first().map_or(Known::default(), |b| b.known),
-        );
+            .map(|(k, (((band, s), d), u))| job(k, band, s, d, u))
+            .reduce(O::merge);
+        let mut drawn = Rect::EMPTY;
         for (k, band) in bands.iter().enumerate() {
             self.stats.add_band(&band.stats, k == 0);
             drawn = drawn.union(band.drawn);
-            known.rect = known.rect.union(band.known.rect);
         }
         self.fb.touch(drawn);
-        frame.set_known(known);
+        if let Some(done) = done {
+            out.end(done);
+        }
         self.bands = bands;
     }
 }

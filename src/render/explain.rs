@@ -27,8 +27,8 @@ impl Renderer {
         };
         let s = self.stats();
         let t = self.times();
-        let grid = opts.glyphs.grid(opts.cols, opts.rows);
-        let (w, h) = opts.glyphs.cell_size();
+        let grid = opts.grid();
+        let (w, h) = opts.cell_samples();
         let ms = |d: Duration| format!("{:.3} ms", d.as_secs_f64() * 1e3);
         let mut out = String::new();
         let _ = writeln!(
@@ -319,7 +319,7 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
 /// light are found again at set-up, why, and how many vertices it has a
 /// sample (the first [`RUNS_LISTED`] meshes).
 fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate::plan::Plan) {
-    let grid = opts.glyphs.grid(opts.cols, opts.rows);
+    let grid = opts.grid();
     let samples = (grid.width as f64 * grid.height as f64).max(1.0);
     for (i, m) in scene.meshes.iter().enumerate().take(RUNS_LISTED) {
         let cull = opts.cull.unwrap_or(m.cull);

@@ -39,7 +39,6 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 
-use crate::blit;
 use crate::clip::{Clipper, Polygon};
 use crate::color::Rgb;
 use crate::error::Result;
@@ -47,6 +46,7 @@ use crate::fill::Eye;
 use crate::frame::Frame;
 use crate::framebuffer::{Framebuffer, Target};
 use crate::options::{Aa, RenderOptions};
+use crate::output::Output;
 use crate::plan::Plan;
 use crate::raster::{Precision, Traversal};
 use crate::scene::anim::{Pose, Posed};
@@ -372,7 +372,7 @@ impl Renderer {
 
     fn render_checked(&mut self, scene: &Scene, opts: &RenderOptions) -> &Frame {
         let mut frame = std::mem::take(&mut self.frame);
-        self.render_into_checked(scene, opts, &mut frame);
+        self.render_to(scene, opts, &mut frame);
         self.frame = frame;
         &self.frame
     }
@@ -385,7 +385,7 @@ impl Renderer {
         frame: &mut Frame,
     ) -> Result<()> {
         check(scene, opts)?;
-        self.render_into_checked(scene, opts, frame);
+        self.render_to(scene, opts, frame);
         Ok(())
     }
 
@@ -417,15 +417,21 @@ impl Renderer {
         if let Err(e) = check(scene, opts) {
             panic!("{e}");
         }
-        self.render_into_checked(scene, opts, frame);
+        self.render_to(scene, opts, frame);
     }
 
-    fn render_into_checked(&mut self, scene: &Scene, opts: &RenderOptions, frame: &mut Frame) {
-        let grid = opts.glyphs.grid(opts.cols, opts.rows);
-        frame.set_plain(matches!(
-            opts.glyphs,
-            blit::GlyphMode::Ascii | blit::GlyphMode::Braille
-        ));
+    /// Draws `scene` (checked already) on the options' grid of samples and
+    /// hands the samples to `out`, the one path from the stages to any
+    /// output ([`crate::output`]): a frame drawn in bands fills each
+    /// band's rows of `out` on the band's thread, any other all at once.
+    pub(crate) fn render_to<O: Output>(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        out: &mut O,
+    ) {
+        let grid = opts.grid();
+        let fill = out.begin(opts, scene.background);
         self.stats = FrameStats::default();
         self.times = FrameTimes::default();
         let mut clock = Instant::now();
@@ -486,7 +492,7 @@ impl Renderer {
         let mut banded = false;
         match opts.aa {
             Aa::None if p.bands.count > 1 => {
-                self.draw_bands(scene, opts, &stage, (vp, turn), frame, &mut lap);
+                self.draw_bands(scene, opts, &stage, (vp, turn), (out, &fill), &mut lap);
                 banded = true;
             }
             Aa::None => {
@@ -498,16 +504,10 @@ impl Renderer {
             }
         }
         self.times.triangles += lap();
-        // Bands blit their own rows.
+        // Bands fill their own rows.
         if !banded {
-            blit::blit(
-                &self.fb,
-                opts.glyphs,
-                opts.color,
-                scene.background,
-                opts.split,
-                frame,
-            );
+            let done = O::fill(&fill, self.fb.view(), out.units_mut());
+            out.end(done);
             self.times.blit += lap();
         }
         self.plan = plan;
@@ -790,7 +790,7 @@ mod tests {
             rows: 4,
             ..RenderOptions::default()
         };
-        let grid = lean.glyphs.grid(lean.cols, lean.rows);
+        let grid = lean.grid();
         assert!(n > Plan::DEFER_PER_SAMPLE * (grid.width * grid.height) as usize);
         let (verts, deep, rest, plain) = draw(&lean);
         assert_eq!((verts, deep, rest), (n, 0, 0));

@@ -354,7 +354,7 @@ mod tests {
             turn,
             ..Default::default()
         };
-        let grid = opts.glyphs.grid(cols, rows);
+        let grid = opts.grid();
         let cam = (scene.camera).resolved_turning(opts.aspect(), opts.turn, opts.turn_axis);
         let vp = cam.view_projection(opts.aspect());
         let clipper = Clipper::for_projection(grid.width, grid.height, &cam.projection);
