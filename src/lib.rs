@@ -109,6 +109,7 @@ pub mod encode;
 // obeys, and the animation loop's core.
 mod options;
 mod output;
+mod stats;
 mod plan;
 mod render;
 pub mod animate;
@@ -134,6 +135,7 @@ pub use options::{
     Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS,
     Pipeline, RenderOptions, Threads, Wire,
 };
-pub use plan::{Bands, Decision, Extras, Plan};
-pub use render::{FrameStats, FrameTimes, Renderer, render, try_render};
+pub use plan::{Bands, Decision, Effect, Extras, Plan};
+pub use render::{Renderer, render, try_render};
 pub use shade::{Lights, Shading, specular_reference};
+pub use stats::{FrameStats, FrameTimes};

@@ -339,7 +339,7 @@ impl RenderOptions {
 
     /// The frame's grid of samples: its cells, each of
     /// [`RenderOptions::cell_samples`]. Every stage draws on it, whatever
-    /// the frame's samples then become ([`crate::output`]).
+    /// the frame's samples then become (character cells, pixels).
     pub fn grid(&self) -> crate::transform::Grid {
         let (w, h) = self.cell_samples();
         crate::transform::Grid::new(u32::from(self.cols) * w, u32::from(self.rows) * h)
@@ -351,6 +351,9 @@ impl RenderOptions {
         self.cols as f32 * self.cell_aspect / self.rows.max(1) as f32
     }
 }
+
+/// How wide a wireframe's line is, in samples.
+pub(crate) const LINE_WIDTH: f64 = 1.0;
 
 /// Whether the planner may skip stages.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -134,7 +134,7 @@ pub struct RasterStats {
     pub culled: u64,
     /// Dropped unseen: the snapped vertices show that the bounding box
     /// holds no sample centre, before the area or the winding is looked at
-    /// (on the lean path: `crate::Plan::lean`).
+    /// (on the lean path: `crate::Effect::Lean`).
     pub found_empty: u64,
     /// Samples whose coverage was decided: each sample of the grid
     /// ([`Traversal::Scan`]) or of the triangle's bounding box (the

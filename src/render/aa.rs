@@ -13,6 +13,7 @@ use glam::{Mat4, Vec3};
 use super::{Renderer, Stage};
 use crate::color::{Lin, Rgb};
 use crate::options::{Aa, RenderOptions};
+use crate::plan::Effect;
 use crate::scene::Scene;
 use crate::transform;
 
@@ -28,7 +29,7 @@ impl Renderer {
         lap: &mut impl FnMut() -> Duration,
     ) {
         let grid = opts.grid();
-        let depth = stage.plan.depth.run;
+        let depth = stage.plan[Effect::Depth].run;
         self.acc.clear();
         self.acc.resize(grid.len(), [0.0; 4]);
         if matches!(opts.aa, Aa::Exact) {

@@ -18,7 +18,6 @@ use std::time::Duration;
 
 use glam::Mat4;
 
-use super::stats::FrameStats;
 use super::triangle::Faces;
 use super::vertex::{Core, Kept, Transforms, Verts};
 use super::{Painter, Renderer, Sorted, Stage};
@@ -26,7 +25,9 @@ use crate::clip::Polygon;
 use crate::framebuffer::Target;
 use crate::options::RenderOptions;
 use crate::output::Output;
+use crate::plan::Effect;
 use crate::scene::Scene;
+use crate::stats::FrameStats;
 use crate::transform::{Band, Rect};
 
 /// What one band's thread keeps from frame to frame: its counts, its
@@ -80,7 +81,7 @@ impl Renderer {
         lap: &mut impl FnMut() -> Duration,
     ) {
         let p = stage.plan;
-        let depth = p.depth.run;
+        let depth = p[Effect::Depth].run;
         let grid = opts.grid();
         // Bands are whole rows of the output's units.
         let (unit_w, unit_h) = O::unit(opts);
@@ -154,15 +155,15 @@ impl Renderer {
                     transforms,
                     cull: opts.cull.unwrap_or(mesh.cull),
                 };
-                if p.faces.run {
+                if p[Effect::Faces].run {
                     painter.faces(stage, &faces, of(i), super::Pass::Opaque);
                 }
-                if p.edges.run {
+                if p[Effect::Edges].run {
                     painter.edges(stage, mesh, faces.positions, transforms, opts.wire);
                 }
             }
             painter.loose(scene, opts, stage, vp, turn);
-            for &i in blended.iter().filter(|_| p.faces.run) {
+            for &i in blended.iter().filter(|_| p[Effect::Faces].run) {
                 let mesh = &scene.meshes[i];
                 let transforms = &meshes[i].transforms;
                 let faces = Faces {

@@ -2,7 +2,7 @@
 //! the plan's decisions beside the work each stage did. Kept next to the
 //! renderer, whose statistics it reads; the planner only decides.
 
-use crate::choice::Choice;
+use crate::plan::Effect;
 use std::fmt::Write as _;
 use std::time::Duration;
 
@@ -98,109 +98,9 @@ impl Renderer {
         // Each stage runs inside a timed phase (the last line): the vertex
         // phase holds the clip tests and per-vertex lighting, the triangle
         // phase the rest.
-        let rows = [
-            (
-                "pose",
-                plan.posing,
-                format!("{} vertices posed", s.posed_vertices),
-            ),
-            (
-                "clip",
-                plan.clip,
-                format!(
-                    "{} vertices tested, {} triangles cut, {} removed",
-                    s.clip_tests, s.clipped, s.clip_rejected
-                ),
-            ),
-            (
-                "lighting",
-                plan.lighting,
-                format!("{} evaluations", s.lighting_evaluations),
-            ),
-            ("falloff", plan.falloff, {
-                let near = scene.lights.iter().filter(|l| l.kind.position().is_some());
-                format!("{} point or spot lights", near.count())
-            }),
-            (
-                "rim",
-                plan.rim,
-                opts.rim
-                    .map_or("no colour".into(), |c| format!("colour {c}")),
-            ),
-            (
-                "depth",
-                plan.depth,
-                format!("{} depth tests", s.depth_tests),
-            ),
-            (
-                "interpolation",
-                plan.interpolation,
-                format!("{} samples interpolated", s.interpolated_samples),
-            ),
-            (
-                "perspective",
-                plan.perspective,
-                format!("{} samples through 1/w", s.perspective_samples),
-            ),
-            (
-                "texturing",
-                plan.texturing,
-                format!(
-                    "{} samples read a texture ({})",
-                    s.textured_samples,
-                    plan.filter
-                        .map_or("each texture's own filter", |f| f.name())
-                ),
-            ),
-            (
-                "glow",
-                plan.glow,
-                format!("{} triangles given emitted light", s.glowing_triangles),
-            ),
-            (
-                "specular",
-                plan.specular,
-                format!(
-                    "{} samples given a highlight (found {})",
-                    s.specular_samples,
-                    match opts.highlights {
-                        crate::options::Highlights::Sample => "at each sample",
-                        crate::options::Highlights::Vertex => "at each vertex, interpolated",
-                    }
-                ),
-            ),
-            (
-                "alpha",
-                plan.alpha,
-                format!("{} samples drawn by their alpha", s.alpha_samples),
-            ),
-            (
-                "maps",
-                plan.maps,
-                format!("{} samples shaded from their maps", s.mapped_samples),
-            ),
-            ("faces", plan.faces, format!("wire {}", opts.wire.name())),
-            (
-                "edges",
-                plan.edges,
-                format!(
-                    "{} edges drawn, each once, as a line {} sample wide",
-                    s.edges,
-                    super::wire::LINE_WIDTH
-                ),
-            ),
-            (
-                "lean path",
-                plan.lean,
-                format!(
-                    "{} set-up, {} walk",
-                    opts.precision.name(),
-                    opts.traversal.name()
-                ),
-            ),
-        ];
-        for (name, d, work) in &rows {
-            let _ = writeln!(out, "{name:<14} {d}\n{:<20}{work}", "");
+        for (e, d) in plan.decisions() {
+            let work = e.work(s, scene, opts, plan);
+            let _ = writeln!(out, "{:<14} {d}\n{:<20}{work}", e.name(), "");
         }
         effects(&mut out, scene, plan);
         deferrals(&mut out, scene, opts, plan);
@@ -254,7 +154,7 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
             .filter_map(|run| {
                 let f = &run.finish;
                 let mut e = Vec::new();
-                if run.texture.is_some() && plan.texturing.run {
+                if run.texture.is_some() && plan[Effect::Texturing].run {
                     e.push("texture (its base colour's)".to_string());
                 }
                 if let Some(maps) = plan.maps_of(f).filter(|_| m.uvs.is_some()) {
@@ -271,7 +171,7 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
                 } else if f.specular.is_some() && !f.unlit && plan.shines(true) {
                     e.push("highlight (its metallic-roughness or Ks)".into());
                 }
-                if plan.glow.run && f.emissive != crate::color::Lin::BLACK {
+                if plan[Effect::Glow].run && f.emissive != crate::color::Lin::BLACK {
                     e.push("glow (its emissive colour)".into());
                 }
                 if plan.sees_through(&f.alpha) {

@@ -1,4 +1,4 @@
-//! The lean path's set-up ([`crate::Plan::lean`]): a triangle inside
+//! The lean path's set-up ([`crate::Effect::Lean`]): a triangle inside
 //! every clip plane, without a texture, accepted and counted as drawn, is
 //! set up first (a box of a few samples tested sample by sample,
 //! `raster::SmallSetup`), and its corners read, lit and filled only if it
@@ -11,15 +11,17 @@
 use glam::Vec3A;
 
 use super::triangle::{Faces, Model, base_colors, corners};
-use super::vertex::{Deep, V, Verts, keeps};
+use super::vertex::{Deep, V, Verts};
 use super::{Painter, Stage};
 use crate::fill::Attributes;
+use crate::plan::Effect;
+use crate::plan::Extras;
 use crate::raster::{Coverage, Setup, SmallSetup, SnappedTriangle};
 use crate::shade::Shading;
 
 impl Painter<'_> {
     /// What a triangle inside every clip plane without a texture takes on
-    /// the plan's lean path ([`crate::Plan::lean`]), once it is accepted
+    /// the plan's lean path ([`crate::Effect::Lean`]), once it is accepted
     /// and counted as drawn: set it up, and light and fill it only if it
     /// covers a sample.
     #[inline(always)]
@@ -66,7 +68,7 @@ impl Painter<'_> {
             s.inv_area(),
             [v.map(|v| v.deep().z), v.map(|v| v.deep().inv_w)],
             color,
-            stage.plan.perspective.run,
+            stage.plan[Effect::Perspective].run,
         );
         let flat = !stage.plan.interpolates(&color);
         // A shining run's corners in the set-up's order.
@@ -103,7 +105,7 @@ impl Painter<'_> {
         let base = || base_colors(f.mesh, face, run_color, diffuse);
         let corners = move || {
             let scratch = scratch;
-            verts.of_as::<{ keeps::FOUND }>(*face, scratch)
+            verts.of_as::<{ Extras::Found as u8 }>(*face, scratch)
         };
         match SmallSetup::of(t, grid, band) {
             Some(s) if !s.covers_any() => self.stats.raster.samples_tested += s.bbox_samples(),

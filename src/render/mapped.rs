@@ -15,6 +15,7 @@ use super::vertex::Verts;
 use super::{Painter, Stage};
 use crate::fill::{self, AlphaFill, Attributes, Mapped, MappedCorners, ScreenTriangle, Shine};
 use crate::options::Highlights;
+use crate::plan::Effect;
 use crate::raster::Coverage;
 use crate::scene::Alpha;
 use crate::texture::{Sampler, Texture};
@@ -106,7 +107,7 @@ impl Painter<'_> {
         stage: &Stage,
         texture: Option<(&Texture, Sampler)>,
     ) {
-        let planes = texture.map(|_| fill::UvPlanes::new(t, stage.plan.perspective.run));
+        let planes = texture.map(|_| fill::UvPlanes::new(t, stage.plan[Effect::Perspective].run));
         let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
         let (alpha, alpha_texture) = match &self.surface.see {
             Some((alpha, texture)) => (*alpha, texture.as_deref()),
@@ -124,7 +125,7 @@ impl Painter<'_> {
         // borrowed surface.
         let mut sink = fill::Sink {
             fb: self.fb.reborrow(),
-            depth: stage.plan.depth.run,
+            depth: stage.plan[Effect::Depth].run,
             traversal: stage.traversal,
         };
         let done = match (&self.mapping.set, t.shine, &planes) {
@@ -134,12 +135,10 @@ impl Painter<'_> {
                     corners: mapped_corners(setup.order(), corners, &self.mapping.frame),
                     base: texture.filter(|(t, _)| !std::ptr::eq(*t, Texture::white())),
                     planes,
-                    lights: stage
-                        .plan
-                        .lighting
+                    lights: stage.plan[Effect::Lighting]
                         .run
                         .then_some((&stage.lights, stage.eye)),
-                    rim: stage.plan.rim.run,
+                    rim: stage.plan[Effect::Rim].run,
                 };
                 let done = sink.see_through(setup, a, |x, y, e| mapped.at(a, flat, x, y, e), &fill);
                 self.stats.mapped_samples += done.written;

@@ -12,7 +12,7 @@
 //! mapped, masked and blended runs in `mapped.rs`), the edge stage of
 //! wireframes (`wire.rs`: edges as lines one sample wide through the same
 //! set-up), anti-aliasing (`aa.rs`),
-//! bands (`bands.rs`) and what a frame cost (`stats.rs`). This file holds
+//! bands (`bands.rs`); what a frame cost is `crate::stats`'s. This file holds
 //! the renderer and the frame: the plan made (or remade) first, then the
 //! stages as it says. Fragments are the fill stage's ([`crate::fill`]):
 //! depth in screen space, tested per sample (larger is nearer; of equal
@@ -26,13 +26,13 @@ mod bands;
 mod explain;
 mod lean;
 mod mapped;
-mod stats;
 mod triangle;
 mod vertex;
 mod vertex_lanes;
 mod wire;
 
-pub use stats::{FrameStats, FrameTimes};
+use crate::plan::Effect;
+use crate::stats::{FrameStats, FrameTimes};
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -98,7 +98,7 @@ enum Pass {
 /// the order a back-to-front pass draws them.
 fn blended_meshes(scene: &Scene, plan: &Plan, vp: Mat4, turn: Mat4) -> Vec<usize> {
     use crate::scene::AlphaMode;
-    if !plan.alpha.run {
+    if !plan[Effect::Alpha].run {
         return Vec::new();
     }
     let mut order: Vec<(f32, usize)> = (scene.meshes.iter().enumerate())
@@ -469,10 +469,14 @@ impl Renderer {
             plan: p,
             viewport: transform::Viewport::new(grid.width as f32, grid.height as f32),
             lights: {
-                let lights = Lights::new(if p.lighting.run { &scene.lights } else { &[] });
+                let lights = Lights::new(if p[Effect::Lighting].run {
+                    &scene.lights
+                } else {
+                    &[]
+                });
                 match opts.rim {
-                    Some(c) if p.rim.run => lights.with_rim(c, cam.eye - cam.target),
-                    _ if p.rim.run => lights.with_rim(Rgb::BLACK, cam.eye - cam.target),
+                    Some(c) if p[Effect::Rim].run => lights.with_rim(c, cam.eye - cam.target),
+                    _ if p[Effect::Rim].run => lights.with_rim(Rgb::BLACK, cam.eye - cam.target),
                     _ => lights,
                 }
             },
@@ -496,7 +500,7 @@ impl Renderer {
                 banded = true;
             }
             Aa::None => {
-                self.fb.reset(grid, p.depth.run);
+                self.fb.reset(grid, p[Effect::Depth].run);
                 self.geometry(scene, opts, &stage, vp, turn, &mut lap);
             }
             Aa::X4 | Aa::X16 | Aa::Exact => {
@@ -634,7 +638,7 @@ impl Renderer {
             };
             // Borrowed out of the painter for the loop, and put back.
             let (verts, kept) = (std::mem::take(painter.verts), std::mem::take(painter.kept));
-            if p.faces.run {
+            if p[Effect::Faces].run {
                 let v = Verts::new(
                     (verts.all(), kept.all()),
                     (positions, normals),
@@ -643,7 +647,7 @@ impl Renderer {
                 );
                 painter.faces(stage, &faces, v, Pass::Opaque);
             }
-            if p.edges.run {
+            if p[Effect::Edges].run {
                 painter.edges(stage, mesh, positions, &transforms, opts.wire);
             }
             (*painter.verts, *painter.kept) = (verts, kept);
@@ -654,7 +658,7 @@ impl Renderer {
         // found again (one mesh's are kept at a time).
         for i in blended_meshes(scene, p, vp, turn)
             .into_iter()
-            .filter(|_| p.faces.run)
+            .filter(|_| p[Effect::Faces].run)
         {
             let mesh = &scene.meshes[i];
             let transforms = Transforms::new(vp, turn * mesh.model);

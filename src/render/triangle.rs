@@ -5,7 +5,7 @@
 //! straight to the rasterizer; one that is not is clipped in homogeneous
 //! space first ([`crate::clip`]). Culling is decided on the snapped
 //! screen-space winding, exactly. Where the plan says so
-//! ([`crate::Plan::lean`]), untextured triangles inside every plane take a
+//! ([`crate::Effect::Lean`]), untextured triangles inside every plane take a
 //! lean path: no clip-path arguments are gathered, the signed area
 //! (culled, no area) is found first and handed on, a bounding box of at
 //! most eight samples is tested sample by sample at set-up
@@ -23,13 +23,13 @@
 
 use glam::{DMat4, Mat4, Vec2, Vec3, Vec3A};
 
-use super::vertex::keeps::{ALL, DEEP, FOUND};
 use super::vertex::{BAD_NORMAL, Deep, PLANES, Transforms, V, Verts};
 use super::{Painter, Pass, Stage, Surface};
 use crate::clip::{ClipVertex, Clipped, Snapped};
 use crate::color::Lin;
 use crate::fill::{self, Attributes, ScreenTriangle, Shine, UvPlanes};
 use crate::options::{Highlights, RenderOptions};
+use crate::plan::Effect;
 use crate::plan::Extras;
 use crate::raster::{
     self, CentreKey, Coverage, Culling, FloatSetup, Precision, Rejected, Setup, SnappedTriangle,
@@ -81,7 +81,7 @@ impl Painter<'_> {
         let p = stage.plan;
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
-            let blend = p.alpha.run && run.finish.alpha.mode == AlphaMode::Blend;
+            let blend = p[Effect::Alpha].run && run.finish.alpha.mode == AlphaMode::Blend;
             if blend != (pass == Pass::Blend) {
                 continue;
             }
@@ -107,7 +107,7 @@ impl Painter<'_> {
                     .and_then(|i| mesh.geometry.textures.get(i as usize).cloned());
                 self.surface.see = Some((run.finish.alpha, alpha_texture));
             }
-            let lean = p.lean.run
+            let lean = p[Effect::Lean].run
                 && texture.is_none()
                 && self.surface.see.is_none()
                 && self.mapping.set.is_none();
@@ -137,12 +137,17 @@ impl Painter<'_> {
             } else {
                 // A shining run keeps its extras (`Plan::vertex_extras`).
                 let run = (lean, texture, run_color, diffuse);
-                let (s, keep) = (stage, verts.kept.keep());
-                match (self.surface.shiny, keep) {
+                const ALL: u8 = Extras::All as u8;
+                const DEEP: u8 = Extras::Deep as u8;
+                const FOUND: u8 = Extras::Found as u8;
+                let s = stage;
+                match (self.surface.shiny, verts.kept.extras()) {
                     (true, _) => self.run_faces::<true, ALL>(s, f, verts, faces, run),
-                    (false, FOUND) => self.run_faces::<false, FOUND>(s, f, verts, faces, run),
-                    (false, DEEP) => self.run_faces::<false, DEEP>(s, f, verts, faces, run),
-                    (false, _) => self.run_faces::<false, ALL>(s, f, verts, faces, run),
+                    (false, Extras::Found) => {
+                        self.run_faces::<false, FOUND>(s, f, verts, faces, run)
+                    }
+                    (false, Extras::Deep) => self.run_faces::<false, DEEP>(s, f, verts, faces, run),
+                    (false, Extras::All) => self.run_faces::<false, ALL>(s, f, verts, faces, run),
                 }
             }
             *self.sorted = sorted;
@@ -151,7 +156,7 @@ impl Painter<'_> {
 
     /// Draws one run's faces: `SHINY` says whether they go through the
     /// specular fill (the surface's `shiny`, as a constant), `KEEP` what
-    /// their corners keep (`keeps`: with none, depth and light found here).
+    /// their corners keep (an `Extras` as `u8`: with none, depth and light found here).
     #[inline(never)]
     #[allow(clippy::type_complexity)]
     fn run_faces<const SHINY: bool, const KEEP: u8>(
@@ -195,7 +200,7 @@ impl Painter<'_> {
                     }
                 };
                 self.stats.raster.triangles_drawn += 1;
-                if KEEP == FOUND {
+                if KEEP == Extras::Found as u8 {
                     // Its corners found (and lit) only if it covers a
                     // sample; a shining run keeps them all.
                     debug_assert!(!SHINY);
@@ -474,7 +479,7 @@ impl Painter<'_> {
         texture: Option<(&Texture, Sampler)>,
     ) {
         if let Some(s) = self.setup(setup) {
-            if stage.plan.lean.run && !s.covers_any() {
+            if stage.plan[Effect::Lean].run && !s.covers_any() {
                 self.stats.raster.samples_tested += s.bbox_samples();
                 return;
             }
@@ -518,7 +523,7 @@ impl Painter<'_> {
         } else {
             self.light(stage, v, base, back)
         };
-        if stage.plan.glow.run {
+        if stage.plan[Effect::Glow].run {
             // Emitted light is added after lighting (zero for a run that
             // gives off none, which changes nothing: colours are not
             // negative).
@@ -546,25 +551,25 @@ impl Painter<'_> {
                 self.stats.lighting_evaluations += 1;
                 let side = if back { -1.0 } else { 1.0 };
                 let face = transform::face_normal(v[0].world(), v[1].world(), v[2].world());
-                let light = if stage.plan.falloff.run {
+                let light = if stage.plan[Effect::Falloff].run {
                     lit_at_centre(stage, v, face * side)
                 } else {
                     stage.lights.lambert_a(face * side)
                 };
                 let lit = [b(0) * light, b(1) * light, b(2) * light];
-                if !stage.plan.rim.run {
+                if !stage.plan[Effect::Rim].run {
                     return lit;
                 }
                 let rim = stage.lights.rim_a(face * side);
                 lit.map(|c| c + rim)
             }
-            Shading::Smooth if back && stage.plan.falloff.run => {
+            Shading::Smooth if back && stage.plan[Effect::Falloff].run => {
                 self.stats.lighting_evaluations += 3;
                 back_lit_at(stage, v, base)
             }
             Shading::Smooth if back => {
                 self.stats.lighting_evaluations += 3;
-                let rim = stage.plan.rim.run;
+                let rim = stage.plan[Effect::Rim].run;
                 let l = |i: usize| {
                     let lit = b(i) * stage.lights.lambert_a(-v[i].normal());
                     if rim {
@@ -575,7 +580,7 @@ impl Painter<'_> {
                 };
                 [l(0), l(1), l(2)]
             }
-            Shading::Smooth if stage.plan.rim.run => {
+            Shading::Smooth if stage.plan[Effect::Rim].run => {
                 // The rim from each corner's normal, here rather than in the
                 // vertex stage: a frame without a rim keeps its vertices as
                 // small and its vertex loop as short as before.
@@ -634,7 +639,7 @@ impl Painter<'_> {
             setup.inv_area(),
             [t.z, t.inv_w],
             t.color,
-            stage.plan.perspective.run,
+            stage.plan[Effect::Perspective].run,
         );
         let flat = !stage.plan.interpolates(&t.color);
         if MAPPED || self.surface.see.is_some() {
@@ -643,7 +648,7 @@ impl Painter<'_> {
         }
         if let Some(corners) = t.shine {
             let corners = in_order(o, corners);
-            let planes = texture.map(|_| UvPlanes::new(t, stage.plan.perspective.run));
+            let planes = texture.map(|_| UvPlanes::new(t, stage.plan[Effect::Perspective].run));
             let tex = texture.zip(planes.as_ref()).map(|((t, s), p)| (t, s, p));
             self.fill_shiny(setup, &a, flat, (tex, corners), stage);
             return;
@@ -652,7 +657,7 @@ impl Painter<'_> {
             Some((texture, sampler)) => {
                 // Texture coordinates are planes over the screen, found
                 // from the triangle as given (their order does not matter).
-                let planes = UvPlanes::new(t, stage.plan.perspective.run);
+                let planes = UvPlanes::new(t, stage.plan[Effect::Perspective].run);
                 let done = self
                     .sink(stage)
                     .textured(setup, &a, flat, (texture, sampler, &planes));
@@ -669,7 +674,7 @@ impl Painter<'_> {
     pub(super) fn sink(&mut self, stage: &Stage) -> fill::Sink<'_> {
         fill::Sink {
             fb: self.fb.reborrow(),
-            depth: stage.plan.depth.run,
+            depth: stage.plan[Effect::Depth].run,
             traversal: stage.traversal,
         }
     }
@@ -777,7 +782,7 @@ fn lit_at_centre(stage: &Stage<'_>, v: [V<'_>; 3], n: Vec3) -> Vec3A {
 fn back_lit_at(stage: &Stage<'_>, v: [V<'_>; 3], base: [Vec3A; 3]) -> [Vec3A; 3] {
     let l = |i: usize| {
         let lit = base[i] * stage.lights.lambert_at(-v[i].normal(), v[i].world());
-        if stage.plan.rim.run {
+        if stage.plan[Effect::Rim].run {
             lit + stage.lights.rim_a(-v[i].normal())
         } else {
             lit

@@ -32,6 +32,7 @@ use glam::{DMat4, Mat3, Mat4, Vec3};
 
 use super::{Painter, Stage, vertex_lanes};
 use crate::fixed::{Fixed, FixedPoint};
+use crate::plan::Effect;
 use crate::plan::Extras;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
@@ -338,16 +339,6 @@ pub(super) struct KeptRef<'a> {
 }
 
 impl KeptRef<'_> {
-    /// What is kept, as [`keeps`] names it (for `Verts::of_as`).
-    #[inline(always)]
-    pub(super) fn keep(&self) -> u8 {
-        match self.extras() {
-            Extras::Found => keeps::FOUND,
-            Extras::Deep => keeps::DEEP,
-            Extras::All => keeps::ALL,
-        }
-    }
-
     /// What is kept, as the plan names it.
     #[inline(always)]
     pub(super) fn extras(&self) -> Extras {
@@ -359,17 +350,6 @@ impl KeptRef<'_> {
             Extras::All
         }
     }
-}
-
-/// [`Verts::of_as`]'s modes, one for each [`Extras`] (a const generic
-/// cannot be an enum on stable).
-pub(super) mod keeps {
-    /// [`crate::plan::Extras::Found`].
-    pub(in crate::render) const FOUND: u8 = 0;
-    /// [`crate::plan::Extras::Deep`].
-    pub(in crate::render) const DEEP: u8 = 1;
-    /// [`crate::plan::Extras::All`].
-    pub(in crate::render) const ALL: u8 = 2;
 }
 
 /// A vertex as the triangle stage reads it: its [`Vert`] (its fields read
@@ -508,13 +488,13 @@ impl<'a> Verts<'a> {
         'a: 's,
     {
         match self.kept.extras() {
-            Extras::Found => self.of_as::<{ keeps::FOUND }>(face, scratch),
-            Extras::Deep => self.of_as::<{ keeps::DEEP }>(face, scratch),
-            Extras::All => self.of_as::<{ keeps::ALL }>(face, scratch),
+            Extras::Found => self.of_as::<{ Extras::Found as u8 }>(face, scratch),
+            Extras::Deep => self.of_as::<{ Extras::Deep as u8 }>(face, scratch),
+            Extras::All => self.of_as::<{ Extras::All as u8 }>(face, scratch),
         }
     }
 
-    /// [`Verts::of`] where `KEEP` is what is kept ([`keeps`], of
+    /// [`Verts::of`] where `KEEP` is what is kept (an [`Extras`] as `u8`, of
     /// [`KeptRef::extras`]), known where the face loop is compiled (one
     /// loop for each: a loop over kept vertices carries no trace of
     /// finding them again).
@@ -529,7 +509,7 @@ impl<'a> Verts<'a> {
     {
         // Written out, not `map`ped: the face loop is large enough that
         // `array::map` is not always inlined into it.
-        if KEEP == keeps::FOUND {
+        if KEEP == Extras::Found as u8 {
             self.lazy.deep3(face, scratch);
             let scratch: &'s [Deep; 3] = scratch;
             let v = |k: usize| V {
@@ -542,7 +522,7 @@ impl<'a> Verts<'a> {
         let v = |i: u32| V {
             at: self.core.get(i),
             deep: &self.kept.deep[i as usize],
-            rest: if KEEP == keeps::ALL {
+            rest: if KEEP == Extras::All as u8 {
                 &self.kept.rest[i as usize]
             } else {
                 &Rest::NAN
@@ -560,10 +540,10 @@ impl<'a> Verts<'a> {
         let n = self.core.keys.len();
         let mut v = self;
         v.core = self.core.trimmed();
-        if KEEP != keeps::FOUND {
+        if KEEP != Extras::Found as u8 {
             v.kept.deep = &self.kept.deep[..n];
         }
-        if KEEP == keeps::ALL {
+        if KEEP == Extras::All as u8 {
             v.kept.rest = &self.kept.rest[..n];
         }
         v
@@ -687,7 +667,7 @@ fn lit(stage: &Stage<'_>, t: &Transforms, p: Vec3, n: Vec3) -> (Vec3, Vec3, Vec3
     let smooth = stage.plan.shading == Shading::Smooth;
     // World positions serve flat shading and point and spot lights (the
     // clip path finds its own from the model).
-    let falloff = stage.plan.falloff.run;
+    let falloff = stage.plan[Effect::Falloff].run;
     let flat = stage.plan.shading == Shading::Flat;
     // Only smooth shading reads vertex normals.
     let normal = if smooth {

@@ -37,6 +37,7 @@ use glam::{Vec3, Vec4};
 use super::Stage;
 use super::vertex::{Core, Deep, Kept, More, Rest, Transforms, Vert, VertexWork, vertex};
 use crate::fixed::FixedPoint;
+use crate::plan::Effect;
 use crate::plan::Extras;
 use crate::raster::CentreKey;
 use crate::shade::Shading;
@@ -88,7 +89,7 @@ pub(super) fn vertices(
             kept.push(&m, rest);
         }
     };
-    if n < 4 || shading == Shading::Flat || stage.plan.falloff.run {
+    if n < 4 || shading == Shading::Flat || stage.plan[Effect::Falloff].run {
         // A loose triangle's three vertices, flat shading, or lights whose
         // light depends on where a vertex is.
         for (&p, &n) in positions.iter().zip(normals) {
@@ -221,7 +222,7 @@ pub(super) fn deep4(
     p: &[Vec3; 4],
     n: &[Vec3; 4],
 ) -> Option<[Deep; 4]> {
-    if stage.plan.falloff.run {
+    if stage.plan[Effect::Falloff].run {
         return None;
     }
     let (px, py, pz) = (lanes(p, 0), lanes(p, 1), lanes(p, 2));

@@ -1,6 +1,6 @@
 //! The edge stage: a mesh's edges as lines one sample wide, for
 //! `--wire lines` and `--wire edges` ([`crate::Wire`]), when the plan
-//! draws them ([`crate::Plan::edges`]).
+//! draws them ([`crate::Effect::Edges`]).
 //!
 //! Each edge is drawn once however many faces share it: the mesh's edges
 //! are found once, welded by position ([`crate::scene::Geometry::edges`]).
@@ -30,11 +30,9 @@ use crate::color::Lin;
 use crate::fill::Attributes;
 use crate::fixed::FixedPoint;
 use crate::options::Wire;
+use crate::plan::Effect;
 use crate::raster::{Coverage, Setup, SnappedTriangle};
 use crate::scene::{Cull, Mesh, Projection};
-
-/// A line's width, in samples.
-pub const LINE_WIDTH: f64 = 1.0;
 
 /// How much nearer than an edge's own depth it is drawn over the faces, as
 /// a share of its distance from the eye.
@@ -127,7 +125,7 @@ impl Painter<'_> {
         let len = d[0].hypot(d[1]);
         // Along the line and across it, half a width each; a line of no
         // length is a square.
-        let h = LINE_WIDTH / 2.0;
+        let h = crate::options::LINE_WIDTH / 2.0;
         let u = if len > 0.0 {
             [d[0] / len * h, d[1] / len * h]
         } else {
@@ -166,7 +164,7 @@ impl Painter<'_> {
                     s.inv_area(),
                     [k.map(|i| z[i]), k.map(|i| inv_w[i])],
                     [colour; 3],
-                    stage.plan.perspective.run,
+                    stage.plan[Effect::Perspective].run,
                 );
                 self.fill_colour(s, &a, true, stage);
             }

@@ -236,6 +236,51 @@ impl TexturedMesh<'_> {
     }
 }
 
+/// The example model `examples/models/finishes.glb`: three squares side by
+/// side, each a material with a finish the planner decides on apart: one
+/// that glows red (`emissiveFactor`), one blue and half see-through
+/// (`alphaMode` BLEND), one with a normal map of bumps (its tangents made by
+/// MikkTSpace). The witness of the glow, alpha and maps effects.
+pub fn finishes_glb() -> Vec<u8> {
+    let mut d = Doc::default();
+    let square = |x: f32| {
+        [[-0.45, -0.45], [0.45, -0.45], [0.45, 0.45], [-0.45, 0.45]].map(|[u, v]| [u + x, v, 0.0])
+    };
+    let uv: Vec<f32> = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]].concat();
+    let mut prims = Vec::new();
+    for (k, x) in [-1.0f32, 0.0, 1.0].into_iter().enumerate() {
+        let pos = d.vec3(&square(x));
+        let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+        let uv = d.floats(&uv, "VEC2", 2);
+        let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+        prims.push(format!(
+            r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{normal},"TEXCOORD_0":{uv}}},"indices":{idx},"material":{k}}}"#
+        ));
+    }
+    // Bumps: normals tilted every way over a 4×4 map.
+    let bumps: Vec<[u8; 3]> = (0..16)
+        .map(|i| {
+            let (x, y) = (i % 4, i / 4);
+            [
+                if x % 2 == 0 { 80 } else { 176 },
+                if y % 2 == 0 { 80 } else { 176 },
+                230,
+            ]
+        })
+        .collect();
+    let view = d.view(&png_rgb(4, 4, &bumps));
+    d.glb(&format!(
+        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[0.4,0.4,0.4,1]}},"emissiveFactor":[1,0.1,0]}},
+{{"pbrMetallicRoughness":{{"baseColorFactor":[0.1,0.3,1,0.5]}},"alphaMode":"BLEND"}},
+{{"pbrMetallicRoughness":{{"baseColorFactor":[0.9,0.9,0.9,1]}},"normalTexture":{{"index":0}}}}],
+"samplers":[{{"magFilter":9729,"minFilter":9729}}],
+"images":[{{"bufferView":{view},"mimeType":"image/png"}}],"textures":[{{"source":0,"sampler":0}}],
+"meshes":[{{"primitives":[{}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#,
+        prims.join(",")
+    ))
+}
+
 /// The example model `examples/models/crate.glb`: a cube two units on a
 /// side, each face carrying the whole of a 64×64 crate texture (planks, a
 /// frame and a diagonal brace, made here), nearest-magnified so that its

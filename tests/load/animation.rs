@@ -10,6 +10,7 @@ use std::sync::Arc;
 use common::Doc;
 use glam::Vec3;
 use proptest::prelude::*;
+use rastty::Effect;
 use rastty::scene::anim::Posed;
 use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf};
 use rastty::{Choice, Pipeline, RenderOptions, Renderer, Threads, color::Rgb};
@@ -433,7 +434,7 @@ fn a_clip_that_moves_no_vertex_costs_nothing_and_is_drawn_at_rest() {
     let mut planned = Renderer::new();
     planned.render(&scene, &opts());
     let plan = planned.plan().unwrap();
-    assert!(!plan.posing.run && !plan.poses(0));
+    assert!(!plan[Effect::Pose].run && !plan.poses(0));
     assert_eq!(planned.stats().posed_vertices, 0);
     // The full pipeline poses it anyway, to the same frame.
     let mut full = Renderer::new();

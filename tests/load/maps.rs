@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use common::{Doc, png_rgb};
 use glam::Vec3;
+use rastty::Effect;
 use rastty::color::{Lin, Rgb};
 use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf};
 use rastty::{Pipeline, RenderOptions, Renderer, Threads};
@@ -257,7 +258,7 @@ fn a_mapped_frame_is_the_same_planned_or_full_and_in_bands() {
     );
     let scene = scene(g, &[LIGHT, (Vec3::new(0.5, -1.0, -0.5), 0.2)]);
     let (planned, r) = draw(&scene, Pipeline::Planned);
-    assert!(r.plan().unwrap().maps.run);
+    assert!(r.plan().unwrap()[Effect::Maps].run);
     assert_eq!(
         r.stats().mapped_samples,
         planned.iter().flatten().count() as u64
@@ -283,4 +284,24 @@ fn a_mapped_frame_is_the_same_planned_or_full_and_in_bands() {
         },
     );
     assert_eq!(banded.framebuffer().samples(), &planned[..]);
+}
+
+#[test]
+fn the_example_finishes_are_what_their_builder_makes() {
+    // `RASTTY_BLESS=1 cargo test --test load` writes it again.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/finishes.glb");
+    let made = crate::common::finishes_glb();
+    if std::env::var_os("RASTTY_BLESS").is_some() {
+        std::fs::write(&path, &made).unwrap();
+    }
+    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let g = &loaded.geometry;
+    assert_eq!(g.faces.len(), 6);
+    let finishes: Vec<_> = g.materials.iter().map(|m| m.finish).collect();
+    assert!(finishes[0].emissive != rastty::color::Lin::BLACK);
+    assert_eq!(finishes[1].alpha.mode, rastty::scene::AlphaMode::Blend);
+    assert!(finishes[2].maps.normal.is_some());
 }

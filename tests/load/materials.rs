@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use common::Doc;
 use glam::Vec3;
+use rastty::Effect;
 use rastty::color::{Lin, Rgb};
 use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf, obj};
 use rastty::{Choice, Pipeline, RenderOptions, Renderer, Threads};
@@ -173,7 +174,7 @@ fn a_glowing_frame_is_the_same_planned_or_full_and_in_bands() {
         };
         let mut planned = Renderer::new();
         planned.render(&s, &o);
-        assert!(planned.plan().unwrap().glow.run);
+        assert!(planned.plan().unwrap()[Effect::Glow].run);
         let mut full = Renderer::new();
         full.render(
             &s,
@@ -200,7 +201,7 @@ fn a_glowing_frame_is_the_same_planned_or_full_and_in_bands() {
     let plain = scene(load(&square("{}")), &[WHITE_FROM_FRONT]);
     let mut r = Renderer::new();
     r.render(&plain, &opts());
-    assert!(!r.plan().unwrap().glow.run);
+    assert!(!r.plan().unwrap()[Effect::Glow].run);
     assert_eq!(r.stats().glowing_triangles, 0);
 }
 

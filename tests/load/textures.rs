@@ -9,6 +9,7 @@ use std::sync::Arc;
 use crate::common;
 
 use common::{TexturedMesh, glb, png_rgb};
+use rastty::Effect;
 use rastty::color::Lin;
 use rastty::glam::{DVec3, DVec4, Vec3};
 use rastty::scene::{Camera, LoadOptions, Mesh, Projection, Scene, gltf, obj};
@@ -357,12 +358,12 @@ fn skipping_texturing_where_there_is_none_changes_nothing() {
     // Exactly the left quad's samples: 24 columns × 16 rows.
     assert_eq!(textured, 24 * 16);
     assert!(full.stats().textured_samples > textured);
-    assert!(planned.plan().unwrap().texturing.run);
+    assert!(planned.plan().unwrap()[Effect::Texturing].run);
     // Without the texture, the plan skips texturing.
     let mut plain = scene.clone();
     plain.meshes.remove(0);
     planned.render(&plain, &o);
-    assert!(!planned.plan().unwrap().texturing.run);
+    assert!(!planned.plan().unwrap()[Effect::Texturing].run);
     assert_eq!(planned.stats().textured_samples, 0);
 }
 

@@ -349,3 +349,50 @@ fn an_item_reachable_two_ways_is_caught() {
         ]
     );
 }
+
+/// The table of docs/planner.md, as the effects' declaration says it
+/// (`rastty::Effect`: name, runs when, skipped when).
+fn effects_table() -> String {
+    let mut t = String::from("| stage | runs when | skipped when |\n|---|---|---|\n");
+    for &e in rastty::Effect::ALL {
+        t += &format!(
+            "| {} | {} | {} |\n",
+            e.name(),
+            e.runs_when(),
+            e.skipped_when()
+        );
+    }
+    t
+}
+
+#[test]
+fn the_planners_table_is_its_effects_declaration() {
+    let doc =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/planner.md")).unwrap();
+    let want = effects_table();
+    assert!(
+        doc.contains(&want),
+        "docs/planner.md's table is not src/plan/effects.rs's declaration; it should read:\n{want}"
+    );
+}
+
+#[test]
+fn explain_reports_every_declared_effect_in_order() {
+    use rastty::{RenderOptions, Renderer, scene::Scene};
+    let scene = Scene::of_mesh(rastty::scene::Shape::Torus.mesh(rastty::color::Rgb::WHITE));
+    let opts = RenderOptions::default();
+    let mut r = Renderer::new();
+    r.render(&scene, &opts);
+    let report = r.explain(&scene, &opts, std::time::Duration::ZERO, 0);
+    let named: Vec<&str> = report
+        .lines()
+        .filter_map(|l| {
+            rastty::Effect::ALL
+                .iter()
+                .find(|e| l.starts_with(&format!("{:<14} ", e.name())))
+                .map(|e| e.name())
+        })
+        .collect();
+    let all: Vec<&str> = rastty::Effect::ALL.iter().map(|e| e.name()).collect();
+    assert_eq!(named, all);
+}

@@ -3,6 +3,7 @@
 //! fill-rule tests. docs/promises.md lists them with the test behind each.
 
 use rastty::Choice;
+use rastty::Effect;
 use std::collections::BTreeSet;
 
 use glam::{Vec3, Vec4};
@@ -770,7 +771,7 @@ fn a_dented_cube_far_from_the_origin_is_drawn_with_its_depth_test() {
     };
     let mut planned = Renderer::new();
     planned.render(&scene, &opts);
-    assert!(planned.plan().unwrap().depth.run);
+    assert!(planned.plan().unwrap()[Effect::Depth].run);
     let mut full = Renderer::new();
     full.render(
         &scene,

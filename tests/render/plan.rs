@@ -4,6 +4,7 @@
 //! no work at all.
 
 use rastty::Choice;
+use rastty::Effect;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -77,7 +78,7 @@ fn same_with_any_thread_count(scene: &Scene, opts: &RenderOptions) -> Result<(),
     if plan.bands.count != 1 {
         return Err(format!("one thread asked for, {} bands", plan.bands.count));
     }
-    let depth = plan.depth.run;
+    let depth = plan[Effect::Depth].run;
     let fb = one.framebuffer();
     let grid = fb.grid();
     let depths = |fb: &rastty::Framebuffer| -> Vec<u32> {
@@ -445,7 +446,7 @@ proptest! {
         r.render(&scene, &opts);
         // A wireframe of lines alone hands in no mesh's face (the plan
         // says so).
-        let faces = if r.plan().unwrap().faces.run {
+        let faces = if r.plan().unwrap()[Effect::Faces].run {
             scene.meshes.iter().map(|m| m.faces.len()).sum::<usize>()
         } else {
             0
@@ -489,7 +490,7 @@ proptest! {
             let mut fresh = Renderer::new();
             prop_assert_eq!(&frame, fresh.render(scene, &opts));
             prop_assert_eq!(reused.framebuffer().samples(), fresh.framebuffer().samples());
-            if fresh.plan().unwrap().depth.run {
+            if fresh.plan().unwrap()[Effect::Depth].run {
                 let depths = |r: &Renderer| -> Vec<u32> {
                     let fb = r.framebuffer();
                     let g = fb.grid();
@@ -681,7 +682,7 @@ fn a_shallow_dent_far_from_the_origin_keeps_the_depth_test() {
     same_both_ways(&scene, &opts).unwrap();
     let mut r = Renderer::new();
     r.render(&scene, &opts);
-    assert!(r.plan().unwrap().depth.run);
+    assert!(r.plan().unwrap()[Effect::Depth].run);
     // The same cube undented is convex, however far out.
     let mut cube = Shape::Cube.mesh(Rgb::WHITE);
     let g = cube.geometry_mut();
@@ -736,11 +737,11 @@ fn skipped_stages_do_no_work() {
     r.render(&example("shared-edge"), &opts);
     let (s, p) = (*r.stats(), r.plan().unwrap().clone());
     assert!(
-        !p.depth.run
-            && !p.clip.run
-            && !p.interpolation.run
-            && !p.perspective.run
-            && !p.lighting.run
+        !p[Effect::Depth].run
+            && !p[Effect::Clip].run
+            && !p[Effect::Interpolation].run
+            && !p[Effect::Perspective].run
+            && !p[Effect::Lighting].run
     );
     assert_eq!(
         (
@@ -781,7 +782,12 @@ fn skipped_stages_do_no_work() {
         },
     );
     let (s, p) = (*r.stats(), r.plan().unwrap().clone());
-    assert!(p.depth.run && !p.clip.run && !p.interpolation.run && p.lighting.run);
+    assert!(
+        p[Effect::Depth].run
+            && !p[Effect::Clip].run
+            && !p[Effect::Interpolation].run
+            && p[Effect::Lighting].run
+    );
     assert_eq!((s.clip_tests, s.interpolated_samples), (0, 0));
     assert!(s.depth_tests > 0);
     assert!(s.lighting_evaluations > 0);
@@ -789,7 +795,7 @@ fn skipped_stages_do_no_work() {
     // The torus is not convex: depth runs; smooth shading interpolates.
     r.render(&rastty::scene::default_scene(), &opts);
     let (s, p) = (*r.stats(), r.plan().unwrap().clone());
-    assert!(p.depth.run && p.interpolation.run && p.perspective.run);
+    assert!(p[Effect::Depth].run && p[Effect::Interpolation].run && p[Effect::Perspective].run);
     assert!(s.depth_tests > 0 && s.perspective_samples > 0);
 
     // Orthographic: interpolation without 1/w.
@@ -801,13 +807,13 @@ fn skipped_stages_do_no_work() {
     };
     r.render(&ortho, &opts);
     let (s, p) = (*r.stats(), r.plan().unwrap().clone());
-    assert!(p.interpolation.run && !p.perspective.run);
+    assert!(p[Effect::Interpolation].run && !p[Effect::Perspective].run);
     assert!(s.interpolated_samples > 0);
     assert_eq!(s.perspective_samples, 0);
 
     // The near-plane scene reaches the near plane: clip tests run.
     r.render(&example("near-plane"), &opts);
-    assert!(r.plan().unwrap().clip.run && r.stats().clip_tests > 0);
+    assert!(r.plan().unwrap()[Effect::Clip].run && r.stats().clip_tests > 0);
 }
 
 /// Triangles small on screen, most of whose boxes hold no sample centre,
@@ -845,7 +851,11 @@ fn small_triangles_take_the_lean_path_and_every_face_and_sample_is_counted_once(
         };
         let mut planned = Renderer::new();
         planned.render(scene, &opts);
-        assert_eq!(planned.plan().unwrap().lean.run, lean, "{cols}×{rows}");
+        assert_eq!(
+            planned.plan().unwrap()[Effect::Lean].run,
+            lean,
+            "{cols}×{rows}"
+        );
         let mut full = Renderer::new();
         full.render(
             scene,
@@ -854,7 +864,7 @@ fn small_triangles_take_the_lean_path_and_every_face_and_sample_is_counted_once(
                 ..opts
             },
         );
-        assert!(!full.plan().unwrap().lean.run);
+        assert!(!full.plan().unwrap()[Effect::Lean].run);
         assert_eq!(
             planned.framebuffer().samples(),
             full.framebuffer().samples()
@@ -886,5 +896,46 @@ fn small_triangles_take_the_lean_path_and_every_face_and_sample_is_counted_once(
         }
         assert_eq!(p.triangles_in, f.triangles_in);
         assert!(p.raster.triangles_drawn > 0 && p.raster.samples_covered > 0);
+    }
+}
+
+#[test]
+fn every_declared_effect_runs_in_its_witness_and_changes_no_frame() {
+    // Each effect names a scene in which it runs (`Effect::witness`):
+    // there the planned frame is the full pipeline's, sample for sample,
+    // the decision is to run it, and its counter, where it has one, counts
+    // work.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for &e in Effect::ALL {
+        let (what, opts) = e.witness();
+        if what.ends_with(".glb") && !cfg!(feature = "gltf") {
+            continue;
+        }
+        let path = if what.contains('/') {
+            root.join(what)
+        } else {
+            std::path::PathBuf::from(what)
+        };
+        let scene = Scene::open(&path).unwrap_or_else(|err| panic!("{}: {err}", e.name()));
+        let mut planned = Renderer::new();
+        let frame = planned.render(&scene, &opts).clone();
+        let plan = planned.plan().unwrap();
+        assert!(plan[e].run, "{}: {}", e.name(), plan[e].why);
+        if let Some(work) = e.counter(planned.stats()) {
+            assert!(work > 0, "{}: no work counted", e.name());
+        }
+        let full_opts = RenderOptions {
+            pipeline: rastty::Pipeline::Full,
+            ..opts
+        };
+        let mut full = Renderer::new();
+        let full_frame = full.render(&scene, &full_opts).clone();
+        assert_eq!(
+            planned.framebuffer().samples(),
+            full.framebuffer().samples(),
+            "{}: the samples",
+            e.name()
+        );
+        assert_eq!(frame, full_frame, "{}", e.name());
     }
 }

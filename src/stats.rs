@@ -63,7 +63,7 @@ impl FrameStats {
     /// glow) per face is each band's own work, summed: a triangle may be lit by two bands,
     /// or by none where each band's part of its box is small enough to be
     /// found empty before lighting (one thread tests only small boxes).
-    pub(super) fn add_band(&mut self, band: &FrameStats, first: bool) {
+    pub(crate) fn add_band(&mut self, band: &FrameStats, first: bool) {
         if first {
             self.triangles_in += band.triangles_in;
             self.clipped += band.clipped;
@@ -118,7 +118,7 @@ impl FrameStats {
     /// written with an interpolated colour, `perspective` of those through
     /// `1/w`; `tested` samples tested for coverage.
     #[inline(always)]
-    pub(super) fn count_fill(&mut self, done: fill::Filled) {
+    pub(crate) fn count_fill(&mut self, done: fill::Filled) {
         let fill::Filled {
             covered,
             depth_tested,

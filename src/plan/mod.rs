@@ -3,20 +3,9 @@
 //! test, no lighting, no interpolation and no clipping does not pay for
 //! them, and a scene that needs them gets them.
 //!
-//! | stage | runs when | skipped when |
-//! |---|---|---|
-//! | depth buffer | primitives may overlap at different depths | a single primitive; a flat 2D scene (one depth everywhere) |
-//! | clip tests | a mesh's (or the loose triangles') bounding box reaches a clip plane or leaves the guard band | the box is inside: then no vertex of it can be outside |
-//! | interpolation | an attribute varies over a triangle (per-vertex colours, smooth shading) | every triangle is one colour: written with no barycentrics |
-//! | perspective correction | perspective projection and something is interpolated | parallel views (`w = 1` exactly, so affine weights are the same numbers) or nothing interpolated |
-//! | lighting | the scene has lights and the shading uses them | no lights, or `--shading none` |
-//! | rim light | a rim was asked for (`RenderOptions::rim`) and the scene is lit | no rim, or nothing lit |
-//! | texturing | a mesh's material has a texture (then only its triangles read it) | no texture anywhere |
-//! | falloff | a point or spot light: each vertex's world position found, its light falling off with distance | only directional lights, or nothing lit |
-//! | glow | a mesh's material gives off light (emissive): added after lighting | no material glows |
-//! | specular | a lit mesh's material shines (a highlight): its triangles shaded per sample | no material shines, nothing lit, or exact coverage (a triangle's mean colour) |
-//! | alpha | a material is masked or blended: its triangles, and only they, take the see-through fill (blended ones after the rest, back to front) | every material is opaque, or exact coverage (drawn opaque) |
-//! | maps | a material has normal, metallic-roughness, occlusion or emissive textures: its triangles, and only they, are shaded per sample from them | no material has maps, or exact coverage (a triangle's mean colour) |
+//! Each stage or effect it decides on is declared once, in `effects.rs`
+//! ([`Effect`]): its name, when it runs and when it is skipped, what
+//! `--explain` reports of it, its counter and its witness.
 //!
 //! Every skip is exact: the frame is bit for bit the one the full pipeline
 //! ([`Pipeline::Full`], `--full-pipeline`) draws, which a property test
@@ -35,7 +24,7 @@
 //! ([`Clipper::box_inside`]).
 //!
 //! One decision is about speed alone, never about the picture: which path
-//! a triangle inside every clip plane takes ([`Plan::lean`]). On the lean
+//! a triangle inside every clip plane takes ([`Effect::Lean`]). On the lean
 //! path (the planned pipeline's fixed point, sampled, walked within each
 //! box) culling and area come from the snapped vertices, an empty box from
 //! their centre keys, and a triangle is lit and filled only if it covers a
@@ -67,6 +56,9 @@ use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
 use crate::transform::MAX_GRID;
+
+mod effects;
+pub use effects::Effect;
 
 /// One stage's decision, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -102,73 +94,19 @@ impl fmt::Display for Decision {
 /// here and nowhere else.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
-    /// Whether samples are depth-tested.
-    pub depth: Decision,
-    /// Whether any clip test runs (decided per group: see
-    /// [`Plan::clip_tests`]).
-    pub clip: Decision,
-    /// Whether colours are interpolated over triangles (see
-    /// [`Plan::interpolates`] for one triangle).
-    pub interpolation: Decision,
-    /// Whether interpolation goes through `1/w`.
-    pub perspective: Decision,
-    /// Whether lights are evaluated.
-    pub lighting: Decision,
-    /// Whether a rim light is added (`RenderOptions::rim`, on lit
-    /// surfaces).
-    pub rim: Decision,
+    /// Each stage's or effect's decision, indexed by [`Effect`]
+    /// (`plan[Effect::Depth].run`).
+    decisions: [Decision; Effect::COUNT],
     /// The shading applied: the options' shading when the scene is lit,
     /// [`Shading::None`] otherwise.
     pub shading: Shading,
-    /// Whether any triangle reads a texture (see [`Plan::texture`] for
-    /// one run of faces).
-    pub texturing: Decision,
-    /// Whether lights are found from each vertex's position (point and
-    /// spot lights, whose light falls off with distance): the vertex stage
-    /// finds world positions, one vertex at a time.
-    pub falloff: Decision,
-    /// Whether materials' emitted light is added (see
-    /// [`crate::scene::Finish::emissive`]).
-    pub glow: Decision,
-    /// Whether triangles of shining materials get a specular highlight,
-    /// found per sample (see [`Plan::shines`] for one run of faces).
-    pub specular: Decision,
-    /// Whether materials that are masked or blended are drawn so (see
-    /// [`Plan::sees_through`] for one run of faces).
-    pub alpha: Decision,
-    /// Whether materials' maps are read (see [`Plan::maps_of`] for one run
-    /// of faces). Not a stage the full pipeline forces on every run: a
-    /// run shaded per sample is not the same picture as one shaded per
-    /// vertex, so both pipelines shade per sample exactly the runs whose
-    /// materials have maps, and the decision is skipped only where there
-    /// are none.
-    pub maps: Decision,
-    /// Whether meshes' faces are drawn (skipped for a wireframe of lines
-    /// alone: [`crate::Wire::Lines`]).
-    pub faces: Decision,
-    /// Whether meshes' edges are drawn as lines one sample wide
-    /// ([`crate::Wire`]): a picture asked for, not a stage the full
-    /// pipeline forces on. The edges of each mesh are found once (welded
-    /// by position, each drawn once however many faces share it).
-    pub edges: Decision,
     /// The filtering forced on every texture (`None`: each sampler's own).
     pub filter: Option<FilterMode>,
     /// The full pipeline: every stage on every primitive.
     pub full: bool,
-    /// Whether triangles inside every clip plane take the lean path
-    /// (culled, sized and found empty from their snapped vertices, lit and
-    /// filled only if they cover a sample) rather than the general one
-    /// (every triangle set up in the options' precision, walked with their
-    /// traversal). Speed alone: both draw the same samples and count the
-    /// same work.
-    pub lean: Decision,
     /// Per group (each mesh in order, then the loose triangles): whether
     /// its vertices are tested against the clip planes.
     clip_tests: Vec<bool>,
-    /// Whether any mesh is posed: its vertices skinned, morphed or carried
-    /// by their nodes to where its clip has them (see [`Plan::poses`] for
-    /// one mesh).
-    pub posing: Decision,
     /// Per mesh: whether it is posed.
     poses: Vec<bool>,
     /// Per mesh: whether it has so many vertices for the frame's samples
@@ -204,6 +142,7 @@ impl fmt::Display for Bands {
 /// decides ([`Plan::vertex_extras`]): memory and speed alone, the frame is
 /// the same whichever.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
 pub enum Extras {
     /// Nothing: the depth, `1/w` and light of the corners of a face that
     /// covers a sample are found again at set-up (a large model seen
@@ -267,6 +206,14 @@ fn bands(opts: &RenderOptions) -> Bands {
 const FORCED: &str = "forced on by the full pipeline";
 const FORCED_KEPT: &str = "the full pipeline keeps every vertex's extras";
 
+impl std::ops::Index<Effect> for Plan {
+    type Output = Decision;
+
+    fn index(&self, e: Effect) -> &Decision {
+        &self.decisions[e as usize]
+    }
+}
+
 impl Plan {
     /// Vertices a sample above which a mesh's corners' depth and light are
     /// found at set-up rather than kept by the vertex stage
@@ -292,26 +239,11 @@ impl Plan {
         clipper: &Clipper,
     ) -> Plan {
         let mut plan = Plan {
-            depth: Decision::run(FORCED),
-            clip: Decision::run(FORCED),
-            interpolation: Decision::run(FORCED),
-            perspective: Decision::run(FORCED),
-            lighting: Decision::run(FORCED),
-            rim: Decision::run(FORCED),
-            texturing: Decision::run(FORCED),
-            glow: Decision::run(FORCED),
-            falloff: Decision::run(FORCED),
-            specular: Decision::run(FORCED),
-            alpha: Decision::run(FORCED),
-            maps: Decision::run(FORCED),
-            faces: Decision::run(FORCED),
-            edges: Decision::skip(FORCED),
+            decisions: [Decision::run(FORCED); Effect::COUNT],
             filter: opts.filter,
             shading: opts.shading,
             full: true,
-            lean: Decision::skip(FORCED),
             clip_tests: Vec::new(),
-            posing: Decision::run(FORCED),
             poses: Vec::new(),
             defers: Vec::new(),
             bands: Bands {
@@ -495,31 +427,40 @@ impl Plan {
                 .map(|m| m.positions.len() > Plan::DEFER_PER_SAMPLE * samples.max(1)),
         );
         let (faces, edges) = wire(scene, opts);
+        let lean = lean(opts);
+        let decision = |e: Effect| match e {
+            Effect::Pose => posing,
+            Effect::Clip => clip,
+            Effect::Lighting => lighting,
+            Effect::Falloff => falloff,
+            Effect::Rim => rim,
+            Effect::Depth => depth,
+            Effect::Interpolation => interpolation,
+            Effect::Perspective => perspective,
+            Effect::Texturing => texturing,
+            Effect::Glow => glow,
+            Effect::Specular => specular,
+            Effect::Alpha => alpha,
+            Effect::Maps => maps,
+            Effect::Faces => faces,
+            Effect::Edges => edges,
+            Effect::Lean => lean,
+        };
         *self = Plan {
-            faces,
-            edges,
-            depth,
-            clip,
-            interpolation,
-            perspective,
-            lighting,
-            rim,
-            texturing,
-            glow,
-            falloff,
-            specular,
-            alpha,
-            maps,
+            decisions: std::array::from_fn(|i| decision(Effect::ALL[i])),
             filter: opts.filter,
             shading,
             full,
-            lean: lean(opts),
             clip_tests: std::mem::take(&mut self.clip_tests),
-            posing,
             poses: std::mem::take(&mut self.poses),
             defers: std::mem::take(&mut self.defers),
             bands: bands(opts),
         };
+    }
+
+    /// Each stage's or effect's decision, in [`Effect::ALL`]'s order.
+    pub fn decisions(&self) -> impl Iterator<Item = (Effect, Decision)> + '_ {
+        Effect::ALL.iter().map(|&e| (e, self[e]))
     }
 
     /// Whether group `i` (mesh `i`, or the loose triangles after the last
@@ -571,15 +512,15 @@ impl Plan {
             )
         } else if self.shading == Shading::Flat {
             all("flat shading lights each face from its corners' world positions")
-        } else if self.falloff.run {
+        } else if self[Effect::Falloff].run {
             all("a light that falls off reads each corner's world position")
-        } else if self.rim.run {
+        } else if self[Effect::Rim].run {
             all("the rim reads each corner's normal")
-        } else if self.specular.run {
+        } else if self[Effect::Specular].run {
             all("a highlight reads each corner's normal and world position")
-        } else if self.texturing.run || self.alpha.run || self.maps.run {
+        } else if self[Effect::Texturing].run || self[Effect::Alpha].run || self[Effect::Maps].run {
             all("textures, alpha or maps read each corner's unsnapped position")
-        } else if !self.lean.run {
+        } else if !self[Effect::Lean].run {
             all("the general path reads every extra")
         } else if cull != crate::scene::Cull::Back {
             all("back faces are drawn, lit from the other side of each corner's normal")
@@ -596,7 +537,7 @@ impl Plan {
         }
     }
 
-    /// Whether mesh `i` is posed (see [`Plan::posing`]).
+    /// Whether mesh `i` is posed (see [`Effect::Pose`]).
     pub fn poses(&self, mesh: usize) -> bool {
         self.poses.get(mesh).copied().unwrap_or(false)
     }
@@ -623,7 +564,7 @@ impl Plan {
     /// (a matte one adding nothing), so that the property test proves that
     /// skipping it for matte runs changes nothing.
     pub fn shines(&self, shines: bool) -> bool {
-        self.specular.run && (shines || self.full)
+        self[Effect::Specular].run && (shines || self.full)
     }
 
     /// Whether a run of faces of `alpha` goes through the see-through
@@ -632,13 +573,13 @@ impl Plan {
     /// property test proves that skipping it for opaque runs changes
     /// nothing.
     pub fn sees_through(&self, alpha: &crate::scene::Alpha) -> bool {
-        self.alpha.run && (alpha.mode != crate::scene::AlphaMode::Opaque || self.full)
+        self[Effect::Alpha].run && (alpha.mode != crate::scene::AlphaMode::Opaque || self.full)
     }
 
     /// The maps a run of faces of `finish` is shaded from: its own, where
-    /// the plan reads maps (in both pipelines: see [`Plan::maps`]).
+    /// the plan reads maps (in both pipelines: see [`Effect::Maps`]).
     pub fn maps_of(&self, finish: &crate::scene::Finish) -> Option<crate::scene::Maps> {
-        (self.maps.run && !finish.maps.is_empty()).then_some(finish.maps)
+        (self[Effect::Maps].run && !finish.maps.is_empty()).then_some(finish.maps)
     }
 
     /// Whether a triangle whose vertices have these colours is
@@ -648,14 +589,14 @@ impl Plan {
     pub fn interpolates<T: PartialEq>(&self, colors: &[T; 3]) -> bool {
         let one = colors[0] == colors[1] && colors[1] == colors[2];
         debug_assert!(
-            self.interpolation.run || one,
+            self[Effect::Interpolation].run || one,
             "the plan skipped interpolation, yet a triangle has several colours"
         );
         self.full || !one
     }
 }
 
-/// Whether faces and edges are drawn (see [`Plan::faces`], [`Plan::edges`]).
+/// Whether faces and edges are drawn (see [`Effect::Faces`], [`Effect::Edges`]).
 fn wire(scene: &Scene, opts: &RenderOptions) -> (Decision, Decision) {
     let meshes = !scene.meshes.is_empty();
     match opts.wire {
@@ -682,7 +623,7 @@ fn wire(scene: &Scene, opts: &RenderOptions) -> (Decision, Decision) {
     }
 }
 
-/// Which path triangles inside every clip plane take (see [`Plan::lean`]).
+/// Which path triangles inside every clip plane take (see [`Effect::Lean`]).
 fn lean(opts: &RenderOptions) -> Decision {
     if opts.pipeline == Pipeline::Full {
         Decision::skip("the full pipeline sets up, lights and fills every triangle")
@@ -739,20 +680,20 @@ fn loose_bounds(scene: &Scene) -> Option<[Vec3; 2]> {
 
 impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "pose           {}", self.posing)?;
-        writeln!(f, "clip           {}", self.clip)?;
-        writeln!(f, "lighting       {}", self.lighting)?;
-        writeln!(f, "rim            {}", self.rim)?;
-        writeln!(f, "texturing      {}", self.texturing)?;
-        writeln!(f, "falloff        {}", self.falloff)?;
-        writeln!(f, "glow           {}", self.glow)?;
-        writeln!(f, "specular       {}", self.specular)?;
-        writeln!(f, "alpha          {}", self.alpha)?;
-        writeln!(f, "maps           {}", self.maps)?;
-        writeln!(f, "depth          {}", self.depth)?;
-        writeln!(f, "interpolation  {}", self.interpolation)?;
-        writeln!(f, "perspective    {}", self.perspective)?;
-        writeln!(f, "lean path      {}", self.lean)?;
+        writeln!(f, "pose           {}", self[Effect::Pose])?;
+        writeln!(f, "clip           {}", self[Effect::Clip])?;
+        writeln!(f, "lighting       {}", self[Effect::Lighting])?;
+        writeln!(f, "rim            {}", self[Effect::Rim])?;
+        writeln!(f, "texturing      {}", self[Effect::Texturing])?;
+        writeln!(f, "falloff        {}", self[Effect::Falloff])?;
+        writeln!(f, "glow           {}", self[Effect::Glow])?;
+        writeln!(f, "specular       {}", self[Effect::Specular])?;
+        writeln!(f, "alpha          {}", self[Effect::Alpha])?;
+        writeln!(f, "maps           {}", self[Effect::Maps])?;
+        writeln!(f, "depth          {}", self[Effect::Depth])?;
+        writeln!(f, "interpolation  {}", self[Effect::Interpolation])?;
+        writeln!(f, "perspective    {}", self[Effect::Perspective])?;
+        writeln!(f, "lean path      {}", self[Effect::Lean])?;
         write!(f, "bands          {}", self.bands)
     }
 }
