@@ -190,6 +190,25 @@ against_peer() {
   done
 }
 
+# The same code with every `#[inline(always)]` made a plain `#[inline]`,
+# built beside this one: what forcing the inlining buys, where it stands.
+inlining() {
+  local copy=$work/inline-copy plain sites
+  rm -rf "$copy"; mkdir -p "$copy"
+  git ls-files -z | xargs -0 cp --parents -t "$copy"
+  sites=$(grep -rc '#\[inline(always)\]' src | awk -F: '{n += $2} END {print n}')
+  grep -rl '#\[inline(always)\]' "$copy/src" | xargs sed -i 's/#\[inline(always)\]/#[inline]/'
+  CARGO_TARGET_DIR=$work/inline-target cargo build --release -q --locked \
+    --manifest-path "$copy/Cargo.toml" -p rastty-cli -p rastty-measure
+  plain=$work/inline-target/release
+  local m1; m1=$(torus 1000000)
+  echo "| instructions | \`#[inline(always)]\` as it stands ($sites sites) | \`#[inline]\` throughout |"
+  echo "|---|---:|---:|"
+  echo "| Tux 200×60, render only, a frame | $(per_frame "$bin/profile_scene" "$tux") | $(per_frame "$plain/profile_scene" "$tux") |"
+  echo "| Tux, one frame, whole process (loading) | $(millions "$(count "$rastty" render "$tux" --cols 200 --rows 60)")M | $(millions "$(count "$plain/rastty" render "$tux" --cols 200 --rows 60)")M |"
+  echo "| 1M-triangle torus, one frame, whole process (loading) | $(millions "$(count "$rastty" render "$m1" --cols 200 --rows 60)")M | $(millions "$(count "$plain/rastty" render "$m1" --cols 200 --rows 60)")M |"
+}
+
 section() { # title, what it shows, function
   printf '\n## %s\n\n%s\n\n```\n' "$1" "$2"
   "$3"
@@ -219,6 +238,7 @@ HEAD
   section "Bytes a frame" "The diffing encoder's bytes a frame, a square turning a full circle in 60 frames at 80×24 cells in every glyph mode, truecolor, against ratatui's \`Canvas\` (docs/usage.md; \`measure/src/bin/bytes_per_frame.rs\`)." "$bin/bytes_per_frame"
   section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." loading
   section "Memory and start-up" "Peak memory (the median of three runs), what loading costs a triangle and a byte (callgrind's inclusive counts, on the 1M-triangle torus), whole-process counts of two small commands, and the binary's size." memory
+  section "Inlining" "What \`#[inline(always)]\` buys where it stands (the rasterizer, fill, vertex, shading and encoding stages and the OBJ reader and its normals): the same code built with a plain \`#[inline]\` in its place, instructions through the same commands. Where forcing did not pay (the camera, the mesh's accessors, clipping's setup, statistics, palettes, the line encoder) it is a plain \`#[inline]\`." inlining
   if [ -n "${PEER:-}" ]; then
     section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." against_peer
   fi

@@ -232,7 +232,7 @@ impl Clipper {
     /// Whether four clip positions, their x, y, z and w each in the lanes
     /// of a vector, all get outcode 0 from [`Clipper::outcode`]: the same
     /// operations per lane, and a NaN is outside here too.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn inside4(&self, x: Vec4, y: Vec4, z: Vec4, w: Vec4) -> bool {
         let (gxw, gyw) = (
             Vec4::splat(self.gx as f32) * w,

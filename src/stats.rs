@@ -117,7 +117,7 @@ impl FrameStats {
     /// samples, `depth_tested` of them depth-tested, `written` of them
     /// written with an interpolated colour, `perspective` of those through
     /// `1/w`; `tested` samples tested for coverage.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn count_fill(&mut self, done: fill::Filled) {
         let fill::Filled {
             covered,

@@ -596,7 +596,7 @@ impl Quantizer {
 
     /// The ink for a colour in the cell at column `x`, row `y` (where the
     /// dithering pattern is anchored).
-    #[inline(always)]
+    #[inline]
     pub fn ink_at(&mut self, c: Option<Rgb>, x: u16, y: u16) -> Ink {
         let Some(c) = c else { return Ink::Default };
         match self.depth {

@@ -38,7 +38,7 @@ pub(super) fn quantize_in(frame: &Frame, q: &mut Quantizer, out: &mut Vec<Packed
 /// Appends `cell` written `count` times (at least once) from pen `pen`,
 /// with the SGR it needs (when `color`) and, when allowed and shorter, REP
 /// for the repeats. Returns the pen afterwards.
-#[inline(always)]
+#[inline]
 pub(super) fn push_run(
     buf: &mut Vec<u8>,
     pen: Inks,

@@ -63,14 +63,14 @@ impl Extremes {
 
     /// Each axis's least and greatest extent so far, each in all four
     /// lanes.
-    #[inline(always)]
+    #[inline]
     fn splats(&self) -> ([Vec4; 13], [Vec4; 13]) {
         let splat = |v: &[Vec4; 4]| std::array::from_fn(|a| Vec4::splat(v[a / 4][a % 4]));
         (splat(&self.lo), splat(&self.hi))
     }
 
     /// Point `i`, `p`, in order: the extremes it moves, if any.
-    #[inline(always)]
+    #[inline]
     fn add(&mut self, i: usize, p: Vec3) {
         // Along each axis, unnormalised (only the order matters), in four
         // groups of four lanes, so that the comparisons go four at a

@@ -664,7 +664,7 @@ impl Default for Bounds {
 }
 
 impl Bounds {
-    #[inline(always)]
+    #[inline]
     fn add(&mut self, p: Vec3) {
         let p = Vec3A::from(p);
         (self.lo, self.hi) = (self.lo.min(p), self.hi.max(p));

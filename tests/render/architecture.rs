@@ -396,3 +396,194 @@ fn explain_reports_every_declared_effect_in_order() {
     let all: Vec<&str> = rastty::Effect::ALL.iter().map(|e| e.name()).collect();
     assert_eq!(named, all);
 }
+
+/// Every file of the repository's tree under `dir` (not `target`, not
+/// hidden ones), sorted.
+fn all_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    let mut paths: Vec<_> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    paths.sort();
+    for p in paths {
+        let name = p.file_name().unwrap().to_string_lossy();
+        if name.starts_with('.') || name == "target" {
+            continue;
+        }
+        if p.is_dir() {
+            all_files(&p, out);
+        } else {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn the_build_is_cargos_alone_with_no_linker_script() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    all_files(root, &mut files);
+    let mut found = Vec::new();
+    for f in &files {
+        let name = f.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+        let base = f.file_name().unwrap().to_string_lossy();
+        if name.ends_with(".ld") || base == "build.rs" {
+            found.push(name);
+        } else if base == "Cargo.toml" || name.ends_with(".cargo/config.toml") {
+            let text = fs::read_to_string(f).unwrap();
+            if text.contains("link-arg") || text.contains("rustflags") {
+                found.push(format!("{name}: sets linker arguments"));
+            }
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+/// The most lines the program's `main.rs` has: it parses, runs the
+/// command and maps errors to exit codes; each command is its own module.
+const MAIN_LINES: usize = 60;
+
+#[test]
+fn the_programs_main_only_parses_dispatches_and_maps_errors() {
+    let main =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("cli/src/main.rs")).unwrap();
+    let n = lines_outside_tests(&main);
+    assert!(n <= MAIN_LINES, "cli/src/main.rs has {n} lines");
+    let code = code(&main);
+    for stage in ["Renderer", "Encoder", "render_into", "Frame"] {
+        assert!(!code.contains(stage), "cli/src/main.rs names {stage}");
+    }
+}
+
+/// The stages: what draws samples, knowing nothing of what they become.
+const STAGES: &[&str] = &[
+    "src/render",
+    "src/raster",
+    "src/fill",
+    "src/fill.rs",
+    "src/shade.rs",
+    "src/framebuffer.rs",
+    "src/plan",
+    "src/clip.rs",
+    "src/transform.rs",
+];
+
+#[test]
+fn the_output_trait_is_the_only_path_from_the_stages_to_an_output() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    let mut wrong = Vec::new();
+    for f in &files {
+        let name = f
+            .strip_prefix(root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let code = code(&fs::read_to_string(f).unwrap());
+        // Every output is an implementation of the trait, beside it.
+        if code.contains("Output for ") && name != "src/output.rs" {
+            wrong.push(format!("{name}: implements Output away from src/output.rs"));
+        }
+        // The renderer's public face (src/render/mod.rs) hands callers a
+        // frame, through `render_to` like any output.
+        let stage = STAGES
+            .iter()
+            .any(|s| name == *s || name.starts_with(&format!("{s}/")));
+        if !stage || name == "src/render/mod.rs" {
+            continue;
+        }
+        // The stages name no output's units and no way of making them.
+        for unit in [
+            "blit::",
+            "encode::",
+            "crate::frame::",
+            "Cell",
+            "cells_mut",
+            "GlyphMode",
+        ] {
+            if code.contains(unit) {
+                wrong.push(format!("{name}: names {unit}"));
+            }
+        }
+        // What fills an output is called from the renderer's one path,
+        // `Renderer::render_to`, and its bands.
+        let calls = code.matches("out.begin(").count() + code.matches("O::fill(").count();
+        if calls > 0 && name != "src/render/mod.rs" && name != "src/render/bands.rs" {
+            wrong.push(format!("{name}: fills an output itself"));
+        }
+    }
+    let render = code(&fs::read_to_string(root.join("src/render/mod.rs")).unwrap());
+    assert_eq!(
+        render.matches("out.begin(").count(),
+        1,
+        "one path begins an output"
+    );
+    for public in [
+        "pub fn render_into",
+        "pub fn try_render_into",
+        "fn render_checked",
+    ] {
+        let body = &render[render.find(public).unwrap()..];
+        let body = &body[..body.find("\n    }").unwrap()];
+        assert!(
+            body.contains("self.render_to("),
+            "{public} draws through render_to"
+        );
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// Where `#[inline(always)]` stands: the stages docs/figures.md's
+/// "Inlining" section measures it paying in (the rasterizer, fill, vertex,
+/// shading and encoding stages, and the OBJ reader with its normals).
+const FORCED_INLINING: &[&str] = &[
+    "src/blit.rs",
+    "src/color/mod.rs",
+    "src/encode/cell.rs",
+    "src/encode/sgr.rs",
+    "src/fill.rs",
+    "src/fill/",
+    "src/fixed.rs",
+    "src/framebuffer.rs",
+    "src/raster/",
+    "src/render/",
+    "src/shade.rs",
+    "src/transform.rs",
+    "src/scene/normals.rs",
+    "src/scene/obj/faces.rs",
+    "src/scene/obj/fast.rs",
+    "src/scene/topology.rs",
+];
+
+#[test]
+fn inlining_is_forced_only_where_the_figures_show_it_pays() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    rust_files(&root.join("cli/src"), &mut files);
+    let mut elsewhere = Vec::new();
+    for f in &files {
+        let name = f
+            .strip_prefix(root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let forced = fs::read_to_string(f)
+            .unwrap()
+            .matches("#[inline(always)]")
+            .count();
+        let listed = FORCED_INLINING
+            .iter()
+            .any(|p| name == *p || (p.ends_with('/') && name.starts_with(p)));
+        if forced > 0 && !listed {
+            elsewhere.push(format!("{name}: {forced}"));
+        }
+    }
+    assert!(elsewhere.is_empty(), "{}", elsewhere.join("\n"));
+    let figures = fs::read_to_string(root.join("docs/figures.md")).unwrap();
+    assert!(
+        figures.contains("## Inlining"),
+        "docs/figures.md measures the inlining"
+    );
+}

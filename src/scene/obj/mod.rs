@@ -423,7 +423,7 @@ impl<'a> Reader<'a> {
     }
 
     /// [`Reader::position`] for one known to be finite.
-    #[inline(always)]
+    #[inline]
     pub(super) fn finite_position(&mut self, p: Vec3, color: Option<Lin>) {
         if let Some(c) = color {
             // Vertices before the first coloured one were white.
