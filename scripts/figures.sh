@@ -57,15 +57,12 @@ triangles() { awk '/^f /{t += NF - 3} END {print t}' "$1"; }
 frame_cost() {
   local big bands
   echo "Tux 200×60, render only: $(per_frame "$bin/profile_scene" "$tux") instructions a frame"
-  echo "Tux 200×60, spin (render + blit + encode): $(per_frame count_spin_tux) instructions a frame"
+  echo "Tux 200×60, spin (render + blit + encode): $(per_frame "$rastty" spin "$tux" --cols 200 --rows 60 --glyphs half --color truecolor --frames) instructions a frame"
   big=$(per_frame "$rastty" spin --cols 1000 --rows 300 --glyphs half --color truecolor --threads 1 --frames)
   echo "torus 1000×300, spin (render + blit + encode), one thread: $big instructions a frame, $(( big / 300000 )) a cell"
   bands=$(per_frame "$rastty" spin --cols 1000 --rows 300 --glyphs half --color truecolor --threads auto --frames)
   echo "torus 1000×300, spin, in bands (every thread's instructions): $bands a frame, $(( bands / 300000 )) a cell"
 }
-# `per_frame` appends the frame count, so a command whose count is not
-# last is a function.
-count_spin_tux() { "$rastty" spin "$tux" --cols 200 --rows 60 --glyphs half --color truecolor --frames "$1"; }
 
 planner() {
   echo "| scene | planned (instructions/frame) | full (instructions/frame) | full / planned |"
@@ -154,11 +151,11 @@ memory() {
   profile "$rastty" render "$m1" "${args[@]}"
   normals=$(inclusive 'Geometry::compute_normals')
   smooth=$(inclusive 'normals::smooth_normals')
-  load=$(inclusive 'scene::obj::load')
+  load=$(inclusive 'scene::obj::load_in')
   finish=$(inclusive 'obj::Reader::finish')
   echo "| normals at load, 1M-triangle torus: welding, closedness and normals, a triangle | $(( normals / 1000000 )) instructions |"
   echo "| the normals alone (\`normals::smooth_normals\`), a triangle | $(( smooth / 1000000 )) instructions |"
-  echo "| OBJ parsing (\`obj::load\` less its normals), a byte | $(echo "scale=1; ($load - $finish) / $(stat -c %s "$m1")" | bc) instructions |"
+  echo "| OBJ parsing (\`obj::load_in\` less its normals), a byte | $(echo "scale=1; ($load - $finish) / $(stat -c %s "$m1")" | bc) instructions |"
   # The torus with normals in the file: each `v` followed by a `vn`.
   mn=$work/torus-1000000-vn.obj
   [ -s "$mn" ] || awk '/^v /{print; print "vn 0 0 1"; next}

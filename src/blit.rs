@@ -40,8 +40,7 @@
 //! path's dispatch; a property test keeps it equal to the general path.
 //! Without a scene background, the runs of cells whose two samples are both
 //! undrawn (most of a frame around a model) are found by the samples' tags
-//! alone and filled with blanks at once (about half the blit's
-//! instructions a cell on the 1000×300 torus, by callgrind). Cells outside
+//! alone and filled with blanks at once. Cells outside
 //! the framebuffer's drawn rectangle show undrawn samples only: they are
 //! all one cell, found once (the mode's own cell of undrawn samples) and
 //! written row by row without reading a sample, and the frame is told so

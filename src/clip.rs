@@ -41,7 +41,7 @@
 //! so it never overflows. Only the final vertices, inside the guard band,
 //! are taken to clip space and divided. Vertices anywhere up to f32's
 //! largest, 3.4e38, place their edges on screen as exactly as the snap to
-//! 1/256 of a sample allows (`tests/hard_cases.rs` sweeps 1e2 to 3.4e38 in
+//! 1/256 of a sample allows (`tests/render/hard_cases.rs` sweeps 1e2 to 3.4e38 in
 //! all three projections, end to end).
 //!
 //! **Watertight.** Where two triangles share an edge that crosses a plane,

@@ -69,7 +69,7 @@
 //! format), [`color`] (colours, depths, palettes), [`encode`] (the
 //! encoder), [`texture`], [`transform`], and the low-level stages kept
 //! public for experiments and the accuracy bench ([`fixed`], [`clip`],
-//! [`raster`], [`accuracy`]). `tests/architecture.rs` checks that no item
+//! [`raster`], [`accuracy`]). `tests/render/architecture.rs` checks that no item
 //! is reachable two ways.
 //!
 //! Conventions: y points up (sample row 0 is the bottom; terminal row `r`
@@ -80,7 +80,7 @@
 #![warn(missing_docs, missing_debug_implementations)]
 
 // Modules are declared in layers, and a module uses only modules declared
-// before it (tests/architecture.rs checks this): foundations, then the
+// before it (tests/render/architecture.rs checks this): foundations, then the
 // stages in data-flow order, then what runs them, then where frames go.
 
 // Foundations: errors, colours, fixed point, matrices and the sample grid,

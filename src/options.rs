@@ -108,12 +108,8 @@ pub const MAX_THREADS: u16 = 64;
 /// The smallest frame, in cells, that [`Threads::Auto`] draws in parallel
 /// (600×180). Below it the per-band work (each band sets up every triangle
 /// that reaches it, and copies its rows), the vertex stage left on one
-/// thread and handing the bands to rayon outweigh the gain. On this
-/// project's 2-core machine two bands took 0.83–1.34 times one band's time
-/// at 400×120 cells, 0.78–1.29 at 600×180 and 0.63–0.93 at 1000×300 (the
-/// torus and the Tux, six runs of `cargo run --release --example
-/// bands`; at 600×180 the torus gains in some runs and loses in others,
-/// Tux gains in every run).
+/// thread and handing the bands to rayon outweigh the gain (docs/figures.md's
+/// Bands section times one band against two at four sizes).
 pub const PARALLEL_CELLS: u32 = 600 * 180;
 
 impl std::str::FromStr for Threads {

@@ -235,7 +235,7 @@ impl Lights {
     }
 
     /// [`Lights::specular_a`] with point or spot lights, out of line: the
-    /// fill that inlines the directional loop stays as short as it was.
+    /// fill that inlines the directional loop stays short.
     #[inline(never)]
     fn specular_near(&self, n: Vec3A, v: Vec3A, p: Vec3A, f0: Vec3A, a2: f32) -> Vec3A {
         self.specular_from(n, v, f0, a2, |i| self.incident_a(i, p))

@@ -112,8 +112,8 @@ pub fn keys_text() -> String {
         .max()
         .unwrap_or(0);
     // Padded by hand, not by `format!`: `spin --help` is built whenever any
-    // command's arguments are parsed, and this was a few percent of
-    // `render cube`.
+    // command's arguments are parsed, and `format!`'s padding is a
+    // noticeable share of a command as small as `render cube`.
     let mut out = String::with_capacity(1024);
     out.push_str("Keys and mouse:");
     for (k, what) in KEYS {

@@ -220,11 +220,9 @@ impl Plan {
     /// ([`Plan::vertex_extras`]): found again, a corner costs about four times
     /// what a vertex costs in the vertex stage's lanes, and each vertex is the
     /// corner of about six faces, but only a face that covers a sample has
-    /// its corners found. By callgrind at 200×60 half blocks (24,000
-    /// samples, `examples/profile_scene`): a torus of 100,000 triangles
-    /// (2 vertices a sample) costs 14 % more a frame found at set-up, one
-    /// of 300,000 (6 a sample) 1 % less, of 600,000 (12) 9 % less, of 1M
-    /// (21) 14 % less; and found, a vertex keeps 14 bytes rather than 34.
+    /// its corners found; so the more vertices a sample, the more finding
+    /// them at set-up saves, and about here it starts to (a vertex found
+    /// keeps 14 bytes rather than 34).
     pub const DEFER_PER_SAMPLE: usize = 6;
 
     /// Plans a frame of `scene` drawn with `opts`; `vp` is the camera's

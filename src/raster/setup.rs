@@ -76,8 +76,8 @@ impl Setup {
         let [x0, x1, y0, y1] = clamped_box(&extent(&p), grid, band);
         if x0 > x1 || y0 > y1 {
             // A return of its own rather than one `Setup { .. }` below
-            // with the edges chosen by an `if`: 3 % fewer instructions on a
-            // Tux frame (callgrind).
+            // with the edges chosen by an `if`, which the compiler keeps
+            // off the common path.
             return Setup {
                 edges: [Edge::NONE; 3],
                 order: [0, 1, 2],

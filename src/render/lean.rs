@@ -6,7 +6,7 @@
 //! ([`crate::plan::Extras::Found`], a large model seen small), they are
 //! found only then too: most faces with a sample centre in their box
 //! cover none. The trade-off: a second entry beside the kept corners',
-//! whose code stays what it was (its face loop is the frame's hottest).
+//! whose code is left alone by it (its face loop is the frame's hottest).
 
 use glam::Vec3A;
 

@@ -13,7 +13,7 @@
 //! lit nor filled, nor are its colours read. The trade-off: a second code
 //! path beside the general one, kept equal to it by tests of the set-up
 //! (`raster`), of the planned pipeline against the full one and of one
-//! band against several (`tests/plan.rs`).
+//! band against several (`tests/render/plan.rs`).
 //!
 //! Lighting is evaluated here per face for flat shading, and per corner
 //! for what the vertex stage did not light (back faces, the rim). Colours
@@ -309,7 +309,7 @@ impl Painter<'_> {
     /// [`super::FrameStats::triangles_in`].
     /// `MAPPED`: a mapped run's (see `mapped.rs`), whose fill is the
     /// mapped fill; its own copy of this and the functions below it, so
-    /// that the others are the code they were before maps.
+    /// that the unmapped copies carry no branch for maps.
     pub(super) fn triangle<const SHINY: bool, const MAPPED: bool>(
         &mut self,
         stage: &Stage<'_>,

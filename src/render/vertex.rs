@@ -27,6 +27,19 @@
 //! less than finding it for every vertex, where there are many more
 //! vertices than samples (and more where there are fewer: the plan
 //! decides, by [`crate::Plan::DEFER_PER_SAMPLE`]).
+//!
+//! **The types, by how often they are read.** The values: [`Vert`] (every
+//! face), [`Deep`] (every face that covers a sample), [`Rest`] (the faces
+//! of some scenes) and [`More`], the two together as the stage finds them.
+//! Where they live: [`Core`] and [`Kept`], each split into arrays by the
+//! same reads, borrowed as [`CoreRef`] and [`KeptRef`] for one mesh. How a
+//! face reads them: [`Verts`], a mesh's vertices, and [`V`], one corner,
+//! whichever buffer holds it or [`Lazy`] finds it. A value a new effect
+//! needs at each vertex is a field of [`Deep`] if every covering face reads
+//! it, else of [`Rest`]; it is found in [`vertex`] (and [`deep`], if a
+//! [`Deep`]), and by the same operations, lane for lane, in
+//! `vertex_lanes.rs` (`four`, `deep4`), whose property test compares the
+//! two field by field; [`V`] gives it to the fill.
 
 use glam::{DMat4, Mat3, Mat4, Vec3};
 

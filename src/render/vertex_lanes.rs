@@ -6,8 +6,7 @@
 //! lights. Most of that is the same arithmetic on x, y and z, so here four
 //! vertices go through it together, structure of arrays: the x of four
 //! clip positions in one vector, their y in another, and so on, each
-//! operation done once for four (about half the instructions of one at a
-//! time, by callgrind on Tux; the frame's cost is in docs/figures.md). The
+//! operation done once for four (the frame's cost is in docs/figures.md). The
 //! snap's rounding and the centre keys are done in four `i32` lanes (the
 //! `wide` crate: SSE2's integer instructions, with no `unsafe` here, and
 //! plain code on targets without them). The normals' scaling by powers of
@@ -211,10 +210,9 @@ fn four(
 /// `n`), in lanes: the operations [`four`] does for their depth, `1/w` and
 /// light, so the same bits; `None` where a lane is not the common case
 /// (a normal [`directions`] refuses, or lights that fall off), for the
-/// caller to find one at a time. Out of line: inlined into
-/// `Lazy::deep3`, the compiler laid out the face loops of meshes that keep
-/// their extras otherwise, and a Tux frame (which finds none) cost 2 %
-/// more (callgrind, `examples/profile_scene`).
+/// caller to find one at a time. Out of line, so that inlining it into
+/// `Lazy::deep3` does not change how the compiler lays out the face loops
+/// of meshes that keep their extras.
 #[inline(never)]
 pub(super) fn deep4(
     stage: &Stage<'_>,

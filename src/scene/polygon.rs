@@ -14,11 +14,10 @@
 //!   triangulated with its edges as constraints by the `spade` crate
 //!   (a constrained Delaunay triangulation, bulk-loaded in `O(n log n)`,
 //!   exact predicates): repeated and collinear corners are no trouble, and
-//!   a face of 100,000 corners is loaded and drawn, whole process, in under
-//!   half a second. Ear clipping (the `earcut` crate) was measured first:
-//!   it turns quadratic on the f32-rounded outlines real files have (3.3 s
-//!   for a 100,000-corner circle, 3.6 s for a square with its edges
-//!   subdivided) and cannot fill a polygon that crosses itself.
+//!   a face of 100,000 corners is loaded and drawn in well under a second.
+//!   Not ear clipping (the `earcut` crate): it turns quadratic on the
+//!   f32-rounded outlines real files have (a 100,000-corner circle takes
+//!   seconds) and cannot fill a polygon that crosses itself.
 //! * **Self-intersecting polygons** (a bowtie) are filled by the **even-odd
 //!   rule**, the rule of SVG's `fill-rule: evenodd`: a point is inside when
 //!   a ray from it crosses the outline an odd number of times. Edges that
@@ -94,10 +93,9 @@ pub fn quad(p: [Vec3; 4]) -> Option<usize> {
 /// where they are (a reader cuts its quads with no copy of the corners).
 /// Panics if an index is out of range.
 ///
-/// Out of line: a quad is cut once, at load, and inlined into the OBJ
-/// reader it saved less there (0.35 instructions a byte) than the
-/// program's face loop lost by how the compiler then laid it out (0.5 %
-/// of a Tux frame through `spin`, by callgrind).
+/// Out of line: a quad is cut once, at load; inlined into the OBJ reader
+/// it saves less there than the frame's face loop loses by how the
+/// compiler then lays the program out.
 #[inline(never)]
 pub fn quad_at(positions: &[Vec3], v: [u32; 4]) -> Option<usize> {
     // In SIMD lanes: the same operations on each coordinate, and the dot

@@ -24,8 +24,8 @@ use super::mesh::*;
 /// 8-byte slots, at most half full: each holds a handle and 32 bits of its
 /// position's hash, so a probe compares positions (kept where the caller
 /// keeps them, a random read) only when the hashes agree: 8 bytes a slot
-/// against a general hash map's key, value and control bytes, which for
-/// 2M positions was more than twice the memory. Positions are equal when their bits are, with −0.0
+/// against a general hash map's key, value and control bytes, more than
+/// twice the memory for a large model. Positions are equal when their bits are, with −0.0
 /// and 0.0 one.
 pub(super) struct PositionSet {
     /// `hash << 32 | handle + 1`, or 0 for empty.

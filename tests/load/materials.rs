@@ -231,7 +231,7 @@ fn an_obj_material_glows_with_ke_and_shines_with_ks_unless_illum_says_not() {
         colours(&scene(glowing, &[DIM_FROM_SIDE])),
         [Lin::from_unit([0.2, 0.4, 0.6])]
     );
-    // illum 1: no highlight; d below 1: blended (tests/alpha.rs); a `d`
+    // illum 1: no highlight; d below 1: blended (tests/load/alpha.rs); a `d`
     // outside [0, 1] is noted as not drawn.
     let loaded = obj_square("newmtl m\nKs 1 1 1\nillum 1\nd 0.5\n");
     assert_eq!(loaded.geometry.materials[0].finish.specular, None);

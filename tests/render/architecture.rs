@@ -587,3 +587,123 @@ fn inlining_is_forced_only_where_the_figures_show_it_pays() {
         "docs/figures.md measures the inlining"
     );
 }
+
+/// Every file of the repository a document names by its path, every
+/// example it runs and every command it gives exists: a document that
+/// names what has gone is wrong.
+#[test]
+fn the_documents_name_only_files_and_commands_that_exist() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut pages = vec![root.join("README.md")];
+    let mut docs: Vec<_> = fs::read_dir(root.join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    pages.extend(docs);
+    let mut stale = Vec::new();
+    for page in &pages {
+        let text = fs::read_to_string(page).unwrap();
+        let name = page.strip_prefix(root).unwrap().display().to_string();
+        let bytes = text.as_bytes();
+        for prefix in [
+            "tests/",
+            "cli/",
+            "src/",
+            "scripts/",
+            "examples/",
+            "measure/",
+            "docs/",
+        ] {
+            for (i, _) in text.match_indices(prefix) {
+                let starts_word = i == 0
+                    || !(bytes[i - 1].is_ascii_alphanumeric() || b"_/.-".contains(&bytes[i - 1]));
+                if !starts_word {
+                    continue;
+                }
+                let path: String = text[i..]
+                    .chars()
+                    .take_while(|c| c.is_ascii_alphanumeric() || "_/.-".contains(*c))
+                    .collect();
+                let path = path.trim_end_matches(['.', '/']);
+                // Only whole paths of files with an extension, or folders.
+                if !path.contains('.') && !path.ends_with(char::is_alphanumeric) {
+                    continue;
+                }
+                if !root.join(path).exists() {
+                    stale.push(format!("{name}: {path}"));
+                }
+            }
+        }
+        for (i, _) in text.match_indices("--example ") {
+            let ex: String = text[i + "--example ".len()..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if !root.join("examples").join(format!("{ex}.rs")).exists() {
+                stale.push(format!("{name}: --example {ex}"));
+            }
+        }
+        for gone in ["cargo bench", "criterion", "hot-functions"] {
+            if text.contains(gone) {
+                stale.push(format!("{name}: {gone}"));
+            }
+        }
+    }
+    assert!(stale.is_empty(), "{}", stale.join("\n"));
+}
+
+/// `text` holds `number` as a whole figure (not part of a longer one).
+fn holds_figure(text: &str, number: &str) -> bool {
+    let digit = |c: Option<char>| c.is_some_and(|c| c.is_ascii_digit());
+    text.match_indices(number).any(|(i, _)| {
+        let mut before = text[..i].chars().rev();
+        let b = before.next();
+        let rest = &text[i + number.len()..];
+        let mut after = rest.chars();
+        let a = after.next();
+        let decimal_before = b == Some('.') && digit(before.next());
+        let decimal_after = a == Some('.') && digit(after.next());
+        !digit(b) && !decimal_before && !digit(a) && !decimal_after
+    })
+}
+
+/// The README's one performance table quotes docs/figures.md, which
+/// `scripts/figures.sh` writes: each figure is there, and each ratio is
+/// the two figures beside it.
+#[test]
+fn the_readmes_performance_table_is_docs_figures() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = fs::read_to_string(root.join("README.md")).unwrap();
+    let figures = fs::read_to_string(root.join("docs/figures.md")).unwrap();
+    let section = &readme[readme.find("## Performance").unwrap()..];
+    let section = &section[..section[3..].find("\n## ").unwrap() + 3];
+    let rows: Vec<Vec<&str>> = section
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| what"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    assert!(rows.len() >= 4, "{section}");
+    let value = |cell: &str| -> f64 {
+        cell.trim_end_matches(['M', '×'])
+            .replace(',', "")
+            .parse()
+            .unwrap_or_else(|_| panic!("not a figure: {cell:?}"))
+    };
+    for row in &rows {
+        let (ours, peer, ratio) = (row[2], row[3], row[4]);
+        for cell in [ours, peer].into_iter().filter(|c| !c.is_empty()) {
+            let bare = cell.replace(',', "");
+            assert!(
+                holds_figure(&figures, &bare),
+                "docs/figures.md does not have the README's {cell} ({})",
+                row[1]
+            );
+        }
+        if !ratio.is_empty() {
+            let want = format!("{:.2}×", value(ours) / value(peer));
+            assert_eq!(ratio, want, "{}", row[1]);
+        }
+    }
+}

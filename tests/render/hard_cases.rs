@@ -1047,7 +1047,7 @@ fn depth_stays_within_its_vertices_and_coplanar_overlaps_resolve_the_same_way() 
 fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
     // Rendering the same frame twice, with a fresh renderer and a reused
     // one, is bit for bit the same. (The same with any thread count:
-    // `tests/plan.rs`, `random_scenes_are_the_same_with_any_thread_count`.)
+    // `tests/render/plan.rs`, `random_scenes_are_the_same_with_any_thread_count`.)
     let scene = rastty::scene::default_scene();
     let opts = RenderOptions {
         cols: 50,

@@ -116,7 +116,7 @@ impl Reader<'_> {
     /// [`Reader::vertex`] for each of a face's corners (`v`, `vt`, `vn`),
     /// noting whether every one names a normal; at once where none names
     /// either (then each vertex is its `v`). A loop, not `map`: `map` here
-    /// is a call that is not inlined, 70 instructions a quad.
+    /// is a call that is not inlined.
     #[inline(always)]
     pub(super) fn corner_ids<const N: usize>(&mut self, corners: [[u32; 3]; N]) -> [u32; N] {
         let mut ids = [0; N];

@@ -9,9 +9,9 @@
 //! which reads short decimals eight digits at a time and converts them
 //! exactly (others go to `fast-float2`), and every error names the file,
 //! line and column of what is wrong. rastty's
-//! own parser rather than `tobj`, which reports no positions and, measured
-//! on Tux with callgrind, took about three times the instructions (the
-//! current load's cost is in docs/figures.md, "Loading").
+//! own parser rather than `tobj`, which reports no positions and costs
+//! several times the instructions (the load's cost is in docs/figures.md,
+//! "Loading").
 //!
 //! What is read: `v` (with an optional `w`, and vertex colours `v x y z r g
 //! b`), `vn`, `vt`, `f` (any number of corners, `v`, `v/vt`, `v//vn` or
