@@ -206,6 +206,36 @@ inlining() {
   echo "| 1M-triangle torus, one frame, whole process (loading) | $(millions "$(count "$rastty" render "$m1" --cols 200 --rows 60)")M | $(millions "$(count "$plain/rastty" render "$m1" --cols 200 --rows 60)")M |"
 }
 
+# Bytes a frame: the command given a frame count last, (40 frames − 10) / 30.
+bytes_a_frame() { local a b; a=$("$@" 10 | wc -c); b=$("$@" 40 | wc -c); echo $(( (b - a) / 30 )); }
+spin_tux() { "$rastty" spin "$tux" "$@"; }
+spin_torus() { "$rastty" spin "$@"; }
+
+# Pixels: the same scenes at 960×540 pixels in each protocol (120×31 cells
+# of 8×18 pixels, the last row the status line's), against cells at 200×60;
+# then sixel from one PNG, rastty's encoder against chafa's.
+pixels() {
+  local px=(--cols 120 --rows 31 --cell-size 8x18) cells=(--cols 200 --rows 60 --glyphs half --color truecolor)
+  local scene p png=$work/tux-960x540.png
+  echo "| scene | output | instructions a frame | bytes a frame |"
+  echo "|---|---|---:|---:|"
+  for scene in tux torus; do
+    echo "| $scene | cells, 200×60 half blocks | $(per_frame "spin_$scene" "${cells[@]}" --frames) | $(bytes_a_frame "spin_$scene" "${cells[@]}" --frames) |"
+    for p in kitty sixel iterm; do
+      echo "| $scene | $p, 960×540 pixels | $(per_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) | $(bytes_a_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) |"
+    done
+  done
+  "$rastty" render "$tux" "${px[@]}" --graphics sixel --output "$png"
+  echo
+  echo "| sixel of one 960×540 PNG of Tux, whole process | instructions | bytes |"
+  echo "|---|---:|---:|"
+  echo "| rastty (\`sixel_png\`, 256 registers) | $(millions "$(count "$bin/sixel_png" "$png")")M | $("$bin/sixel_png" "$png" | wc -c) |"
+  if command -v chafa >/dev/null; then
+    local chafa=(chafa -f sixels --animate off --polite on --size 120x30 --font-ratio 4/9 --view-size 120x30 "$png")
+    echo "| chafa $(chafa --version | sed -n 's/^Chafa version //p;q') (\`${chafa[*]}\`) | $(millions "$(count "${chafa[@]}")")M | $("${chafa[@]}" | wc -c) |"
+  fi
+}
+
 section() { # title, what it shows, function
   printf '\n## %s\n\n%s\n\n```\n' "$1" "$2"
   "$3"
@@ -235,6 +265,7 @@ HEAD
   section "Bytes a frame" "The diffing encoder's bytes a frame, a square turning a full circle in 60 frames at 80×24 cells in every glyph mode, truecolor, against ratatui's \`Canvas\` (docs/usage.md; \`measure/src/bin/bytes_per_frame.rs\`)." "$bin/bytes_per_frame"
   section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." loading
   section "Memory and start-up" "Peak memory (the median of three runs), what loading costs a triangle and a byte (callgrind's inclusive counts, on the 1M-triangle torus), whole-process counts of two small commands, and the binary's size." memory
+  section "Pixels" "Instructions and bytes a frame, (40 frames − 10) / 30, of Tux and the torus through \`spin\` at 960×540 pixels in each protocol (\`--graphics\`), against character cells at 200×60; and sixel from one PNG, rastty's encoder against chafa's, whole process (docs/usage.md's Pixels)." pixels
   section "Inlining" "What \`#[inline(always)]\` buys where it stands (the rasterizer, fill, vertex, shading and encoding stages and the OBJ reader and its normals): the same code built with a plain \`#[inline]\` in its place, instructions through the same commands. Where forcing did not pay (the camera, the mesh's accessors, clipping's setup, statistics, palettes, the line encoder) it is a plain \`#[inline]\`." inlining
   if [ -n "${PEER:-}" ]; then
     section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." against_peer

@@ -102,8 +102,11 @@ pub mod raster;
 mod framebuffer;
 mod fill;
 mod frame;
+mod pixels;
 mod blit;
 pub mod encode;
+#[cfg(feature = "graphics")]
+pub mod graphics;
 
 // What runs them: the options, the planner that decides, the renderer that
 // obeys, and the animation loop's core.
@@ -132,9 +135,10 @@ pub use error::{Error, Result};
 pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
 pub use options::{
-    Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELLS, MAX_THREADS, PARALLEL_CELLS,
-    Pipeline, RenderOptions, Threads, Wire,
+    Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELL_PIXELS, MAX_CELLS, MAX_THREADS,
+    PARALLEL_CELLS, Pipeline, RenderOptions, Threads, Wire,
 };
+pub use pixels::{PixelRect, Pixels, Rgba};
 pub use plan::{Bands, Decision, Effect, Extras, Plan};
 pub use render::{Renderer, render, try_render};
 pub use shade::{Lights, Shading, specular_reference};

@@ -19,6 +19,9 @@ use crate::transform::Axis;
 /// (4096×4096 cells is already 16 M cells, 128 M samples in octant mode).
 pub const MAX_CELLS: u16 = 4096;
 
+/// Largest side of a cell in pixels ([`RenderOptions::cell_pixels`]).
+pub const MAX_CELL_PIXELS: u16 = 256;
+
 /// Everything about a frame that is not the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
@@ -28,6 +31,11 @@ pub struct RenderOptions {
     pub rows: u16,
     /// How a cell's samples become a glyph.
     pub glyphs: GlyphMode,
+    /// One sample a pixel: each cell a block of this many pixels across
+    /// and down (a terminal that shows images; [`crate::Pixels`]), or
+    /// `None`, the glyph mode's samples. With it, the view's aspect is
+    /// the pixels' and `cell_aspect` is not read.
+    pub cell_pixels: Option<[u16; 2]>,
     /// How many colours the frame may use.
     pub color: ColorDepth,
     /// A cell's width over its height, physically (about 0.5 in most
@@ -250,6 +258,7 @@ impl Default for RenderOptions {
             glyphs: GlyphMode::default(),
             color: ColorDepth::default(),
             cell_aspect: 0.5,
+            cell_pixels: None,
             traversal: Traversal::default(),
             turn: Vec3::ZERO,
             turn_axis: Axis::Y,
@@ -321,16 +330,27 @@ impl RenderOptions {
                 self.cell_aspect
             ));
         }
+        if let Some([w, h]) = self.cell_pixels
+            && !((1..=MAX_CELL_PIXELS).contains(&w) && (1..=MAX_CELL_PIXELS).contains(&h))
+        {
+            return bad(format!(
+                "cells of {w}×{h} pixels: each side must be from 1 to {MAX_CELL_PIXELS}"
+            ));
+        }
         if !self.turn.is_finite() {
             return bad(format!("a turn of {}: it must be finite", self.turn));
         }
         self.check_samples(self.max_samples)
     }
 
-    /// Samples a cell holds, across and down: the glyph mode's grid
+    /// Samples a cell holds, across and down: its pixels
+    /// ([`RenderOptions::cell_pixels`]), else the glyph mode's grid
     /// ([`GlyphMode::cell_size`]).
     pub fn cell_samples(&self) -> (u32, u32) {
-        self.glyphs.cell_size()
+        match self.cell_pixels {
+            Some([w, h]) => (u32::from(w), u32::from(h)),
+            None => self.glyphs.cell_size(),
+        }
     }
 
     /// The frame's grid of samples: its cells, each of
@@ -344,7 +364,11 @@ impl RenderOptions {
     /// The physical aspect of the whole view, `(cols·cell_w)/(rows·cell_h)`:
     /// what the projection is given.
     pub fn aspect(&self) -> f32 {
-        self.cols as f32 * self.cell_aspect / self.rows.max(1) as f32
+        let cell = match self.cell_pixels {
+            Some([w, h]) => f32::from(w) / f32::from(h.max(1)),
+            None => self.cell_aspect,
+        };
+        self.cols as f32 * cell / self.rows.max(1) as f32
     }
 }
 

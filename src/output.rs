@@ -117,3 +117,68 @@ impl Output for Frame {
         self.set_known(done);
     }
 }
+
+/// How a frame's pixels are filled: what an undrawn pixel is.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PixelFill {
+    background: crate::pixels::Rgba,
+}
+
+impl Output for crate::pixels::Pixels {
+    type Unit = crate::pixels::Rgba;
+    type Fill = PixelFill;
+    type Done = ();
+
+    /// A pixel is one sample.
+    fn unit(_: &RenderOptions) -> (u32, u32) {
+        (1, 1)
+    }
+
+    fn begin(&mut self, opts: &RenderOptions, background: Option<Rgb>) -> PixelFill {
+        let grid = opts.grid();
+        self.resize(grid.width, grid.height);
+        PixelFill {
+            background: match background {
+                Some(Rgb([r, g, b])) => [r, g, b, 255],
+                None => [0; 4],
+            },
+        }
+    }
+
+    fn units_mut(&mut self) -> &mut [crate::pixels::Rgba] {
+        self.rgba_mut()
+    }
+
+    /// Each pixel row from its sample row (rows of samples count from the
+    /// bottom, of pixels from the top): a drawn sample encoded to sRGB,
+    /// opaque; any other the background.
+    fn fill(how: &PixelFill, samples: View<'_>, pixels: &mut [crate::pixels::Rgba]) {
+        let (band, drawn) = (samples.band(), samples.drawn());
+        let w = samples.grid().width as usize;
+        if w == 0 {
+            return;
+        }
+        for (row, y) in pixels.chunks_exact_mut(w).zip((band.y0..band.y1).rev()) {
+            if y < drawn.y0 || y >= drawn.y1 {
+                row.fill(how.background);
+                continue;
+            }
+            let (x0, x1) = (drawn.x0 as usize, (drawn.x1 as usize).min(w));
+            row[..x0].fill(how.background);
+            row[x1..].fill(how.background);
+            for (p, s) in row[x0..x1].iter_mut().zip(&samples.row(y)[x0..x1]) {
+                *p = match s {
+                    Some(c) => {
+                        let Rgb([r, g, b]) = c.to_srgb();
+                        [r, g, b, 255]
+                    }
+                    None => how.background,
+                };
+            }
+        }
+    }
+
+    fn merge(_: (), _: ()) {}
+
+    fn end(&mut self, _: ()) {}
+}

@@ -107,15 +107,6 @@ pub struct RenderArgs {
     /// written through; a file the model reads is refused
     #[arg(help_heading = "Output", long, short = 'o', value_name = "PATH")]
     pub output: Option<PathBuf>,
-    /// Pixels a cell in .png and .svg pictures, W×H (or WxH); the frame is
-    /// drawn for that cell shape unless --cell-aspect says otherwise
-    #[arg(
-        help_heading = "Output",
-        long,
-        value_name = "W×H",
-        default_value = "8x16"
-    )]
-    pub cell_px: CellPx,
     /// Also write the frame as a one-frame asciicast v2 recording, written
     /// as --output is
     #[arg(help_heading = "Output", long, value_name = "FILE.cast")]
@@ -297,6 +288,17 @@ pub struct ViewArgs {
     /// have it
     #[arg(long)]
     pub rep: bool,
+    /// Draw real pixels where the terminal shows images: the kitty graphics
+    /// protocol, sixel or iTerm2's inline images; auto picks the best the
+    /// terminal answers for, cells where none answers (or stdout is not a
+    /// terminal)
+    #[arg(long, value_enum, default_value_t = GraphicsArg::Auto)]
+    pub graphics: GraphicsArg,
+    /// Pixels of one cell, W×H (or WxH): of pixel graphics (--graphics;
+    /// default: as the terminal says, else 10×20, said on stderr), and of
+    /// .png and .svg pictures of cells (default 8×16)
+    #[arg(long, value_name = "W×H", visible_alias = "cell-px")]
+    pub cell_size: Option<CellPx>,
     /// A cell's width over its height [default: the terminal's, or 0.5]
     #[arg(long, value_name = "R", value_parser = parse_aspect)]
     pub cell_aspect: Option<f32>,
@@ -363,6 +365,35 @@ pub struct ViewArgs {
 impl ViewArgs {
     pub fn rep(&self) -> Rep {
         if self.rep { Rep::On } else { Rep::Off }
+    }
+}
+
+/// `--graphics`: pixels in a protocol, character cells, or the best the
+/// terminal has.
+#[derive(ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GraphicsArg {
+    #[default]
+    Auto,
+    /// Character cells (--glyphs), whatever the terminal shows
+    Cells,
+    /// The kitty graphics protocol (kitty, Ghostty, WezTerm, Konsole)
+    Kitty,
+    /// Sixel (foot, WezTerm, xterm -ti vt340, Konsole, Windows Terminal)
+    Sixel,
+    /// iTerm2's inline images (iTerm2, WezTerm, VS Code)
+    Iterm,
+}
+
+impl GraphicsArg {
+    /// The protocol asked for by name (`None`: auto or cells).
+    pub fn protocol(self) -> Option<rastty::graphics::Protocol> {
+        use rastty::graphics::Protocol;
+        match self {
+            GraphicsArg::Kitty => Some(Protocol::Kitty),
+            GraphicsArg::Sixel => Some(Protocol::Sixel),
+            GraphicsArg::Iterm => Some(Protocol::Iterm),
+            GraphicsArg::Auto | GraphicsArg::Cells => None,
+        }
     }
 }
 

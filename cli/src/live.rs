@@ -67,6 +67,9 @@ pub struct LiveOptions {
     /// draws it (the depth was left to detection, and the environment
     /// said less).
     pub detect_truecolor: bool,
+    /// Pixels or cells (`--graphics`), and a cell's pixels (`--cell-size`).
+    pub graphics: crate::cli::GraphicsArg,
+    pub cell_size: Option<rastty::picture::CellPx>,
 }
 
 /// How the loop ended.
@@ -442,7 +445,20 @@ impl Live<'_, '_> {
     /// Runs the loop; before returning, collects the answers still due.
     fn run(&mut self) -> std::io::Result<Exit> {
         let mut link = None;
-        let exit = self.frames(&mut link)?;
+        let exit = self.frames(&mut link);
+        // An image left on the screen goes with it (kitty keeps it until
+        // told), whatever ended the loop.
+        let mut bye = Vec::new();
+        self.player.goodbye(&mut bye);
+        if !bye.is_empty() {
+            let rest = &self.out[self.written.min(self.out.len())..];
+            if !rest.is_empty() {
+                // A frame cut short: CAN ends the sequence it left open.
+                bye.insert(0, 0x18);
+            }
+            let _ = self.session.write_all(&bye, LAST_WRITE);
+        }
+        let exit = exit?;
         if let Some(link) = &mut link {
             self.collect_answers(link);
         }
@@ -659,6 +675,25 @@ impl Live<'_, '_> {
     /// end), `m` skips such modes, synchronized output is left out where
     /// the terminal said it does not know it.
     fn adopt(&mut self, caps: &Capabilities) {
+        let choice = crate::pixels::choose(
+            self.opts.graphics,
+            self.opts.cell_size,
+            self.opts.full_screen,
+            &|k| std::env::var(k).ok(),
+            self.session.size(),
+            caps,
+        );
+        self.messages.extend(choice.notes);
+        if let Some(g) = choice.graphics {
+            self.player
+                .set_graphics(g.protocol, g.cell, g.registers, g.background);
+            self.player.set_notice(format!(
+                "{} pixels, cells of {}×{}",
+                g.protocol.name(),
+                g.cell[0],
+                g.cell[1]
+            ));
+        }
         self.player.set_usable_glyphs(|m| caps.usable(m));
         self.player.set_max_depth(self.opts.max_depth);
         if caps.sync == Some(false) {

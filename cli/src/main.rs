@@ -7,6 +7,7 @@ mod cli;
 mod commands;
 mod gesture;
 mod live;
+mod pixels;
 mod say;
 mod setup;
 mod terminal;

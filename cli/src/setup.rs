@@ -226,6 +226,8 @@ pub fn options(
         glyphs,
         color,
         cell_aspect,
+        // Pixels are `--graphics`'s, chosen where the terminal is known.
+        cell_pixels: None,
         traversal: knobs.traversal,
         turn: glam::Vec3::new(view.pitch, view.yaw, view.roll),
         // `--yaw`'s axis; spin's loop sets its own.

@@ -28,6 +28,8 @@ use crate::shade::Shading;
 use crate::transform::Axis;
 
 mod hud;
+#[cfg(feature = "graphics")]
+mod pixels;
 
 /// A turn of `step` degrees per frame about `axis`, and a clip played
 /// meanwhile.
@@ -225,6 +227,9 @@ pub struct Player {
     /// The clip the status line names, and how (escaped once, not each
     /// frame).
     clip_label: Option<(usize, String)>,
+    /// Where frames go as pixels, when they do.
+    #[cfg(feature = "graphics")]
+    screen: Option<pixels::Screen>,
 }
 
 impl Player {
@@ -255,6 +260,8 @@ impl Player {
             notice: None,
             notice_serial: 0,
             clip_label: None,
+            #[cfg(feature = "graphics")]
+            screen: None,
         }
     }
 
@@ -416,11 +423,20 @@ impl Player {
             Command::Resize { cols, rows } => {
                 self.opts.cols = cols.clamp(1, crate::options::MAX_CELLS);
                 self.opts.rows = rows.clamp(1, crate::options::MAX_CELLS);
-                self.encoder.invalidate();
+                self.invalidate();
             }
-            Command::Redraw => self.encoder.invalidate(),
+            Command::Redraw => self.invalidate(),
         }
         true
+    }
+
+    /// Sends the next frame whole: the terminal's screen is not known.
+    fn invalidate(&mut self) {
+        self.encoder.invalidate();
+        #[cfg(feature = "graphics")]
+        if let Some(s) = &mut self.screen {
+            s.invalidate();
+        }
     }
 
     /// Moves on by `frames` frames (none while paused).
@@ -448,8 +464,9 @@ impl Player {
             self.scene.set_pose(p.clip, p.time(self.played));
         }
         // The status line takes a row of its own: the model is drawn in
-        // the rows above it, never under it.
-        let hud_row = self.hud && self.opts.rows > 1;
+        // the rows above it, never under it. Pixels always leave that row
+        // (an image that reaches the last row scrolls a sixel terminal).
+        let hud_row = (self.hud || self.shows_pixels()) && self.opts.rows > 1;
         // Framed to fit however it turns about the spin's axis.
         let opts = within_budget(RenderOptions {
             turn,
@@ -457,6 +474,10 @@ impl Player {
             rows: self.opts.rows - u16::from(hud_row),
             ..self.opts
         });
+        #[cfg(feature = "graphics")]
+        if self.screen.is_some() {
+            return self.prepare_pixels(&opts, turn, live);
+        }
         if let Err(e) = self.renderer.try_render(&self.scene, &opts) {
             // Not within the budgets even at one cell (a scene of too many
             // triangles): an empty frame, and why.
@@ -470,6 +491,38 @@ impl Player {
                 .frame_mut()
                 .resize(self.opts.cols, self.opts.rows);
         }
+        if let Some(full_row) = self.status_line(&opts, turn, live) {
+            hud::overlay(self.renderer.frame_mut(), &self.status, full_row);
+        }
+        if self.help {
+            hud::help_box(self.renderer.frame_mut(), KEYS);
+        }
+        self.encoder.prepare(self.renderer.frame());
+        self.last_bytes = self.encoder.last_bytes().len();
+        self.encoder.last_bytes()
+    }
+
+    /// The protocol and cell size frames are sent in as pixels, for the
+    /// status line (`None`: character cells).
+    fn pixel_protocol(&self) -> Option<String> {
+        #[cfg(feature = "graphics")]
+        if let (Some(s), Some([w, h])) = (&self.screen, self.opts.cell_pixels) {
+            return Some(format!("{} {w}×{h}px", s.protocol().name()));
+        }
+        None
+    }
+
+    /// Whether frames are sent as pixels (`Player::set_graphics`).
+    pub fn shows_pixels(&self) -> bool {
+        #[cfg(feature = "graphics")]
+        return self.screen.is_some();
+        #[cfg(not(feature = "graphics"))]
+        false
+    }
+
+    /// Writes the status line (with the HUD) or the notice into
+    /// `self.status`; `Some(full_row)` where there is one to show.
+    fn status_line(&mut self, opts: &RenderOptions, turn: Vec3, live: LiveStatus) -> Option<bool> {
         if self.hud {
             use std::fmt::Write as _;
             let stats = *self.renderer.stats();
@@ -479,6 +532,7 @@ impl Player {
             // many as the width has room for. Rebuilt in the same buffers
             // each frame: no allocation once they have grown.
             let angle = self.spin.axis.unit().dot(turn).rem_euclid(360.0);
+            let pixels = self.pixel_protocol();
             let p = &mut self.hud_parts;
             p.iter_mut().for_each(String::clear);
             if let Some(n) = &self.notice {
@@ -501,13 +555,16 @@ impl Player {
             if v.shift != glam::Vec2::ZERO {
                 let _ = write!(p[2], " pan {},{}", v.shift.x, v.shift.y);
             }
-            let _ = write!(
-                p[3],
-                "{} · {} · {}",
-                opts.glyphs.name(),
-                opts.color.name(),
-                opts.shading.name()
-            );
+            let _ = match pixels {
+                Some(name) => write!(p[3], "{name} · {}", opts.shading.name()),
+                None => write!(
+                    p[3],
+                    "{} · {} · {}",
+                    opts.glyphs.name(),
+                    opts.color.name(),
+                    opts.shading.name()
+                ),
+            };
             if let Some(play) = self.spin.play
                 && let Some(clip) = self.scene.clips().get(play.clip)
             {
@@ -540,20 +597,16 @@ impl Player {
                 if self.encoder.sync() { "on" } else { "off" }
             );
             hud::fit_status(&mut self.status, &self.hud_parts, usize::from(opts.cols));
-            hud::overlay(self.renderer.frame_mut(), &self.status, true);
+            Some(true)
         } else if let Some(n) = &self.notice {
             self.status.clear();
             self.status.push(' ');
             self.status.push_str(n);
             self.status.push(' ');
-            hud::overlay(self.renderer.frame_mut(), &self.status, false);
+            Some(false)
+        } else {
+            None
         }
-        if self.help {
-            hud::help_box(self.renderer.frame_mut(), KEYS);
-        }
-        self.encoder.prepare(self.renderer.frame());
-        self.last_bytes = self.encoder.last_bytes().len();
-        self.encoder.last_bytes()
     }
 
     /// Renders the current frame, sends it to `out`, and returns the bytes

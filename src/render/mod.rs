@@ -47,6 +47,7 @@ use crate::frame::Frame;
 use crate::framebuffer::{Framebuffer, Target};
 use crate::options::{Aa, RenderOptions};
 use crate::output::Output;
+use crate::pixels::Pixels;
 use crate::plan::Plan;
 use crate::raster::{Precision, Traversal};
 use crate::scene::anim::{Pose, Posed};
@@ -418,6 +419,33 @@ impl Renderer {
             panic!("{e}");
         }
         self.render_to(scene, opts, frame);
+    }
+
+    /// Renders `scene` into `pixels`, one sample a pixel of the options'
+    /// grid ([`RenderOptions::cell_pixels`] sizes a cell in pixels), rows
+    /// from the top; pixels nothing covers are the scene's background, or
+    /// transparent. The same samples a frame of cells is made of, through
+    /// the same stages: only what they become differs.
+    ///
+    /// # Panics
+    ///
+    /// With [`Renderer::try_render`]'s error, where it gives one.
+    pub fn render_pixels(&mut self, scene: &Scene, opts: &RenderOptions, pixels: &mut Pixels) {
+        if let Err(e) = self.try_render_pixels(scene, opts, pixels) {
+            panic!("{e}");
+        }
+    }
+
+    /// [`Renderer::render_pixels`], or [`Renderer::try_render`]'s error.
+    pub fn try_render_pixels(
+        &mut self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        pixels: &mut Pixels,
+    ) -> Result<()> {
+        check(scene, opts)?;
+        self.render_to(scene, opts, pixels);
+        Ok(())
     }
 
     /// Draws `scene` (checked already) on the options' grid of samples and

@@ -21,3 +21,5 @@ mod wire;
 mod fidelity;
 #[cfg(feature = "ratatui")]
 mod widget;
+#[cfg(feature = "graphics")]
+mod graphics;

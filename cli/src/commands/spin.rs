@@ -78,6 +78,32 @@ pub fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
             return Ok(ExitCode::SUCCESS);
         }
         let mut out = stdout()?;
+        // Pixels by name: frame k in the protocol, as a terminal gets it.
+        let choice = crate::pixels::choose(
+            args.view.graphics,
+            args.view.cell_size,
+            false,
+            &|k| std::env::var(k).ok(),
+            None,
+            &terminal::probe::Capabilities::default(),
+        );
+        if let Some(g) = choice.graphics {
+            for note in &choice.notes {
+                say("note", note);
+            }
+            let mut player = Player::new(scene, opts, spin, encoder);
+            player.set_graphics(g.protocol, g.cell, g.registers, g.background);
+            for _ in 0..frames {
+                player
+                    .show(&mut out, animate::LiveStatus::default())
+                    .map_err(stdout_error)?;
+                player.advance(1);
+            }
+            let mut bye = Vec::new();
+            player.goodbye(&mut bye);
+            out.write_all(&bye).map_err(stdout_error)?;
+            return Ok(ExitCode::SUCCESS);
+        }
         animate::play(&scene, &opts, spin, frames, encoder, &mut out, |_| {})
             .map_err(stdout_error)?;
         return Ok(ExitCode::SUCCESS);
@@ -96,6 +122,8 @@ pub fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
         max_depth,
         detect_truecolor: args.view.color == cli::ColorArg::Auto
             && !matches!(opts.color, ColorDepth::None | ColorDepth::TrueColor),
+        graphics: args.view.graphics,
+        cell_size: args.view.cell_size,
     };
     let mut rec = match record {
         Some(file) => {

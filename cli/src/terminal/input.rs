@@ -122,6 +122,29 @@ pub enum Input {
     /// mapped to a palette or refused: `false`), or to XTGETTCAP of `RGB`
     /// (`DCS 1 + r 524742 … ST`: `true`; `DCS 0 + r …`: `false`).
     RgbSupport(bool),
+    /// The answer to a kitty graphics query (`APC G i=… ; OK ST`: the
+    /// protocol is drawn; any other message: it is not).
+    KittyGraphics(bool),
+    /// Primary device attributes (`CSI ? … c`): whether they list 4,
+    /// sixel graphics. Every terminal answers them, last of a batch.
+    DeviceAttributes {
+        sixel: bool,
+    },
+    /// XTSMGRAPHICS's answer on sixel colour registers (`CSI ? 1 ; 0 ; n
+    /// S`): how many the terminal has.
+    SixelRegisters(u16),
+    /// The size of a cell (`CSI 6 ; h ; w t`) or of the text area (`CSI 4
+    /// ; h ; w t`) in pixels.
+    CellPixels {
+        width: u16,
+        height: u16,
+    },
+    WindowPixels {
+        width: u16,
+        height: u16,
+    },
+    /// The default background colour (OSC 11's answer, `rgb:RRRR/GGGG/BBBB`).
+    Background(rastty::color::Rgb),
 }
 
 /// The longest escape sequence kept; longer ones are dropped whole.
@@ -197,6 +220,28 @@ impl Parser {
                 };
                 dcs(body)
             }
+            // APC … ST: a kitty graphics answer.
+            [0x1b, b'_', rest @ ..] => {
+                let body = match rest {
+                    [body @ .., 0x1b, b'\\'] => body,
+                    _ => return,
+                };
+                match body {
+                    [b'G', keys @ ..] => {
+                        let msg = keys.splitn(2, |&b| b == b';').nth(1).unwrap_or(b"");
+                        Input::KittyGraphics(msg == b"OK")
+                    }
+                    _ => Input::Key(Key::Other),
+                }
+            }
+            // OSC … ST (or BEL): the answer to OSC 11.
+            [0x1b, b']', rest @ ..] => {
+                let body = match rest {
+                    [body @ .., 0x1b, b'\\'] | [body @ .., 0x07] => body,
+                    _ => return,
+                };
+                osc(body)
+            }
             [0x1b, b'O'] => return,
             [0x1b, b'O', f] => match f {
                 b'A' => Input::Key(Key::Up),
@@ -240,6 +285,27 @@ fn control_or_char(b: u8) -> Key {
     }
 }
 
+/// An OSC answer's body: `11;rgb:R/G/B`, each 1 to 4 hex digits.
+fn osc(body: &[u8]) -> Input {
+    let colour = std::str::from_utf8(body).ok().and_then(|s| {
+        let spec = s.strip_prefix("11;rgb:")?;
+        let mut parts = spec.split('/').map(|h| {
+            let v = u32::from_str_radix(h, 16).ok()?;
+            let max = (1u32 << (4 * h.len().clamp(1, 4))) - 1;
+            Some(((v * 255 + max / 2) / max) as u8)
+        });
+        let (r, g, b) = (parts.next()??, parts.next()??, parts.next()??);
+        parts
+            .next()
+            .is_none()
+            .then_some(rastty::color::Rgb([r, g, b]))
+    });
+    match colour {
+        Some(c) => Input::Background(c),
+        None => Input::Key(Key::Other),
+    }
+}
+
 /// A DCS answer's body (between `ESC P` and ST).
 fn dcs(body: &[u8]) -> Input {
     let contains = |needle: &[u8]| body.windows(needle.len()).any(|w| w == needle);
@@ -271,9 +337,15 @@ fn csi(body: &[u8], f: u8) -> Input {
             .unwrap_or(digits.len());
         (&digits[..end], &digits[end..])
     };
-    let mut nums = [0u32; 2];
+    // Device attributes list any number of features.
+    if (f, private, inter) == (b'c', true, &[][..]) {
+        return Input::DeviceAttributes {
+            sixel: params.split(|&b| b == b';').skip(1).any(|p| p == b"4"),
+        };
+    }
+    let mut nums = [0u32; 3];
     let mut n = 0;
-    for part in params.split(|&b| b == b';').take(2) {
+    for part in params.split(|&b| b == b';').take(3) {
         nums[n] = part.iter().fold(0u32, |v, d| {
             v.saturating_mul(10).saturating_add((d - b'0') as u32)
         });
@@ -293,6 +365,17 @@ fn csi(body: &[u8], f: u8) -> Input {
         (b'y', true, b"$") if n == 2 => Input::ModeReport {
             mode: clamp(nums[0]),
             value: nums[1].min(255) as u8,
+        },
+        (b'S', true, []) if n == 3 && nums[0] == 1 && nums[1] == 0 => {
+            Input::SixelRegisters(clamp(nums[2]))
+        }
+        (b't', false, []) if n == 3 && nums[0] == 6 => Input::CellPixels {
+            width: clamp(nums[2]),
+            height: clamp(nums[1]),
+        },
+        (b't', false, []) if n == 3 && nums[0] == 4 => Input::WindowPixels {
+            width: clamp(nums[2]),
+            height: clamp(nums[1]),
         },
         _ => Input::Key(Key::Other),
     }

@@ -29,8 +29,14 @@ use super::Tty;
 use super::input::{Input, Parser};
 use rastty::{GlyphFamily, GlyphMode, GlyphSupport};
 
-/// The longest the probe waits for answers, in total.
+/// The longest the probe waits for answers, in total, from a terminal
+/// that has answered nothing.
 pub const DEADLINE: Duration = Duration::from_millis(150);
+
+/// The longest it waits for the last answer from a terminal that has
+/// begun to answer (a terminal just opened, or over a slow link, may take
+/// longer than [`DEADLINE`] to answer every query).
+pub const ANSWERING: Duration = Duration::from_millis(1000);
 
 /// What the terminal said it can do; `None` where it did not answer.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,6 +54,19 @@ pub struct Capabilities {
     /// XTGETTCAP (any "yes" wins: a terminal may know one query and not
     /// the other).
     pub truecolor: Option<bool>,
+    /// Whether it draws the kitty graphics protocol (it answered the
+    /// query `a=q` with OK).
+    pub kitty: Option<bool>,
+    /// Whether its device attributes list sixel graphics.
+    pub sixel: Option<bool>,
+    /// Its sixel colour registers, by XTSMGRAPHICS.
+    pub sixel_registers: Option<u16>,
+    /// A cell's size in pixels (`CSI 16 t`), or the text area's (`CSI 14
+    /// t`), across and down.
+    pub cell_px: Option<[u16; 2]>,
+    pub window_px: Option<[u16; 2]>,
+    /// Its default background colour (OSC 11).
+    pub background: Option<rastty::color::Rgb>,
 }
 
 impl Capabilities {
@@ -82,6 +101,16 @@ impl Capabilities {
                 Input::RgbSupport(yes) => {
                     caps.truecolor = Some(yes || caps.truecolor == Some(true));
                 }
+                Input::KittyGraphics(ok) => caps.kitty = Some(ok),
+                Input::Background(c) => caps.background = Some(c),
+                Input::DeviceAttributes { sixel } => caps.sixel = Some(sixel),
+                Input::SixelRegisters(n) => caps.sixel_registers = Some(n),
+                Input::CellPixels { width, height } if width > 0 && height > 0 => {
+                    caps.cell_px = Some([width, height]);
+                }
+                Input::WindowPixels { width, height } if width > 0 && height > 0 => {
+                    caps.window_px = Some([width, height]);
+                }
                 _ => {}
             }
         }
@@ -105,6 +134,12 @@ pub fn query() -> Vec<u8> {
     // 24-bit colour: set one, ask what SGR is now (DECRQSS), ask for the
     // `RGB` capability (XTGETTCAP), reset.
     q.extend_from_slice(b"\x1b[38;2;1;2;3m\x1bP$qm\x1b\\\x1bP+q524742\x1b\\\x1b[0m");
+    // Pixels: the kitty graphics query (a 1×1 image checked, not kept),
+    // sixel's colour registers (XTSMGRAPHICS), the cell's and the text
+    // area's sizes in pixels, and the device attributes (4: sixel).
+    // And the default background colour (OSC 11), which sixel frames paint
+    // where nothing is drawn.
+    q.extend_from_slice(b"\x1b_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\x1b\\\x1b[?1;1;0S\x1b[16t\x1b[14t\x1b]11;?\x1b\\\x1b[c");
     q.extend_from_slice(b"\x1b[?2026$p\x1b[5n\x1b[H\x1b[2K");
     q
 }
@@ -172,7 +207,12 @@ pub fn listen(
     let mut buf = [0u8; 256];
     let mut round_trip = None;
     'read: loop {
-        let left = deadline.saturating_sub(from.elapsed());
+        let limit = if answers.is_empty() {
+            deadline
+        } else {
+            deadline.max(ANSWERING)
+        };
+        let left = limit.saturating_sub(from.elapsed());
         if left.is_zero() {
             break;
         }
@@ -355,10 +395,14 @@ mod tests {
     }
 
     #[test]
-    fn an_answer_after_the_deadline_is_not_waited_for() {
+    fn a_terminal_that_has_begun_to_answer_is_waited_for_up_to_a_second() {
         let late = DEADLINE + MS;
         let (caps, _, from) = listen_to(vec![(5 * MS, b"\x1b[1;2R"), (late, b"\x1b[0n")]);
-        assert_eq!(from.now, DEADLINE);
+        assert_eq!(from.now, late);
+        assert!(caps.answers_status);
+        let too_late = ANSWERING + MS;
+        let (caps, _, from) = listen_to(vec![(5 * MS, b"\x1b[1;2R"), (too_late, b"\x1b[0n")]);
+        assert_eq!(from.now, ANSWERING);
         assert_eq!(from.script.len(), 1);
         assert!(!caps.answers_status && caps.round_trip.is_none());
     }
