@@ -415,6 +415,7 @@ pub fn run(
         last_input: Instant::now(),
         record,
         start: Instant::now(),
+        slow_frames: 0,
     };
     let exit = live.run().map_err(io_err("writing frames"))?;
     let messages = std::mem::take(&mut live.messages);
@@ -439,7 +440,12 @@ struct Live<'a, 'b> {
     /// Where frames are recorded, and the time they count from.
     record: Option<&'a mut Recorder<dyn Write + 'b>>,
     start: Instant,
+    /// Frames in a row whose pixels the link could not carry at the rate.
+    slow_frames: u32,
 }
+
+/// Frames in a row too large for the link before pixels give way to cells.
+const SLOW_FRAMES: u32 = 5;
 
 impl Live<'_, '_> {
     /// Runs the loop; before returning, collects the answers still due.
@@ -635,6 +641,7 @@ impl Live<'_, '_> {
                     r.output(now - start, &self.out)?;
                 }
                 self.written = 0;
+                self.fit_the_link(link, fps);
                 if !self.out.is_empty() {
                     if link.wants_acks() && self.opts.full_screen {
                         self.out.extend_from_slice(STATUS_REQUEST);
@@ -722,6 +729,29 @@ impl Live<'_, '_> {
                 best.name()
             ));
         }
+    }
+
+    /// Pixels over a link too slow for them: once the frame rate asked for
+    /// would need more than the link drains ([`SLOW_FRAMES`] frames in a
+    /// row, by its measured rate), frames go as character cells, the image
+    /// taken away, said on the status line and at the end.
+    fn fit_the_link(&mut self, link: &Link, fps: f64) {
+        let Some(rate) = link.rate().filter(|_| self.player.shows_pixels()) else {
+            return;
+        };
+        let need = self.out.len() as f64 * fps;
+        self.slow_frames = if need > rate { self.slow_frames + 1 } else { 0 };
+        if self.slow_frames < SLOW_FRAMES {
+            return;
+        }
+        self.player.stop_graphics(&mut self.out);
+        let why = format!(
+            "the link drains {:.0} kB/s, and pixels at {fps:.0} fps need {:.0}: character cells",
+            rate / 1e3,
+            need / 1e3
+        );
+        self.player.set_notice(why.clone());
+        self.messages.push(why);
     }
 
     /// Resizes the player, and records the resize when recording.

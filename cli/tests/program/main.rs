@@ -13,3 +13,4 @@ mod hostile;
 mod model_files;
 mod share;
 mod spin;
+mod pixels;

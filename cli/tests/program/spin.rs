@@ -1239,3 +1239,43 @@ fn a_burst_of_drags_does_not_starve_q() {
     assert!(t.wait_exit(Duration::from_secs(20)), "q was heard");
     assert_restored(&t.seen);
 }
+
+#[test]
+fn pixels_over_a_link_too_slow_for_them_give_way_to_cells() {
+    // The fox in kitty pixels read at 16 kB/s: a frame of its pixels needs
+    // far more than that at 10 frames a second.
+    let mut t = Fake::spawn(
+        &[
+            "tests/models/fox.obj",
+            "--graphics",
+            "kitty",
+            "--cell-size",
+            "8x16",
+            "--fps",
+            "10",
+        ],
+        true,
+        &[],
+        Some(16_000.0),
+    );
+    let long = Duration::from_secs(60);
+    let placed = t.wait_for(b"\x1b_Ga=T,i=", 0, long).expect("pixels first");
+    let said = t
+        .wait_for(b"pixels at 10 fps need", placed, long)
+        .expect("the step down said on the status line");
+    let deleted = t
+        .wait_for(b"\x1b_Ga=d,d=I,i=", placed, long)
+        .expect("the image taken away");
+    assert!(deleted < said, "the image goes before the cells come");
+    // Cells from then on: half blocks, and no more images.
+    let cells = t.wait_for("▀".as_bytes(), said, long).expect("cells");
+    t.send(b"q");
+    t.rate = None;
+    assert!(t.wait_exit(long));
+    let after = String::from_utf8_lossy(&t.seen[cells..]);
+    assert!(
+        !after.contains("\x1b_Ga=f") && !after.contains("\x1b_Ga=T"),
+        "no image after the step down"
+    );
+    assert_restored(&t.seen);
+}
