@@ -225,13 +225,14 @@ pixels() {
       echo "| $scene | $p, 960×540 pixels | $(per_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) | $(bytes_a_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) |"
     done
   done
-  "$rastty" render "$tux" "${px[@]}" --graphics sixel --output "$png"
+  "$rastty" render "$tux" --cols 120 --rows 30 --cell-size 8x18 --graphics sixel --output "$png"
   echo
   echo "| sixel of one 960×540 PNG of Tux, whole process | instructions | bytes |"
   echo "|---|---:|---:|"
   echo "| rastty (\`sixel_png\`, 256 registers) | $(millions "$(count "$bin/sixel_png" "$png")")M | $("$bin/sixel_png" "$png" | wc -c) |"
   if command -v chafa >/dev/null; then
-    local chafa=(chafa -f sixels --animate off --polite on --size 120x30 --font-ratio 4/9 --view-size 120x30 "$png")
+    # chafa sized to the same 960×540 pixels (its cells are 8×8 here).
+    local chafa=(chafa -f sixels --animate off --polite on --size 120x68 --stretch "$png")
     echo "| chafa $(chafa --version | sed -n 's/^Chafa version //p;q') (\`${chafa[*]}\`) | $(millions "$(count "${chafa[@]}")")M | $("${chafa[@]}" | wc -c) |"
   fi
 }

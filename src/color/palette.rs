@@ -538,6 +538,8 @@ pub struct Quantizer {
     dither: Dither,
     /// `(rgb | VALID, mix)`.
     cache: Vec<(u32, Pattern)>,
+    /// The cache holds `1 << cache_bits` colours.
+    cache_bits: u32,
 }
 
 const CACHE_BITS: u32 = 12;
@@ -552,12 +554,21 @@ impl Quantizer {
             metric,
             dither: Dither::Auto.resolve(depth),
             cache: Vec::new(),
+            cache_bits: CACHE_BITS,
         }
     }
 
     /// The same, dithering as `dither` says.
     pub fn with_dither(mut self, dither: Dither) -> Quantizer {
         self.dither = dither.resolve(self.depth);
+        self
+    }
+
+    /// The same, remembering `1 << bits` colours (from 8 to 20; a frame
+    /// of pixels has many more colours than one of cells).
+    pub fn with_cache_bits(mut self, bits: u32) -> Quantizer {
+        self.cache_bits = bits.clamp(8, 20);
+        self.cache = Vec::new();
         self
     }
 
@@ -637,11 +648,11 @@ impl Quantizer {
     /// from the cache or made and kept.
     fn pattern_of(&mut self, depth: ColorDepth, c: Rgb) -> Pattern {
         if self.cache.is_empty() {
-            self.cache = vec![(0, Pattern::solid(0)); 1 << CACHE_BITS];
+            self.cache = vec![(0, Pattern::solid(0)); 1 << self.cache_bits];
         }
         let [r, g, b] = c.0;
         let key = (r as u32) << 16 | (g as u32) << 8 | b as u32;
-        let slot = (key.wrapping_mul(0x9E37_79B1) >> (32 - CACHE_BITS)) as usize;
+        let slot = (key.wrapping_mul(0x9E37_79B1) >> (32 - self.cache_bits)) as usize;
         let (k, cached) = self.cache[slot];
         if k == key | VALID {
             return cached;

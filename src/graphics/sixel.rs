@@ -52,7 +52,8 @@ impl Encoder {
             ColorDepth::Ansi16
         };
         Encoder {
-            quantizer: Quantizer::new(depth, Metric::Oklch),
+            // A frame of pixels has far more colours than one of cells.
+            quantizer: Quantizer::new(depth, Metric::Oklch).with_cache_bits(16),
             rows: Vec::new(),
             slot: vec![u16::MAX; 256],
             span: vec![(0, 0); 256],
