@@ -208,8 +208,6 @@ inlining() {
 
 # Bytes a frame: the command given a frame count last, (40 frames − 10) / 30.
 bytes_a_frame() { local a b; a=$("$@" 10 | wc -c); b=$("$@" 40 | wc -c); echo $(( (b - a) / 30 )); }
-spin_tux() { "$rastty" spin "$tux" "$@"; }
-spin_torus() { "$rastty" spin "$@"; }
 
 # Pixels: the same scenes at 960×540 pixels in each protocol (120×31 cells
 # of 8×18 pixels, the last row the status line's), against cells at 200×60;
@@ -220,9 +218,12 @@ pixels() {
   echo "| scene | output | instructions a frame | bytes a frame |"
   echo "|---|---|---:|---:|"
   for scene in tux torus; do
-    echo "| $scene | cells, 200×60 half blocks | $(per_frame "spin_$scene" "${cells[@]}" --frames) | $(bytes_a_frame "spin_$scene" "${cells[@]}" --frames) |"
+    # The torus is the built-in scene: no model named.
+    local spin=("$rastty" spin)
+    [ "$scene" = tux ] && spin+=("$tux")
+    echo "| $scene | cells, 200×60 half blocks | $(per_frame "${spin[@]}" "${cells[@]}" --frames) | $(bytes_a_frame "${spin[@]}" "${cells[@]}" --frames) |"
     for p in kitty sixel iterm; do
-      echo "| $scene | $p, 960×540 pixels | $(per_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) | $(bytes_a_frame "spin_$scene" "${px[@]}" --graphics "$p" --frames) |"
+      echo "| $scene | $p, 960×540 pixels | $(per_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames) | $(bytes_a_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames) |"
     done
   done
   "$rastty" render "$tux" --cols 120 --rows 30 --cell-size 8x18 --graphics sixel --output "$png"
