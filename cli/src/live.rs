@@ -731,10 +731,8 @@ impl Live<'_, '_> {
         }
     }
 
-    /// Pixels over a link too slow for them: once the frame rate asked for
-    /// would need more than the link drains ([`SLOW_FRAMES`] frames in a
-    /// row, by its measured rate), frames go as character cells, the image
-    /// taken away, said on the status line and at the end.
+    /// Pixels over a link too slow for them ([`SLOW_FRAMES`] frames in a row
+    /// needing more than its measured rate): cells from then on, said.
     fn fit_the_link(&mut self, link: &Link, fps: f64) {
         let Some(rate) = link.rate().filter(|_| self.player.shows_pixels()) else {
             return;
