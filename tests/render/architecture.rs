@@ -187,20 +187,38 @@ fn lines_outside_tests(src: &str) -> usize {
     src[..end].lines().count()
 }
 
-/// Every `.rs` file under `dir`, sorted.
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+/// Every file under `dir` for which `keep` holds, sorted; not `target` or
+/// hidden folders and files.
+fn files_where(dir: &Path, keep: &dyn Fn(&Path) -> bool, out: &mut Vec<std::path::PathBuf>) {
     let mut paths: Vec<_> = fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .collect();
     paths.sort();
     for p in paths {
+        let name = p.file_name().unwrap().to_string_lossy();
+        if name.starts_with('.') || name == "target" {
+            continue;
+        }
         if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
+            files_where(&p, keep, out);
+        } else if keep(&p) {
             out.push(p);
         }
     }
+}
+
+/// Every `.rs` file under `dir`, sorted.
+fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    files_where(dir, &|p| p.extension().is_some_and(|e| e == "rs"), out);
+}
+
+/// `f`'s path from the repository's root, with `/` between folders.
+fn relative(root: &Path, f: &Path) -> String {
+    f.strip_prefix(root)
+        .unwrap()
+        .to_string_lossy()
+        .replace('\\', "/")
 }
 
 /// The most lines a source file of the library or the program has outside
@@ -215,7 +233,7 @@ fn no_source_file_is_over_800_lines_outside_its_tests() {
     rust_files(&root.join("cli/src"), &mut files);
     let mut over = Vec::new();
     for f in &files {
-        let name = f.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+        let name = relative(root, f);
         let n = lines_outside_tests(&fs::read_to_string(f).unwrap());
         if n > MAX_LINES {
             over.push(format!("{name}: {n} lines"));
@@ -397,35 +415,14 @@ fn explain_reports_every_declared_effect_in_order() {
     assert_eq!(named, all);
 }
 
-/// Every file of the repository's tree under `dir` (not `target`, not
-/// hidden ones), sorted.
-fn all_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    let mut paths: Vec<_> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    paths.sort();
-    for p in paths {
-        let name = p.file_name().unwrap().to_string_lossy();
-        if name.starts_with('.') || name == "target" {
-            continue;
-        }
-        if p.is_dir() {
-            all_files(&p, out);
-        } else {
-            out.push(p);
-        }
-    }
-}
-
 #[test]
 fn the_build_is_cargos_alone_with_no_linker_script() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    all_files(root, &mut files);
+    files_where(root, &|_| true, &mut files);
     let mut found = Vec::new();
     for f in &files {
-        let name = f.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+        let name = relative(root, f);
         let base = f.file_name().unwrap().to_string_lossy();
         if name.ends_with(".ld") || base == "build.rs" {
             found.push(name);
@@ -475,11 +472,7 @@ fn the_output_trait_is_the_only_path_from_the_stages_to_an_output() {
     rust_files(&root.join("src"), &mut files);
     let mut wrong = Vec::new();
     for f in &files {
-        let name = f
-            .strip_prefix(root)
-            .unwrap()
-            .to_string_lossy()
-            .replace('\\', "/");
+        let name = relative(root, f);
         let code = code(&fs::read_to_string(f).unwrap());
         // Every output is an implementation of the trait, beside it.
         if code.contains("Output for ") && name != "src/output.rs" {
@@ -564,11 +557,7 @@ fn inlining_is_forced_only_where_the_figures_show_it_pays() {
     rust_files(&root.join("cli/src"), &mut files);
     let mut elsewhere = Vec::new();
     for f in &files {
-        let name = f
-            .strip_prefix(root)
-            .unwrap()
-            .to_string_lossy()
-            .replace('\\', "/");
+        let name = relative(root, f);
         let forced = fs::read_to_string(f)
             .unwrap()
             .matches("#[inline(always)]")
@@ -605,7 +594,7 @@ fn the_documents_name_only_files_and_commands_that_exist() {
     let mut stale = Vec::new();
     for page in &pages {
         let text = fs::read_to_string(page).unwrap();
-        let name = page.strip_prefix(root).unwrap().display().to_string();
+        let name = relative(root, page);
         let bytes = text.as_bytes();
         for prefix in [
             "tests/",
