@@ -18,8 +18,7 @@
 
 use std::io::Write as _;
 
-use flate2::Compression;
-use flate2::write::ZlibEncoder;
+use flate2::{Compress, Compression, FlushCompress, Status};
 
 use super::base64_into;
 use crate::pixels::{PixelRect, Pixels};
@@ -52,19 +51,64 @@ fn chunked(keys: &str, cont: &str, data: &[u8], out: &mut Vec<u8>) {
     }
 }
 
-/// The pixels of `rect` (all of `pixels` for `None`), RGBA rows from the
-/// top, zlib-compressed (fast: most of a frame is transparent or
-/// repeated), then base64.
-fn payload(pixels: &Pixels, rect: PixelRect, scratch: &mut Vec<u8>, out: &mut Vec<u8>) {
-    scratch.clear();
-    let mut z = ZlibEncoder::new(std::mem::take(scratch), Compression::fast());
-    for y in rect.y..rect.y + rect.height {
-        let row = &pixels.row(y)[rect.x as usize..(rect.x + rect.width) as usize];
-        z.write_all(row.as_flattened())
-            .expect("writing to a vector");
+/// A zlib stream kept from frame to frame: one compressor reset for each
+/// payload, and an output buffer initialised once and reused, so a frame
+/// neither allocates nor clears the compressor's tables or its output.
+#[derive(Debug)]
+struct Zlib {
+    compress: Compress,
+    /// Initialised bytes; the first `len` of a payload are its stream.
+    buf: Vec<u8>,
+}
+
+impl Zlib {
+    fn new() -> Self {
+        Self {
+            compress: Compress::new(Compression::fast(), true),
+            buf: Vec::new(),
+        }
     }
-    *scratch = z.finish().expect("writing to a vector");
-    base64_into(scratch, out);
+
+    /// Compresses `input` into `buf` from the compressor's output so far,
+    /// growing `buf` (the only time it is written with zeros) when full;
+    /// returns once `input` is taken (or, finishing, the stream has ended).
+    fn feed(&mut self, mut input: &[u8], flush: FlushCompress) {
+        loop {
+            let written = self.compress.total_out() as usize;
+            if written == self.buf.len() {
+                let grown = (self.buf.len() * 2).max(64 * 1024);
+                self.buf.resize(grown, 0);
+            }
+            let before = self.compress.total_in();
+            let status = self
+                .compress
+                .compress(input, &mut self.buf[written..], flush)
+                .expect("deflate into a buffer with room");
+            let used = (self.compress.total_in() - before) as usize;
+            input = &input[used..];
+            let done = match flush {
+                FlushCompress::Finish => status == Status::StreamEnd,
+                _ => input.is_empty(),
+            };
+            if done {
+                return;
+            }
+        }
+    }
+
+    /// The pixels of `rect` (all of `pixels` for `None`), RGBA rows from
+    /// the top, zlib-compressed (fast: most of a frame is transparent or
+    /// repeated), then base64 appended to `out`.
+    fn payload(&mut self, pixels: &Pixels, rect: PixelRect, out: &mut Vec<u8>) {
+        self.compress.reset();
+        for y in rect.y..rect.y + rect.height {
+            let row = &pixels.row(y)[rect.x as usize..(rect.x + rect.width) as usize];
+            self.feed(row.as_flattened(), FlushCompress::None);
+        }
+        self.feed(&[], FlushCompress::Finish);
+        let len = self.compress.total_out() as usize;
+        base64_into(&self.buf[..len], out);
+    }
 }
 
 fn whole(pixels: &Pixels) -> PixelRect {
@@ -79,8 +123,8 @@ fn whole(pixels: &Pixels) -> PixelRect {
 /// Appends `pixels` as one image placed at the cursor over `cols × rows`
 /// cells, the cursor moved past it: `render --graphics kitty`.
 pub fn still(pixels: &Pixels, cols: u16, rows: u16, out: &mut Vec<u8>) {
-    let (mut scratch, mut data) = (Vec::new(), Vec::new());
-    payload(pixels, whole(pixels), &mut scratch, &mut data);
+    let mut data = Vec::new();
+    Zlib::new().payload(pixels, whole(pixels), &mut data);
     let keys = format!(
         "a=T,f=32,o=z,s={},v={},c={cols},r={rows},q=2",
         pixels.width(),
@@ -103,7 +147,7 @@ pub struct Animation {
     shown: Option<(Pixels, u16, u16)>,
     /// Placed below the text (`z=-1`): text written over it shows.
     below: bool,
-    scratch: Vec<u8>,
+    zlib: Zlib,
     data: Vec<u8>,
 }
 
@@ -115,7 +159,7 @@ impl Animation {
             id,
             shown: None,
             below: false,
-            scratch: Vec::new(),
+            zlib: Zlib::new(),
             data: Vec::new(),
         }
     }
@@ -151,7 +195,7 @@ impl Animation {
             let (before, _, _) = self.shown.as_ref().expect("shown");
             let rect = pixels.changed_since(before)?;
             self.data.clear();
-            payload(pixels, rect, &mut self.scratch, &mut self.data);
+            self.zlib.payload(pixels, rect, &mut self.data);
             let keys = format!(
                 "a=f,r=1,i={},f=32,o=z,x={},y={},s={},v={},X=1,q=2",
                 self.id, rect.x, rect.y, rect.width, rect.height
@@ -166,7 +210,7 @@ impl Animation {
             }
             let rect = whole(pixels);
             self.data.clear();
-            payload(pixels, rect, &mut self.scratch, &mut self.data);
+            self.zlib.payload(pixels, rect, &mut self.data);
             let keys = format!(
                 "a=T,i={},p=1,f=32,o=z,s={},v={},c={cols},r={rows},C=1,q=2{}",
                 self.id,
