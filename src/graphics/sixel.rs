@@ -12,6 +12,13 @@
 //! paints as they are: a transparent pixel is not painted, so the model
 //! sits on the terminal's background.
 //!
+//! A pixel's channels are first resolved to [`resolved`]'s 64 levels (and
+//! every level a palette entry has): the dither's sixteenths between
+//! neighbouring entries are steps of 2.5 or more where the palette is
+//! densest, so the picture keeps its colours, while a frame of smooth
+//! shading has a few thousand colours for the quantizer to place rather
+//! than tens of thousands.
+//!
 //! Each band of six rows is one pass over its pixels, which sets the bits
 //! of each colour's sixels in a row of its own; each colour present is then
 //! written from its first to its last column, runs of one sixel as
@@ -23,6 +30,23 @@ use std::io::Write as _;
 use crate::color::palette::{Metric, Quantizer, xterm256};
 use crate::color::{ColorDepth, Ink, Rgb};
 use crate::pixels::Pixels;
+
+/// The colour a pixel is quantized as: each channel a palette's own level
+/// (xterm's 256 colours and the 16 ANSI colours), kept, or else the middle
+/// of its group of four values, within 2 of the channel.
+pub fn resolved(c: Rgb) -> Rgb {
+    static LEVELS: std::sync::OnceLock<[u8; 256]> = std::sync::OnceLock::new();
+    let levels = LEVELS.get_or_init(|| {
+        let mut own = [false; 256];
+        for i in 0..=255u8 {
+            for v in xterm256(i).0 {
+                own[v as usize] = true;
+            }
+        }
+        std::array::from_fn(|v| if own[v] { v as u8 } else { (v as u8 & !3) + 2 })
+    });
+    Rgb(c.0.map(|v| levels[v as usize]))
+}
 
 /// How a frame's colours are mapped onto registers.
 #[derive(Clone, Debug)]
@@ -88,6 +112,7 @@ impl Encoder {
         } else {
             Rgb([p[0], p[1], p[2]])
         };
+        let c = resolved(c);
         match self.quantizer.ink_at(Some(c), x as u16, y as u16) {
             Ink::Indexed(i) => Some(i),
             _ => unreachable!("a palette quantizer gives palette entries"),

@@ -353,15 +353,19 @@ fn paint(pixels: &mut [Option<Rgb>], w: usize, h: usize, x: usize, band: usize, 
     }
 }
 
-/// The colour rastty's quantizer gives pixel `(x, y)` at `depth`, the
-/// colour a sixel register is set to.
+/// The colour rastty's quantizer gives pixel `(x, y)` at `depth` once
+/// resolved to sixel's levels, the colour a sixel register is set to.
 fn quantized(q: &mut Quantizer, p: [u8; 4], x: u32, y: u32) -> Option<Rgb> {
-    (p[3] == 255).then(
-        || match q.ink_at(Some(Rgb([p[0], p[1], p[2]])), x as u16, y as u16) {
+    (p[3] == 255).then(|| {
+        match q.ink_at(
+            Some(sixel::resolved(Rgb([p[0], p[1], p[2]]))),
+            x as u16,
+            y as u16,
+        ) {
             Ink::Indexed(i) => xterm256(i),
             other => panic!("{other:?}"),
-        },
-    )
+        }
+    })
 }
 
 #[test]
@@ -422,4 +426,19 @@ fn an_iterm_image_is_a_png_of_the_pixels() {
     let info = reader.next_frame(&mut buf).unwrap();
     assert_eq!((info.width, info.height), (180, 120));
     assert_eq!(&buf[..info.buffer_size()], p.bytes());
+}
+
+#[test]
+fn sixel_resolves_a_channel_within_two_and_keeps_every_palette_colour() {
+    for i in 0..=255u8 {
+        assert_eq!(sixel::resolved(xterm256(i)), xterm256(i), "entry {i}");
+    }
+    let mut levels = std::collections::BTreeSet::new();
+    for v in 0..=255u8 {
+        let r = sixel::resolved(Rgb([v, v, v])).0[0];
+        assert!(r.abs_diff(v) <= 2, "{v} resolved to {r}");
+        levels.insert(r);
+    }
+    // 64 groups of four, and the palette's own levels besides.
+    assert!(levels.len() <= 64 + 30, "{}", levels.len());
 }
