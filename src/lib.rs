@@ -136,7 +136,7 @@ pub use frame::{Cell, Frame, WithColors};
 pub use framebuffer::Framebuffer;
 pub use options::{
     Aa, DEFAULT_MAX_SAMPLES, Highlights, Interpolation, MAX_CELL_PIXELS, MAX_CELLS, MAX_THREADS,
-    PARALLEL_CELLS, Pipeline, RenderOptions, Threads, Wire,
+    PARALLEL_CELLS, PARALLEL_PIXELS, Pipeline, RenderOptions, Threads, Wire,
 };
 pub use pixels::{PixelRect, Pixels, Rgba};
 pub use plan::{Bands, Decision, Effect, Extras, Plan};

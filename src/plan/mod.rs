@@ -49,7 +49,8 @@ use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
 use crate::options::{
-    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, Pipeline, RenderOptions, Threads, Wire,
+    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, PARALLEL_PIXELS, Pipeline, RenderOptions,
+    Threads, Wire,
 };
 use crate::raster::{Precision, Traversal};
 use crate::scene::{Projection, Scene, TriangleColor};
@@ -186,19 +187,26 @@ fn bands(opts: &RenderOptions) -> Bands {
         return one("a frame beyond the largest grid");
     }
     let rows = opts.rows.max(1);
+    let pixels = opts.cols as u32 * w * opts.rows as u32 * h;
     match opts.threads {
         Threads::Exactly(n) => Bands {
             count: n.clamp(1, MAX_THREADS).min(rows),
             why: "as many as asked for, at most one a cell row",
         },
         Threads::Auto if !cfg!(feature = "parallel") => one("built without the parallel feature"),
-        Threads::Auto if (opts.cols as u32 * opts.rows as u32) < PARALLEL_CELLS => {
+        Threads::Auto if opts.cell_pixels.is_some() && pixels < PARALLEL_PIXELS => {
+            one("a frame under 640×360 pixels is faster on one thread")
+        }
+        Threads::Auto
+            if opts.cell_pixels.is_none()
+                && (opts.cols as u32 * opts.rows as u32) < PARALLEL_CELLS =>
+        {
             one("a frame under 600×180 cells is faster on one thread")
         }
         Threads::Auto if cores() < 2 => one("one core"),
         Threads::Auto => Bands {
             count: cores().min(rows),
-            why: "one a core, for a frame of 600×180 cells or more",
+            why: "one a core, for a frame of 600×180 cells or 640×360 pixels or more",
         },
     }
 }
