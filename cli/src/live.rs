@@ -37,11 +37,11 @@
 //! given back when it returns.
 
 use rastty::Choice;
-use std::collections::VecDeque;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
 use crate::gesture::Pointer;
+use crate::link::Link;
 use crate::terminal::input::{Input, Key, Parser};
 use crate::terminal::probe::Capabilities;
 use crate::terminal::{Read, Session, TtyError, has_signal, sig};
@@ -146,188 +146,6 @@ pub fn action_for(key: Key) -> Option<Action> {
     Some(Action::Player(cmd))
 }
 
-/// Whether the terminal answers the status request sent after each frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Acks {
-    /// Not known yet (no probe): the first request tells.
-    Unknown,
-    Yes,
-    No,
-}
-
-/// A frame on its way to the terminal.
-#[derive(Clone, Copy, Debug)]
-struct Sent {
-    start: Instant,
-    /// When its last byte was written.
-    written: Option<Instant>,
-    bytes: usize,
-}
-
-/// Most frames on their way at once.
-const MAX_DEPTH: usize = 3;
-/// How long an answer may take before a terminal that never answered is
-/// taken not to, and before one that did is taken to have lost one.
-const FIRST_ANSWER: Duration = Duration::from_secs(1);
-const LOST_ANSWER: Duration = Duration::from_secs(5);
-
-/// Flow control and measurement of the way to the terminal: how many
-/// frames may be on their way, and how fast the terminal drains them. Pure
-/// bookkeeping over the times it is given, so it is tested without a
-/// terminal.
-#[derive(Clone, Debug)]
-pub struct Link {
-    period: Duration,
-    acks: Acks,
-    inflight: VecDeque<Sent>,
-    /// The shortest round trip seen: the link's latency without a queue.
-    min_rtt: Option<Duration>,
-    /// Bytes per second the terminal drains, smoothed.
-    rate: Option<f64>,
-    last_ack: Option<Instant>,
-    /// Whether the last frame came back within the latency and a frame
-    /// period: if not, the terminal is behind and frames go one at a time.
-    keeping_up: bool,
-}
-
-impl Link {
-    /// A link paced for `fps`; `caps` says whether the terminal answered
-    /// the probe, and how fast.
-    pub fn new(fps: u32, caps: &Capabilities, probed: bool) -> Link {
-        Link {
-            period: Duration::from_secs_f64(1.0 / fps.max(1) as f64),
-            acks: match (probed, caps.answers_status) {
-                (_, true) => Acks::Yes,
-                (true, false) => Acks::No,
-                (false, false) => Acks::Unknown,
-            },
-            inflight: VecDeque::with_capacity(MAX_DEPTH + 1),
-            min_rtt: caps.round_trip,
-            rate: None,
-            last_ack: None,
-            // Until the first frame comes back, the link is not known to
-            // keep up: one frame at a time, so that none waits behind it.
-            keeping_up: false,
-        }
-    }
-
-    /// Whether to follow each frame with a status request.
-    pub fn wants_acks(&self) -> bool {
-        self.acks != Acks::No
-    }
-
-    /// How many frames may be on their way now.
-    pub fn depth(&self) -> usize {
-        match self.acks {
-            Acks::No => 1,
-            Acks::Unknown => MAX_DEPTH,
-            Acks::Yes if !self.keeping_up => 1,
-            Acks::Yes => {
-                let latency = self.min_rtt.unwrap_or_default().as_secs_f64();
-                let periods = (latency / self.period.as_secs_f64()).ceil() as usize;
-                1 + periods.clamp(1, MAX_DEPTH - 1)
-            }
-        }
-    }
-
-    /// Whether a new frame may be sent at `now` (the previous one having
-    /// been written in full).
-    pub fn can_send(&mut self, now: Instant) -> bool {
-        if self.acks == Acks::No {
-            return true;
-        }
-        while let Some(front) = self.inflight.front() {
-            let since = front.written.unwrap_or(front.start);
-            let limit = if self.acks == Acks::Yes {
-                LOST_ANSWER
-            } else {
-                FIRST_ANSWER
-            };
-            if now.saturating_duration_since(since) < limit {
-                break;
-            }
-            if self.acks == Acks::Unknown {
-                self.acks = Acks::No;
-                self.inflight.clear();
-            } else {
-                self.inflight.pop_front();
-            }
-        }
-        self.inflight.len() < self.depth()
-    }
-
-    /// A frame of `bytes` starts on its way at `now`.
-    pub fn sent(&mut self, now: Instant, bytes: usize) {
-        if self.inflight.len() > MAX_DEPTH {
-            self.inflight.pop_front();
-        }
-        self.inflight.push_back(Sent {
-            start: now,
-            written: None,
-            bytes,
-        });
-    }
-
-    /// The last frame sent was written in full at `now`.
-    pub fn written(&mut self, now: Instant) {
-        let Some(last) = self.inflight.back_mut() else {
-            return;
-        };
-        last.written = Some(now);
-        if self.acks == Acks::No {
-            // No answers: what the writes took is all there is to measure,
-            // and only when they had to wait.
-            let took = now.saturating_duration_since(last.start);
-            let bytes = last.bytes as f64;
-            if took > Duration::from_millis(5) {
-                self.smooth(bytes / took.as_secs_f64());
-            }
-            self.inflight.clear();
-        }
-    }
-
-    /// The terminal answered a status request at `now`: the oldest frame
-    /// on its way has been drawn.
-    pub fn acked(&mut self, now: Instant) {
-        let Some(sent) = self.inflight.pop_front() else {
-            return;
-        };
-        self.acks = Acks::Yes;
-        if let Some(w) = sent.written {
-            let rtt = now.saturating_duration_since(w);
-            let min = self.min_rtt.map_or(rtt, |m| m.min(rtt));
-            self.min_rtt = Some(min);
-            self.keeping_up = rtt <= min + self.period;
-        }
-        // The terminal was busy with this frame from when it was sent, or
-        // from when it finished the one before, whichever was later.
-        let busy_from = self.last_ack.map_or(sent.start, |a| a.max(sent.start));
-        let busy = now.saturating_duration_since(busy_from).as_secs_f64();
-        if busy > 0.0 {
-            self.smooth(sent.bytes as f64 / busy);
-        }
-        self.last_ack = Some(now);
-    }
-
-    fn smooth(&mut self, sample: f64) {
-        self.rate = Some(self.rate.map_or(sample, |r| 0.7 * r + 0.3 * sample));
-    }
-
-    /// Bytes per second the terminal drains, when measured.
-    pub fn rate(&self) -> Option<f64> {
-        self.rate
-    }
-
-    /// Status requests sent and not yet answered.
-    pub fn outstanding(&self) -> usize {
-        if self.acks == Acks::No {
-            0
-        } else {
-            self.inflight.len()
-        }
-    }
-}
-
 /// Signals that end the loop (on Windows, the console's control events
 /// stand for the first four).
 pub const ENDING: [i32; 10] = [
@@ -416,6 +234,9 @@ pub fn run(
         record,
         start: Instant::now(),
         slow_frames: 0,
+        steps_down: 0,
+        window_cell: None,
+        every: 1,
     };
     let exit = live.run().map_err(io_err("writing frames"))?;
     let messages = std::mem::take(&mut live.messages);
@@ -442,9 +263,16 @@ struct Live<'a, 'b> {
     start: Instant,
     /// Frames in a row whose pixels the link could not carry at the rate.
     slow_frames: u32,
+    /// How many times pixels stepped down for the link.
+    steps_down: u32,
+    /// A cell's pixels as the window's size last said.
+    window_cell: Option<[u16; 2]>,
+    /// A frame is drawn every this many ticks (2: pixels at half the rate,
+    /// over a slow link).
+    every: u64,
 }
 
-/// Frames in a row too large for the link before pixels give way to cells.
+/// Frames in a row too large for the link before pixels step down.
 const SLOW_FRAMES: u32 = 5;
 
 impl Live<'_, '_> {
@@ -546,6 +374,7 @@ impl Live<'_, '_> {
                     self.resize(cols, rows)?;
                     dirty = true;
                 }
+                self.follow_the_cell(ws.cell_pixels());
             }
 
             // Keys and answers.
@@ -607,7 +436,7 @@ impl Live<'_, '_> {
 
             // The next frame, when it is due and the terminal has room.
             let now = Instant::now();
-            let tick = ((now - start).as_secs_f64() * fps) as u64;
+            let tick = ((now - start).as_secs_f64() * fps) as u64 / self.every * self.every;
             let idle = self.written == self.out.len();
             // A still picture is drawn again only when something changed
             // (`--frames` counts ticks, so it keeps them).
@@ -666,7 +495,7 @@ impl Live<'_, '_> {
             let mut wait = if sending {
                 Duration::from_millis(100)
             } else {
-                let next = start + Duration::from_secs_f64((tick + 1) as f64 / fps);
+                let next = start + Duration::from_secs_f64((tick + self.every) as f64 / fps);
                 next.saturating_duration_since(Instant::now())
                     .min(Duration::from_millis(100))
             };
@@ -691,6 +520,7 @@ impl Live<'_, '_> {
             caps,
         );
         self.messages.extend(choice.notes);
+        self.window_cell = self.session.size().and_then(|ws| ws.cell_pixels());
         if let Some(g) = choice.graphics {
             self.player
                 .set_graphics(g.protocol, g.cell, g.registers, g.background);
@@ -732,24 +562,50 @@ impl Live<'_, '_> {
     }
 
     /// Pixels over a link too slow for them ([`SLOW_FRAMES`] frames in a row
-    /// needing more than its measured rate): cells from then on, said.
+    /// needing more than its measured rate) step down, each step said on
+    /// the status line: a half-size image where the protocol scales it,
+    /// then half the frames a second, then character cells.
     fn fit_the_link(&mut self, link: &Link, fps: f64) {
         let Some(rate) = link.rate().filter(|_| self.player.shows_pixels()) else {
             return;
         };
+        let fps = fps / self.every as f64;
         let need = self.out.len() as f64 * fps;
         self.slow_frames = if need > rate { self.slow_frames + 1 } else { 0 };
         if self.slow_frames < SLOW_FRAMES {
             return;
         }
-        self.player.stop_graphics(&mut self.out);
-        let why = format!(
-            "the link drains {:.0} kB/s, and pixels at {fps:.0} fps need {:.0}: character cells",
-            rate / 1e3,
-            need / 1e3
-        );
+        self.slow_frames = 0;
+        let (rate, need) = (rate / 1e3, need / 1e3);
+        self.steps_down += 1;
+        let step = if self.steps_down == 1 && self.player.halve_pixels() {
+            "a half-size image"
+        } else if self.every == 1 {
+            self.every = 2;
+            "half the frames a second"
+        } else {
+            self.player.stop_graphics(&mut self.out);
+            "character cells"
+        };
+        let why = format!("pixels at {fps:.0} fps need {need:.0} kB/s, the link {rate:.0}: {step}");
         self.player.set_notice(why.clone());
         self.messages.push(why);
+    }
+
+    /// A cell whose pixels changed under pixels (the font or its zoom, seen
+    /// in the window's size in pixels) is followed: the next frame is drawn
+    /// at the new cell, unless `--cell-size` fixed it or the link made the
+    /// image smaller.
+    fn follow_the_cell(&mut self, cell: Option<[u16; 2]>) {
+        let was = std::mem::replace(&mut self.window_cell, cell);
+        let fixed = self.opts.cell_size.is_some() || self.steps_down > 0;
+        if let (Some(c), Some(was)) = (cell, was)
+            && c != was
+            && !fixed
+            && self.player.shows_pixels()
+        {
+            self.player.set_cell_pixels(c);
+        }
     }
 
     /// Resizes the player, and records the resize when recording.
@@ -766,10 +622,7 @@ impl Live<'_, '_> {
     fn abandon_frame(&mut self, link: &mut Link) {
         self.out.clear();
         self.written = 0;
-        *link = Link {
-            inflight: VecDeque::with_capacity(MAX_DEPTH + 1),
-            ..link.clone()
-        };
+        link.forget_inflight();
     }
 
     /// Ctrl-Z or SIGTSTP: the terminal restored, the process stopped; when
@@ -828,80 +681,5 @@ mod tests {
         assert_eq!(action_for(Key::Ctrl('z')), Some(Action::Suspend));
         assert_eq!(action_for(Key::Char('x')), None);
         assert_eq!(action_for(Key::Other), None);
-    }
-
-    fn answering(rtt_ms: u64) -> Capabilities {
-        Capabilities {
-            answers_status: true,
-            round_trip: Some(Duration::from_millis(rtt_ms)),
-            ..Capabilities::default()
-        }
-    }
-
-    #[test]
-    fn a_terminal_that_keeps_up_gets_two_frames_in_flight() {
-        let t0 = Instant::now();
-        let ms = |n| t0 + Duration::from_millis(n);
-        let mut link = Link::new(30, &answering(1), true);
-        assert!(link.wants_acks());
-        assert_eq!(link.depth(), 1, "not known to keep up yet");
-        link.sent(ms(0), 10_000);
-        link.written(ms(0));
-        assert!(!link.can_send(ms(1)));
-        link.acked(ms(1));
-        assert_eq!(link.depth(), 2);
-        link.sent(ms(1), 10_000);
-        link.written(ms(1));
-        assert!(link.can_send(ms(1)));
-        link.sent(ms(2), 10_000);
-        link.written(ms(2));
-        assert!(!link.can_send(ms(2)), "two on their way");
-        link.acked(ms(3));
-        assert!(link.can_send(ms(3)));
-        assert_eq!(link.depth(), 2);
-    }
-
-    #[test]
-    fn a_slow_link_gets_one_frame_at_a_time_and_its_rate_is_measured() {
-        let t0 = Instant::now();
-        let ms = |n| t0 + Duration::from_millis(n);
-        let mut link = Link::new(30, &answering(2), true);
-        // 32 kB at 16 kB/s: written at once (the kernel buffers it), drawn
-        // two seconds later.
-        link.sent(ms(0), 32_000);
-        link.written(ms(1));
-        link.acked(ms(2000));
-        assert_eq!(link.depth(), 1, "behind: one frame at a time");
-        let rate = link.rate().unwrap();
-        assert!((rate - 16_000.0).abs() < 1.0, "{rate}");
-        link.sent(ms(2000), 32_000);
-        link.written(ms(2001));
-        assert!(!link.can_send(ms(2500)), "waits for the answer");
-        link.acked(ms(4000));
-        assert!(link.can_send(ms(4000)));
-    }
-
-    #[test]
-    fn a_terminal_that_never_answers_is_paced_by_writes() {
-        let t0 = Instant::now();
-        let ms = |n| t0 + Duration::from_millis(n);
-        // Probed, no answer: no requests at all.
-        let silent = Link::new(30, &Capabilities::default(), true);
-        assert!(!silent.wants_acks());
-        // Not probed: requests until a second passes without an answer.
-        let mut link = Link::new(30, &Capabilities::default(), false);
-        assert!(link.wants_acks());
-        for i in 0..3 {
-            assert!(link.can_send(ms(i)));
-            link.sent(ms(i), 100);
-            link.written(ms(i));
-        }
-        assert!(!link.can_send(ms(500)));
-        assert!(link.can_send(ms(1100)));
-        assert!(!link.wants_acks());
-        // Writes that had to wait measure the rate.
-        link.sent(ms(2000), 10_000);
-        link.written(ms(3000));
-        assert!((link.rate().unwrap() - 10_000.0).abs() < 1.0);
     }
 }

@@ -6,6 +6,7 @@ mod bench;
 mod cli;
 mod commands;
 mod gesture;
+mod link;
 mod live;
 mod pixels;
 mod say;

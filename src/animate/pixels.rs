@@ -210,6 +210,23 @@ impl Player {
         }
     }
 
+    /// Draws each cell with half its pixels across and down, a quarter of
+    /// the bytes, where the protocol scales an image to its cells (kitty,
+    /// iTerm2): a link too slow for the full image. The cell's shape stays
+    /// the terminal's. False where it cannot (sixel, or a cell of fewer
+    /// than 2 pixels a side).
+    pub fn halve_pixels(&mut self) -> bool {
+        let (Some(s), Some([w, h])) = (&self.screen, self.opts.cell_pixels) else {
+            return false;
+        };
+        if s.protocol() == Protocol::Sixel || w < 2 || h < 2 {
+            return false;
+        }
+        self.opts.cell_pixels = Some([w / 2, h / 2]);
+        self.invalidate();
+        true
+    }
+
     /// Stops sending pixels: character cells from the next frame (a link
     /// too slow for pixels), the image taken away first; `out` gets the
     /// bytes that take it away.

@@ -73,6 +73,15 @@ impl WindowSize {
         (self.cols.min(MAX_CELLS), self.rows.min(MAX_CELLS))
     }
 
+    /// A cell's pixels (across, down), where the terminal reports pixels.
+    pub fn cell_pixels(&self) -> Option<[u16; 2]> {
+        let (w, h) = (
+            self.width_px / self.cols.max(1),
+            self.height_px / self.rows.max(1),
+        );
+        (w > 0 && h > 0).then_some([w, h])
+    }
+
     /// A cell's width over its height, where the terminal reports pixels
     /// (many do not, and ssh often reports zero).
     pub fn cell_aspect(&self) -> Option<f32> {

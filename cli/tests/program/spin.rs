@@ -1241,9 +1241,53 @@ fn a_burst_of_drags_does_not_starve_q() {
 }
 
 #[test]
-fn pixels_over_a_link_too_slow_for_them_give_way_to_cells() {
+fn pixels_follow_a_cell_whose_pixels_change_with_the_window() {
+    // The window's size in pixels gives the cell: 80×24 cells of 10×20,
+    // then the font zoomed out to 100×30 cells of 8×16 in the same window.
+    let mut t = Fake::spawn(
+        &["tests/models/fox.obj", "--graphics", "kitty"],
+        true,
+        &[],
+        None,
+    );
+    let size = |t: &Fake, cols: u16, rows: u16| {
+        use std::os::fd::AsRawFd;
+        let ws = libc::winsize {
+            ws_row: rows,
+            ws_col: cols,
+            ws_xpixel: 800,
+            ws_ypixel: 480,
+        };
+        // SAFETY: a valid winsize for the pty's master, for the call.
+        assert_eq!(
+            unsafe { libc::ioctl(t.session.as_raw_fd(), libc::TIOCSWINSZ, &ws) },
+            0
+        );
+    };
+    size(&t, 80, 24);
+    let long = Duration::from_secs(30);
+    t.wait_for(b"\x1b_Ga=T,i=", 0, long).expect("pixels first");
+    let first = t
+        .wait_for(b"c=80,r=23", 0, long)
+        .expect("the first image over 80x23 cells");
+    size(&t, 100, 30);
+    let again = t
+        .wait_for(b"\x1b_Ga=T,i=", first, long)
+        .expect("a new image");
+    let keys = String::from_utf8_lossy(&t.seen[again..again + 44]).into_owned();
+    assert!(
+        keys.starts_with("7496051,p=1,f=32,o=z,s=800,v=464,c=100,r=29,"),
+        "{keys}"
+    );
+    t.send(b"q");
+    assert!(t.wait_exit(long));
+    assert_restored(&t.seen);
+}
+
+#[test]
+fn pixels_over_a_link_too_slow_for_them_step_down_to_a_smaller_image_fewer_frames_then_cells() {
     // The fox in kitty pixels read at 16 kB/s: a frame of its pixels needs
-    // far more than that at 10 frames a second.
+    // far more than that at 10 frames a second, even a quarter of them.
     let mut t = Fake::spawn(
         &[
             "tests/models/fox.obj",
@@ -1260,15 +1304,37 @@ fn pixels_over_a_link_too_slow_for_them_give_way_to_cells() {
     );
     let long = Duration::from_secs(60);
     let placed = t.wait_for(b"\x1b_Ga=T,i=", 0, long).expect("pixels first");
-    let said = t
-        .wait_for(b"pixels at 10 fps need", placed, long)
-        .expect("the step down said on the status line");
+    let keys =
+        |t: &Fake, from: usize| String::from_utf8_lossy(&t.seen[from..from + 48]).into_owned();
+    assert!(
+        keys(&t, placed).starts_with("7496051,p=1,f=32,o=z,s=640,v=368,c=80,r=23,"),
+        "{}",
+        keys(&t, placed)
+    );
+    let half = t
+        .wait_for(b": a half-size image", placed, long)
+        .expect("the first step said on the status line");
+    // The image placed again at half the pixels over the same cells.
+    let smaller = t
+        .wait_for(b"\x1b_Ga=T,i=", placed, long)
+        .expect("a smaller image");
+    assert!(
+        keys(&t, smaller).starts_with("7496051,p=1,f=32,o=z,s=320,v=184,c=80,r=23,"),
+        "{}",
+        keys(&t, smaller)
+    );
+    let fewer = t
+        .wait_for(b": half the frames a second", half.max(smaller), long)
+        .expect("the second step");
+    let cells_said = t
+        .wait_for(b": character cells", fewer, long)
+        .expect("the third step");
     let deleted = t
-        .wait_for(b"\x1b_Ga=d,d=I,i=", placed, long)
+        .wait_for(b"\x1b_Ga=d,d=I,i=", fewer, long)
         .expect("the image taken away");
-    assert!(deleted < said, "the image goes before the cells come");
+    assert!(deleted < cells_said, "the image goes before the cells come");
     // Cells from then on: half blocks, and no more images.
-    let cells = t.wait_for("▀".as_bytes(), said, long).expect("cells");
+    let cells = t.wait_for("▀".as_bytes(), cells_said, long).expect("cells");
     t.send(b"q");
     t.rate = None;
     assert!(t.wait_exit(long));
