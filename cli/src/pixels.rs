@@ -8,9 +8,12 @@
 //! WezTerm say so in the environment), sixel where its device attributes
 //! list it (or foot, unasked), iTerm2's images where iTerm2 says so, and
 //! character cells everywhere else: where stdout is not a terminal, and
-//! inside tmux, where rastty does not send pixels (tmux keeps them only
-//! through `allow-passthrough`, and moves them with the text it scrolls
-//! only as kitty's Unicode placeholders; said on stderr). A cell's pixels
+//! inside tmux, where rastty sends pixels only as sixel that tmux draws
+//! itself (its own device attributes list sixel: tmux 3.4 and later, built
+//! with it); the outer terminal's kitty or iTerm2 images would pass
+//! through tmux only with `allow-passthrough` on, at the outer terminal's
+//! cursor rather than the pane's, and stay as the pane scrolls: said on
+//! stderr. A cell's pixels
 //! are `--cell-size`, else the terminal's answer (`CSI 16 t`, else `14 t`
 //! over the cells), else the window size's pixel fields, else assumed
 //! (10×20, said).
@@ -59,11 +62,17 @@ pub fn choose(
     let protocol = match asked {
         GraphicsArg::Cells => None,
         GraphicsArg::Auto if !tty => None,
+        // Inside tmux the device attributes are tmux's own: a sixel there
+        // is one tmux draws itself (3.4 and later, built with it), in its
+        // pane, kept as it scrolls.
+        GraphicsArg::Auto if env("TMUX").is_some() && caps.sixel == Some(true) => {
+            Some(Protocol::Sixel)
+        }
         GraphicsArg::Auto => {
             let found = detect(env, caps);
             if found.is_some() && env("TMUX").is_some() {
                 notes.push(
-                    "inside tmux rastty draws character cells (--graphics kitty|sixel|iterm sends pixels anyway, which tmux passes on only with allow-passthrough on, and does not move as it scrolls)".into(),
+                    "inside tmux rastty draws character cells: tmux passes the outer terminal's images on only with allow-passthrough on, wrapped, and places them at its own cursor rather than the pane's (tmux 3.4 built with sixel draws sixel itself, and is used where it says so)".into(),
                 );
                 None
             } else {
@@ -346,13 +355,20 @@ mod tests {
         let plain = b"\x1b_Gi=31;ENOTSUPPORTED:no\x1b\\\x1b[?62;22c\x1b[0n";
         let claims = env_of(&[("TERM", "xterm-kitty")]);
         assert_eq!(pick(plain, &claims), Choice::default());
-        // tmux without passthrough: the kitty query does not reach the
-        // terminal, tmux answers the attributes itself.
+        // tmux: the kitty query does not reach the terminal (tmux passes it
+        // on only with allow-passthrough on), and tmux answers the
+        // attributes itself: 3.3 without sixel, in a kitty window...
         let tmux = env_of(&[
             ("TMUX", "/tmp/tmux-0/default,1,0"),
             ("TERM", "tmux-256color"),
+            ("KITTY_WINDOW_ID", "1"),
         ]);
-        assert_eq!(pick(b"\x1b[?1;2;4c\x1b[0n", &tmux).graphics, None);
+        let c = pick(b"\x1b[?1;2c\x1b[0n", &tmux);
+        assert_eq!(c.graphics, None);
+        assert!(c.notes[0].contains("allow-passthrough"), "{:?}", c.notes);
+        // ...and 3.4 built with sixel, which it draws in its pane.
+        let c = pick(b"\x1b[?1;2;4c\x1b[0n", &tmux);
+        assert_eq!(c.graphics.map(|g| g.protocol), Some(Protocol::Sixel));
         // No answer at all: the environment, else cells.
         assert_eq!(pick(b"", &none), Choice::default());
         assert_eq!(
