@@ -215,15 +215,18 @@ bytes_a_frame() { local a b; a=$("$@" 10 | wc -c); b=$("$@" 40 | wc -c); echo $(
 pixels() {
   local px=(--cols 120 --rows 31 --cell-size 8x18) cells=(--cols 200 --rows 60 --glyphs half --color truecolor)
   local scene p png=$work/tux-960x540.png
-  echo "| scene | output | instructions a frame | bytes a frame |"
-  echo "|---|---|---:|---:|"
+  echo "| scene | output | instructions a frame | bytes a frame | bytes a second at 30 fps |"
+  echo "|---|---|---:|---:|---:|"
+  local b
   for scene in tux torus; do
     # The torus is the built-in scene: no model named.
     local spin=("$rastty" spin)
     [ "$scene" = tux ] && spin+=("$tux")
-    echo "| $scene | cells, 200×60 half blocks | $(per_frame "${spin[@]}" "${cells[@]}" --frames) | $(bytes_a_frame "${spin[@]}" "${cells[@]}" --frames) |"
+    b=$(bytes_a_frame "${spin[@]}" "${cells[@]}" --frames)
+    echo "| $scene | cells, 200×60 half blocks | $(per_frame "${spin[@]}" "${cells[@]}" --frames) | $b | $((b * 30)) |"
     for p in kitty sixel iterm; do
-      echo "| $scene | $p, 960×540 pixels | $(per_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames) | $(bytes_a_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames) |"
+      b=$(bytes_a_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames)
+      echo "| $scene | $p, 960×540 pixels | $(per_frame "${spin[@]}" "${px[@]}" --graphics "$p" --frames) | $b | $((b * 30)) |"
     done
   done
   "$rastty" render "$tux" --cols 120 --rows 30 --cell-size 8x18 --graphics sixel --output "$png"
@@ -235,6 +238,21 @@ pixels() {
     # chafa sized to the same 960×540 pixels (its cells are 8×8 here).
     local chafa=(chafa -f sixels --animate off --polite on --size 120x68 --stretch "$png")
     echo "| chafa $(chafa --version | sed -n 's/^Chafa version //p;q') (\`${chafa[*]}\`) | $(millions "$(count "${chafa[@]}")")M | $("${chafa[@]}" | wc -c) |"
+  fi
+  if command -v kitty >/dev/null && command -v Xvfb >/dev/null; then
+    echo
+    echo "| Tux, 300 frames at 30 fps in kitty $(kitty --version | cut -d' ' -f2) under Xvfb (1000×640) | CPU of rastty (user + system over the run) | what spin said |"
+    echo "|---|---:|---|"
+    Xvfb :96 -screen 0 1000x640x24 >/dev/null 2>&1 &
+    local xvfb=$! g
+    sleep 1
+    for g in cells kitty; do
+      DISPLAY=:96 timeout 60 kitty --config NONE -o font_size=11 -o remember_window_size=no \
+        -o initial_window_width=1000 -o initial_window_height=640 \
+        sh -c "/usr/bin/time -o $work/cpu-$g -f '%U %S %e' $rastty spin $tux --fps 30 --frames 300 --graphics $g 2>$work/said-$g" >/dev/null 2>&1 || true
+      echo "| --graphics $g | $(awk '{printf "%.0f %%", 100 * ($1 + $2) / $3}' "$work/cpu-$g") | $(sed -n 's/^note: //p' "$work/said-$g" | paste -sd';' -) |"
+    done
+    kill $xvfb
   fi
 }
 
@@ -267,7 +285,7 @@ HEAD
   section "Bytes a frame" "The diffing encoder's bytes a frame, a square turning a full circle in 60 frames at 80×24 cells in every glyph mode, truecolor, against ratatui's \`Canvas\` (docs/usage.md; \`measure/src/bin/bytes_per_frame.rs\`)." "$bin/bytes_per_frame"
   section "Loading" "Whole process, one frame: instructions, peak memory and (noisy) wall time, Tux, the bunny and generated tori of 10k to 4M triangles (docs/scenes.md)." loading
   section "Memory and start-up" "Peak memory (the median of three runs), what loading costs a triangle and a byte (callgrind's inclusive counts, on the 1M-triangle torus), whole-process counts of two small commands, and the binary's size." memory
-  section "Pixels" "Instructions and bytes a frame, (40 frames − 10) / 30, of Tux and the torus through \`spin\` at 960×540 pixels in each protocol (\`--graphics\`), against character cells at 200×60; and sixel from one PNG, rastty's encoder against chafa's, whole process (docs/usage.md's Pixels)." pixels
+  section "Pixels" "Instructions and bytes a frame, (40 frames − 10) / 30, of Tux and the torus through \`spin\` at 960×540 pixels in each protocol (\`--graphics\`), against character cells at 200×60; sixel from one PNG, rastty's encoder against chafa's, whole process (docs/usage.md's Pixels); and the CPU \`spin\` takes at 30 frames a second in a real kitty, headless (its software OpenGL drains less than a full-size frame of Tux needs at 30 fps, so \`spin\` steps down, as it says)." pixels
   section "Inlining" "What \`#[inline(always)]\` buys where it stands (the rasterizer, fill, vertex, shading and encoding stages and the OBJ reader and its normals): the same code built with a plain \`#[inline]\` in its place, instructions through the same commands. Where forcing did not pay (the camera, the mesh's accessors, clipping's setup, statistics, palettes, the line encoder) it is a plain \`#[inline]\`." inlining
   if [ -n "${PEER:-}" ]; then
     section "Against 3d-ascii-viewer" "One run of both: one frame, whole process, 200×60 cells of ASCII without colour, instructions and peak memory; the peer built with -O2 (docs/scenes.md)." against_peer

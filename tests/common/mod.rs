@@ -398,6 +398,13 @@ impl Doc {
         self.views.len() - 1
     }
 
+    /// Appends an accessor written whole (`{…}`, naming views this
+    /// document has); returns its index.
+    pub fn accessor(&mut self, json: String) -> usize {
+        self.accessors.push(json);
+        self.accessors.len() - 1
+    }
+
     pub fn vec3(&mut self, v: &[[f32; 3]]) -> usize {
         self.floats(v.as_flattened(), "VEC3", 3)
     }

@@ -17,5 +17,7 @@ mod alpha;
 mod maps;
 #[cfg(feature = "gltf")]
 mod materials;
+#[cfg(feature = "gltf")]
+mod spec;
 #[cfg(all(feature = "gltf", feature = "textures"))]
 mod textures;

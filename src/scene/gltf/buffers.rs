@@ -187,11 +187,26 @@ pub(super) fn check(
         ));
     }
     if acc.sparse().is_some() {
-        return Err(format!("{} is sparse, which rastty does not read", at()));
+        return Err(format!(
+            "{} is sparse, which rastty does not read there",
+            at()
+        ));
     }
     let Some(view) = acc.view() else {
         return Err(format!("{} has no buffer view", at()));
     };
+    check_range(acc, &view, buffers, &at).map(|_| ())
+}
+
+/// The bytes of `acc`'s elements in `view` (from its first element's
+/// first byte to its last's last), and the stride between elements,
+/// once every byte it names is found inside its buffer view and buffer.
+pub(super) fn check_range<'b>(
+    acc: &Accessor,
+    view: &::gltf::buffer::View,
+    buffers: &'b [Buffer],
+    at: &dyn Fn() -> String,
+) -> std::result::Result<(&'b [u8], usize), String> {
     let buffer = buffers
         .get(view.buffer().index())
         .ok_or_else(|| format!("{}: its buffer is missing", at()))?;
@@ -231,5 +246,6 @@ pub(super) fn check(
             buffer.len()
         ));
     }
-    Ok(())
+    let start = view.offset() + acc.offset();
+    Ok((&buffer[start..view.offset() + need], stride))
 }

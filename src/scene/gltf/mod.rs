@@ -8,7 +8,8 @@
 //! whose transform mirrors (negative determinant) has its triangles
 //! rewound, so that counter-clockwise is the front everywhere, as the
 //! format says. Read: `POSITION`, `NORMAL` (when every primitive has them;
-//! otherwise normals are computed as for OBJ), `COLOR_0`, `TEXCOORD_0`,
+//! otherwise normals are computed as for OBJ), `COLOR_0`, `TEXCOORD_0`
+//! (quantized or sparse too: `accessor.rs`),
 //! and the material's `baseColorFactor` (glTF colours are linear light
 //! already; its alpha, with `alphaMode` and `alphaCutoff`, see
 //! [`crate::scene::Alpha`]) and `baseColorTexture` with its sampler (filters and wrap
@@ -41,6 +42,7 @@
 //! anything is read, so a file whose accessors point past their buffers is
 //! refused with the accessor named, never read out of bounds.
 
+mod accessor;
 mod buffers;
 mod material;
 mod numbers;
@@ -146,6 +148,10 @@ fn parse_in(
             required.join(", ")
         )));
     }
+    // What is left is read here, whether the crate knows it or not (it
+    // refuses a required extension it does not know).
+    let mut root = root;
+    root.extensions_required.clear();
     // The crate's own validation indexes the accessor a POSITION names
     // before it checks that it exists.
     for (m, mesh) in root.meshes.iter().enumerate() {
@@ -191,6 +197,7 @@ fn parse_in(
             decoded: FxHashMap::default(),
             files_decoded: FxHashMap::default(),
         },
+        budget: options.max_bytes,
         ..Parts::default()
     };
     // A model that moves keeps its nodes, skins, morph targets and clips.
@@ -475,6 +482,8 @@ struct Parts<'a> {
     materials: Vec<MaterialRun>,
     /// The lights its nodes place (`KHR_lights_punctual`), in the world.
     lights: Vec<Light>,
+    /// The load's byte budget, for what no buffer bounds.
+    budget: u64,
 }
 
 impl Parts<'_> {
@@ -502,45 +511,48 @@ impl Parts<'_> {
         let mut finish = finish(&material);
         let (texture, uv_transform) = self.textures_of(&material, &mut finish, buffers, ignored)?;
         let wants_uvs = texture.is_some() || !finish.maps.is_empty();
-        let tex_coords = prim.get(&Semantic::TexCoords(0));
-        if let Some(t) = &tex_coords {
-            check(
-                t,
-                buffers,
-                &[DataType::F32, DataType::U8, DataType::U16],
-                &[Dimensions::Vec2],
-                "TEXCOORD_0",
-            )?;
-            if t.count() != positions_count(prim) {
+        let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
+        let n = positions.count();
+        // Each attribute as floats, whatever its components (quantized
+        // too) and sparse or not; every one as long as POSITION.
+        let read = |sem: Semantic, what: &str, types: &[DataType], dims: &[Dimensions]| {
+            let Some(acc) = prim.get(&sem) else {
+                return Ok(None);
+            };
+            if acc.count() != n && sem != Semantic::Positions {
                 return Err(format!(
-                    "TEXCOORD_0 has {} entries for {} positions",
-                    t.count(),
-                    positions_count(prim)
+                    "{what} has {} entries for {n} positions",
+                    acc.count()
                 ));
             }
-        }
+            accessor::floats(&acc, buffers, types, dims, what, self.budget).map(Some)
+        };
+        const QUANTIZED: [DataType; 5] = [
+            DataType::F32,
+            DataType::I8,
+            DataType::U8,
+            DataType::I16,
+            DataType::U16,
+        ];
+        const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
+        let tex_coords = read(
+            Semantic::TexCoords(0),
+            "TEXCOORD_0",
+            &QUANTIZED,
+            &[Dimensions::Vec2],
+        )?;
         if wants_uvs && tex_coords.is_none() {
             return Err("it has a texture but no TEXCOORD_0".into());
         }
-        let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
-        check(
-            &positions,
-            buffers,
-            &[DataType::F32],
-            &[Dimensions::Vec3],
+        let file_positions = read(
+            Semantic::Positions,
             "POSITION",
-        )?;
-        let normals = prim.get(&Semantic::Normals);
-        if let Some(n) = &normals {
-            check(n, buffers, &[DataType::F32], &[Dimensions::Vec3], "NORMAL")?;
-            if n.count() != positions.count() {
-                return Err(format!(
-                    "NORMAL has {} entries for {} positions",
-                    n.count(),
-                    positions.count()
-                ));
-            }
-        }
+            &QUANTIZED,
+            &[Dimensions::Vec3],
+        )?
+        .unwrap_or_default();
+        let file_normals = read(Semantic::Normals, "NORMAL", &SIGNED, &[Dimensions::Vec3])?;
+        let file_tangents = read(Semantic::Tangents, "TANGENT", &SIGNED, &[Dimensions::Vec4])?;
         let colors = prim.get(&Semantic::Colors(0));
         if let Some(c) = &colors {
             check(
@@ -569,30 +581,21 @@ impl Parts<'_> {
         }
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
         let first = self.positions.len() as u32;
-        let n = positions.count();
         let start = self.positions.len();
+        let vec3s =
+            |fs: &[f32]| -> Vec<Vec3> { fs.chunks_exact(3).map(Vec3::from_slice).collect() };
         // A part of a model that moves keeps its own space's positions and
         // normals; the geometry's are its rest pose, written once the rig
         // is read.
-        let local: Option<(Vec<Vec3>, Option<Vec<Vec3>>)> = placed.as_ref().map(|_| {
-            (
-                reader
-                    .read_positions()
-                    .into_iter()
-                    .flatten()
-                    .map(Vec3::from)
-                    .collect(),
-                reader.read_normals().map(|ns| ns.map(Vec3::from).collect()),
-            )
-        });
+        let local: Option<(Vec<Vec3>, Option<Vec<Vec3>>)> = placed
+            .as_ref()
+            .map(|_| (vec3s(&file_positions), file_normals.as_deref().map(vec3s)));
         match &local {
             Some((ps, _)) => self.positions.extend_from_slice(ps),
             None => self.positions.extend(
-                reader
-                    .read_positions()
-                    .into_iter()
-                    .flatten()
-                    .map(|p| world.transform_point3(Vec3::from(p))),
+                file_positions
+                    .chunks_exact(3)
+                    .map(|p| world.transform_point3(Vec3::from_slice(p))),
             ),
         }
         if self.positions.len() - start != n {
@@ -600,18 +603,20 @@ impl Parts<'_> {
         }
         // Normals: kept while every primitive has them (a moving part's
         // are computed where the file gives none).
-        match reader.read_normals() {
+        match &file_normals {
             _ if local.is_some() => self.normals.resize(start + n, Vec3::ZERO),
             Some(ns) if !self.normals_missing => {
                 let m = Mat3::from_mat4(world).inverse().transpose();
-                self.normals
-                    .extend(ns.map(|v| (m * Vec3::from(v)).normalize_or_zero()));
+                self.normals.extend(
+                    ns.chunks_exact(3)
+                        .map(|v| (m * Vec3::from_slice(v)).normalize_or_zero()),
+                );
             }
             _ => self.normals_missing = true,
         }
         // Tangents turn with the node (a mirroring node turns the
         // bitangent's sign with them); a moving part keeps its own.
-        match reader.read_tangents() {
+        match file_tangents.as_deref().map(|t| t.chunks_exact(4)) {
             Some(ts) if !self.tangents_missing => {
                 let m = Mat3::from_mat4(if local.is_some() {
                     Mat4::IDENTITY
@@ -647,12 +652,13 @@ impl Parts<'_> {
             all.extend_from_slice(&self.base[start..]);
         }
 
-        match reader.read_tex_coords(0) {
+        match &tex_coords {
             Some(ts) => {
                 let all = self.uvs.get_or_insert_with(|| vec![Vec2::ZERO; start]);
+                let uvs = ts.chunks_exact(2).map(Vec2::from_slice);
                 match uv_transform {
-                    Some(m) => all.extend(ts.into_f32().map(|t| m.transform_point2(Vec2::from(t)))),
-                    None => all.extend(ts.into_f32().map(Vec2::from)),
+                    Some(m) => all.extend(uvs.map(|t| m.transform_point2(t))),
+                    None => all.extend(uvs),
                 }
             }
             None => {
@@ -771,4 +777,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_texture_transform",
     "KHR_materials_pbrSpecularGlossiness",
+    "KHR_mesh_quantization",
 ];

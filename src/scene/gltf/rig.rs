@@ -9,9 +9,9 @@
 //! counted against the loading budget of bytes, since a node tree can
 //! place one mesh many times.
 
+use super::accessor::floats;
 use super::buffers::Buffer;
 use ::gltf::accessor::{DataType, Dimensions};
-use ::gltf::animation::util::ReadOutputs;
 use ::gltf::animation::{Interpolation as GltfInterpolation, Property as GltfProperty};
 use glam::{Mat4, Quat, Vec3};
 use rustc_hash::FxHashMap;
@@ -217,40 +217,37 @@ impl RigParts {
             self.keep(24 * (n * targets) as u64)?;
             let mut offsets = vec![Vec3::ZERO; n * targets];
             let mut normal_offsets = Some(vec![Vec3::ZERO; n * targets]);
+            const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
             for (k, t) in prim.morph_targets().enumerate() {
                 let what = |a: &str| format!("morph target {k}'s {a}");
-                for (acc, a) in [(t.positions(), "POSITION"), (t.normals(), "NORMAL")] {
-                    if let Some(acc) = acc {
-                        check(
-                            &acc,
-                            buffers,
-                            &[DataType::F32],
-                            &[Dimensions::Vec3],
-                            &what(a),
-                        )?;
-                        if acc.count() != n {
-                            return Err(format!(
-                                "{} has {} entries for {n} positions",
-                                what(a),
-                                acc.count()
-                            ));
+                for (acc, a, into) in [
+                    (t.positions(), "POSITION", Some(&mut offsets)),
+                    (t.normals(), "NORMAL", normal_offsets.as_mut()),
+                ] {
+                    let Some(acc) = acc else { continue };
+                    if acc.count() != n {
+                        return Err(format!(
+                            "{} has {} entries for {n} positions",
+                            what(a),
+                            acc.count()
+                        ));
+                    }
+                    let fs = floats(
+                        &acc,
+                        buffers,
+                        &SIGNED,
+                        &[Dimensions::Vec3],
+                        &what(a),
+                        self.budget,
+                    )?;
+                    if let Some(all) = into {
+                        for (v, d) in fs.chunks_exact(3).enumerate() {
+                            all[k * n + v] = Vec3::from_slice(d);
                         }
                     }
                 }
                 if t.normals().is_none() {
                     normal_offsets = None;
-                }
-            }
-            for (k, (p, nm, _)) in reader.read_morph_targets().enumerate() {
-                if let Some(p) = p {
-                    for (v, d) in p.enumerate().take(n) {
-                        offsets[k * n + v] = Vec3::from(d);
-                    }
-                }
-                if let (Some(nm), Some(all)) = (nm, &mut normal_offsets) {
-                    for (v, d) in nm.enumerate().take(n) {
-                        all[k * n + v] = Vec3::from(d);
-                    }
                 }
             }
             if !offsets.iter().all(|d| d.is_finite()) {
@@ -406,23 +403,20 @@ impl RigParts {
                         &[Dimensions::Scalar],
                     ),
                 };
-                check(&output, buffers, types, dims, &format!("{at}'s output"))?;
+                let mut values = floats(
+                    &output,
+                    buffers,
+                    types,
+                    dims,
+                    &format!("{at}'s output"),
+                    self.budget,
+                )?;
                 let reader = ch.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                 let times: Vec<f64> = reader
                     .read_inputs()
                     .ok_or(format!("{at}'s input could not be read"))?
                     .map(f64::from)
                     .collect();
-                let values: Vec<f32> = match reader
-                    .read_outputs()
-                    .ok_or(format!("{at}'s output could not be read"))?
-                {
-                    ReadOutputs::Translations(t) => t.flatten().collect(),
-                    ReadOutputs::Scales(s) => s.flatten().collect(),
-                    ReadOutputs::Rotations(r) => r.into_f32().flatten().collect(),
-                    ReadOutputs::MorphTargetWeights(w) => w.into_f32().collect(),
-                };
-                let mut values = values;
                 if property == Property::Rotation {
                     // A key of four zeros is no rotation at all: taken as
                     // none (the identity), and said.

@@ -1,0 +1,197 @@
+//! The glTF core spec whole, on files the tests write: sparse accessors
+//! and `KHR_mesh_quantization`'s integer attributes read as the same
+//! floats, and drawn as the same samples, as the plain float file.
+
+use crate::common;
+
+use std::sync::Arc;
+
+use common::Doc;
+use glam::Vec3;
+use rastty::color::Rgb;
+use rastty::scene::{Camera, Geometry, LoadOptions, Mesh, Projection, Scene, gltf};
+use rastty::{RenderOptions, Renderer};
+
+/// A square of side 2 in z = 0, tilted to the light by its normals.
+const CORNERS: [[f32; 3]; 4] = [
+    [-1.0, -1.0, 0.0],
+    [1.0, -1.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [-1.0, 1.0, 0.0],
+];
+const NORMALS: [[f32; 3]; 4] = [
+    [0.0, 0.0, 1.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+];
+
+fn glb(d: &Doc, pos: usize, normal: usize, idx: usize, extra: &str) -> Vec<u8> {
+    d.glb(&format!(
+        r#"{extra}"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+fn plain() -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&CORNERS);
+    let normal = d.vec3(&NORMALS);
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    glb(&d, pos, normal, idx, "")
+}
+
+fn load(glb: &[u8]) -> Geometry {
+    let loaded = gltf::parse(glb, None, "t.glb", &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    loaded.geometry
+}
+
+/// The frame's samples, as the renderer users run draws `g`.
+fn samples(g: Geometry) -> Vec<Option<rastty::color::Lin>> {
+    let scene = Scene::builder()
+        .camera(Camera {
+            projection: Projection::Perspective {
+                fov_y: 60.0,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.5, 0.3, 4.0),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        })
+        .mesh(Mesh::of(Arc::new(g), Rgb::new(200, 150, 100)))
+        .build()
+        .unwrap();
+    let mut r = Renderer::new();
+    r.render(
+        &scene,
+        &RenderOptions {
+            cols: 40,
+            rows: 20,
+            ..RenderOptions::default()
+        },
+    );
+    r.framebuffer().samples().to_vec()
+}
+
+fn le<T: Copy, const N: usize>(v: &[T], f: fn(T) -> [u8; N]) -> Vec<u8> {
+    v.iter().flat_map(|&x| f(x)).collect()
+}
+
+#[test]
+fn quantized_positions_and_normals_read_as_the_same_floats_and_samples() {
+    let want = load(&plain());
+    assert!(samples(want.clone()).iter().any(Option::is_some));
+    // Positions as shorts (plain integers: −1, 1), normals as normalized
+    // bytes (127 is 1), with the extension's name, as gltfpack writes.
+    let mut d = Doc::default();
+    let shorts: Vec<i16> = CORNERS.as_flattened().iter().map(|&v| v as i16).collect();
+    // Each position padded to 4-byte alignment: 8 bytes a vertex.
+    let padded: Vec<u8> = shorts
+        .chunks(3)
+        .flat_map(|p| le(p, i16::to_le_bytes).into_iter().chain([0, 0]))
+        .collect();
+    let view = d.view(&padded);
+    let pos = d.accessor(format!(
+        r#"{{"bufferView":{view},"byteOffset":0,"componentType":5122,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}}"#
+    ));
+    // A stride of 8 for the padded positions: written on the view.
+    let normal_bytes: Vec<u8> = NORMALS
+        .iter()
+        .flat_map(|n| n.map(|v| (v * 127.0) as i8 as u8).into_iter().chain([0]))
+        .collect();
+    let nview = d.view(&normal_bytes);
+    let normal = d.accessor(format!(
+        r#"{{"bufferView":{nview},"componentType":5120,"normalized":true,"count":4,"type":"VEC3"}}"#
+    ));
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let mut file = glb(
+        &d,
+        pos,
+        normal,
+        idx,
+        r#""extensionsUsed":["KHR_mesh_quantization"],"extensionsRequired":["KHR_mesh_quantization"],"#,
+    );
+    // The views' strides (Doc writes none): 8 bytes and 4.
+    file = restride(&file, &[(view, 8), (nview, 4)]);
+    let got = load(&file);
+    assert_eq!(got.positions, want.positions);
+    assert_eq!(got.normals, want.normals);
+    assert_eq!(samples(got), samples(want));
+}
+
+#[test]
+fn sparse_positions_and_normals_read_as_the_same_floats_and_samples() {
+    let want = load(&plain());
+    // Positions: a base of four zeros, corners 1 and 2 replaced; corner 0
+    // and 3 replaced too, in a second accessor with no base at all.
+    let mut d = Doc::default();
+    let base = [[-1.0, -1.0, 0.0], [0.0; 3], [0.0; 3], [-1.0, 1.0, 0.0]];
+    let base_view = d.view(&common::f32s(base.as_flattened()));
+    let idx_view = d.view(&le(&[1u16, 2], u16::to_le_bytes));
+    let val_view = d.view(&common::f32s([CORNERS[1], CORNERS[2]].as_flattened()));
+    let pos = d.accessor(format!(
+        r#"{{"bufferView":{base_view},"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0],
+"sparse":{{"count":2,"indices":{{"bufferView":{idx_view},"componentType":5123}},"values":{{"bufferView":{val_view}}}}}}}"#
+    ));
+    // Normals with no base: zeros, all four given, as bytes indices.
+    let nidx = d.view(&[0, 1, 2, 3]);
+    let nval = d.view(&common::f32s(NORMALS.as_flattened()));
+    let normal = d.accessor(format!(
+        r#"{{"componentType":5126,"count":4,"type":"VEC3",
+"sparse":{{"count":4,"indices":{{"bufferView":{nidx},"componentType":5121}},"values":{{"bufferView":{nval}}}}}}}"#
+    ));
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let got = load(&glb(&d, pos, normal, idx, ""));
+    assert_eq!(got.positions, want.positions);
+    assert_eq!(got.normals, want.normals);
+    assert_eq!(samples(got), samples(want));
+}
+
+#[test]
+fn sparse_indices_out_of_order_or_past_the_end_are_refused_by_name() {
+    for (indices, says) in [
+        ([2u16, 1], "sparse index 1 is 1, out of order"),
+        ([1, 4], "sparse index 1 is 4, past its elements"),
+    ] {
+        let mut d = Doc::default();
+        let base_view = d.view(&common::f32s(CORNERS.as_flattened()));
+        let idx_view = d.view(&le(&indices, u16::to_le_bytes));
+        let val_view = d.view(&common::f32s([CORNERS[1], CORNERS[2]].as_flattened()));
+        let pos = d.accessor(format!(
+            r#"{{"bufferView":{base_view},"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0],
+"sparse":{{"count":2,"indices":{{"bufferView":{idx_view},"componentType":5123}},"values":{{"bufferView":{val_view}}}}}}}"#
+        ));
+        let normal = d.vec3(&NORMALS);
+        let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+        let err = gltf::parse(
+            &glb(&d, pos, normal, idx, ""),
+            None,
+            "t.glb",
+            &LoadOptions::default(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            err,
+            format!(
+                "t.glb: mesh 0 primitive 0: POSITION (accessor 0): {says} (they must increase, below 4)"
+            )
+        );
+    }
+}
+
+/// `file` with `"byteStride"` set on the given buffer views (the GLB's
+/// JSON chunk rewritten, padded with spaces).
+fn restride(file: &[u8], strides: &[(usize, usize)]) -> Vec<u8> {
+    let json_len = u32::from_le_bytes(file[12..16].try_into().unwrap()) as usize;
+    let json = std::str::from_utf8(&file[20..20 + json_len]).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(json.trim_end()).unwrap();
+    for &(view, stride) in strides {
+        v["bufferViews"][view]["byteStride"] = stride.into();
+    }
+    let bin_json_len = 20 + json_len;
+    let bin = &file[bin_json_len + 8..];
+    common::glb(&v.to_string(), bin)
+}
