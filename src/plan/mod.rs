@@ -115,6 +115,10 @@ pub struct Plan {
     /// at set-up, where a face covers a sample, rather than by the
     /// vertex stage for every vertex (see [`Plan::vertex_extras`]).
     defers: Vec<bool>,
+    /// Per mesh: which faces it culls ([`Plan::cull`]).
+    culls: Vec<crate::scene::Cull>,
+    /// `--cull`: every face culled so, whatever the file says.
+    cull_asked: Option<crate::scene::Cull>,
     /// How many bands of rows the frame is drawn in, one thread each.
     pub bands: Bands,
 }
@@ -163,6 +167,29 @@ fn cores() -> u16 {
     static CORES: std::sync::OnceLock<u16> = std::sync::OnceLock::new();
     *CORES.get_or_init(|| {
         std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS as usize) as u16)
+    })
+}
+
+/// The culling that `sides` asks for, `own` where it says nothing.
+fn sides_cull(sides: crate::scene::Sides, own: crate::scene::Cull) -> crate::scene::Cull {
+    use crate::scene::{Cull, Sides};
+    match sides {
+        Sides::Single => Cull::Back,
+        Sides::Double => Cull::None,
+        Sides::Unsaid => own,
+    }
+}
+
+/// [`Plan::cull`] of `mesh`.
+fn mesh_cull(mesh: &crate::scene::Mesh, asked: Option<crate::scene::Cull>) -> crate::scene::Cull {
+    asked.unwrap_or_else(|| {
+        let own = mesh.cull;
+        let differs = (mesh.materials.iter()).any(|m| sides_cull(m.finish.sides, own) != own);
+        if differs {
+            crate::scene::Cull::None
+        } else {
+            own
+        }
     })
 }
 
@@ -252,6 +279,8 @@ impl Plan {
             clip_tests: Vec::new(),
             poses: Vec::new(),
             defers: Vec::new(),
+            culls: Vec::new(),
+            cull_asked: None,
             bands: Bands {
                 count: 1,
                 why: "not planned yet",
@@ -432,6 +461,9 @@ impl Plan {
             (scene.meshes.iter())
                 .map(|m| m.positions.len() > Plan::DEFER_PER_SAMPLE * samples.max(1)),
         );
+        self.culls.clear();
+        self.culls
+            .extend(scene.meshes.iter().map(|m| mesh_cull(m, opts.cull)));
         let (faces, edges) = wire(scene, opts);
         let lean = lean(opts);
         let decision = |e: Effect| match e {
@@ -460,6 +492,8 @@ impl Plan {
             clip_tests: std::mem::take(&mut self.clip_tests),
             poses: std::mem::take(&mut self.poses),
             defers: std::mem::take(&mut self.defers),
+            culls: std::mem::take(&mut self.culls),
+            cull_asked: opts.cull,
             bands: bands(opts),
         };
     }
@@ -467,6 +501,29 @@ impl Plan {
     /// Each stage's or effect's decision, in [`Effect::ALL`]'s order.
     pub fn decisions(&self) -> impl Iterator<Item = (Effect, Decision)> + '_ {
         Effect::ALL.iter().map(|&e| (e, self[e]))
+    }
+
+    /// Which faces of mesh `i` are culled, for its vertex stage and every
+    /// run whose material says nothing: `--cull` where asked; else the
+    /// mesh's own ([`crate::scene::Mesh::cull`], from what the file says of
+    /// its sides or from its topology), unless some material draws a side
+    /// the mesh culls (glTF materials differing in `doubleSided`): then
+    /// none, and each run culls its own ([`Plan::run_cull`]).
+    pub fn cull(&self, i: usize) -> crate::scene::Cull {
+        self.culls.get(i).copied().unwrap_or_default()
+    }
+
+    /// Which faces of a run of `mesh` in `finish` are culled: `--cull`
+    /// where asked, else its material's sides (glTF's `doubleSided`: a
+    /// single-sided face seen from behind is culled, a double-sided one
+    /// drawn, lit on the side seen), else the mesh's own.
+    pub fn run_cull(
+        &self,
+        mesh: &crate::scene::Mesh,
+        finish: &crate::scene::Finish,
+    ) -> crate::scene::Cull {
+        self.cull_asked
+            .unwrap_or_else(|| sides_cull(finish.sides, mesh.cull))
     }
 
     /// Whether group `i` (mesh `i`, or the loose triangles after the last

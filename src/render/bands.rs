@@ -104,7 +104,7 @@ impl Renderer {
             let transforms = Transforms::new(vp, turn * mesh.model);
             let start = (painter.verts.len(), painter.kept.marks());
             let (positions, normals) = super::vertices_of(posed, p, i, mesh);
-            let cull = opts.cull.unwrap_or(mesh.cull);
+            let cull = p.cull(i);
             painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             meshes.push(super::MeshVerts {
                 core: start.0..painter.verts.len(),
@@ -153,7 +153,7 @@ impl Renderer {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
                     transforms,
-                    cull: opts.cull.unwrap_or(mesh.cull),
+                    cull: p.cull(i),
                 };
                 if p[Effect::Faces].run {
                     painter.faces(stage, &faces, of(i), super::Pass::Opaque);
@@ -170,7 +170,7 @@ impl Renderer {
                     mesh,
                     positions: super::vertices_of(posed, p, i, mesh).0,
                     transforms,
-                    cull: opts.cull.unwrap_or(mesh.cull),
+                    cull: p.cull(i),
                 };
                 painter.faces(stage, &faces, of(i), super::Pass::Blend);
             }

@@ -222,7 +222,7 @@ fn deferrals(out: &mut String, scene: &Scene, opts: &RenderOptions, plan: &crate
     let grid = opts.grid();
     let samples = (grid.width as f64 * grid.height as f64).max(1.0);
     for (i, m) in scene.meshes.iter().enumerate().take(RUNS_LISTED) {
-        let cull = opts.cull.unwrap_or(m.cull);
+        let cull = plan.cull(i);
         let d = plan.deferral(i, cull);
         let _ = writeln!(
             out,

@@ -655,7 +655,7 @@ impl Renderer {
             painter.verts.clear();
             painter.kept.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
-            let cull = opts.cull.unwrap_or(mesh.cull);
+            let cull = p.cull(i);
             painter.mesh_vertices(stage, &transforms, (positions, normals), i, cull);
             times.vertices += lap();
             let faces = Faces {
@@ -693,7 +693,7 @@ impl Renderer {
             painter.verts.clear();
             painter.kept.clear();
             let (positions, normals) = vertices_of(posed, p, i, mesh);
-            let cull = opts.cull.unwrap_or(mesh.cull);
+            let cull = p.cull(i);
             // Counted once, in the first pass (as bands, which keep every
             // mesh's vertices, count them).
             let counted = *painter.stats;

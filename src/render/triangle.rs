@@ -81,6 +81,11 @@ impl Painter<'_> {
         let p = stage.plan;
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
+            // Culled as its material says (glTF's `doubleSided`).
+            let f = &Faces {
+                cull: p.run_cull(mesh, &run.finish),
+                ..*f
+            };
             let blend = p[Effect::Alpha].run && run.finish.alpha.mode == AlphaMode::Blend;
             if blend != (pass == Pass::Blend) {
                 continue;

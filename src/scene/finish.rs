@@ -105,6 +105,20 @@ impl Specular {
     }
 }
 
+/// Which sides of a material's faces are drawn: glTF's `doubleSided`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Sides {
+    /// Not said (OBJ, STL, PLY): the mesh's own culling, from its topology
+    /// (a closed mesh culls its back faces, an open one shows its inside).
+    #[default]
+    Unsaid,
+    /// Front faces only: a face seen from behind is culled.
+    Single,
+    /// Both: a face seen from behind is drawn, lit on the side seen (its
+    /// normal flipped).
+    Double,
+}
+
 /// A material's finish; the default is matte, lit, and dark of itself:
 /// the surface drawn as it always was.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -120,6 +134,8 @@ pub struct Finish {
     pub alpha: Alpha,
     /// Its textures beyond the base colour's.
     pub maps: Maps,
+    /// Which sides of its faces are drawn.
+    pub sides: Sides,
 }
 
 /// A material's textures beyond its base colour's, each an index into

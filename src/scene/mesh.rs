@@ -132,6 +132,10 @@ pub struct Geometry {
     /// Every edge (corners matched by position) shared by exactly two faces
     /// walking it in opposite directions: closed and consistently wound.
     pub closed: bool,
+    /// Which sides of every face are drawn, where the file says one thing
+    /// for all (glTF's `doubleSided`); where its materials differ, each
+    /// run's [`Finish::sides`](crate::scene::Finish::sides) says.
+    pub sides: crate::scene::Sides,
     /// Closed, in one piece with a sphere's topology.
     sphere_like: bool,
     convex: OnceLock<bool>,
@@ -165,6 +169,7 @@ impl Clone for Geometry {
             materials: self.materials.clone(),
             bounds: self.bounds,
             closed: self.closed,
+            sides: self.sides,
             sphere_like: self.sphere_like,
             convex: self.convex.clone(),
             // Found again when asked: a copy is made to be changed.
@@ -223,6 +228,7 @@ impl Geometry {
             materials: Vec::new(),
             bounds: None,
             closed: false,
+            sides: crate::scene::Sides::Unsaid,
             sphere_like: false,
             convex: OnceLock::new(),
             edges: OnceLock::new(),
@@ -509,12 +515,14 @@ impl Mesh {
     }
 
     /// A mesh of `geometry` in `color`, identity transform, back faces
-    /// culled if the geometry is closed (an open one shows its inside).
+    /// culled as the file says ([`Geometry::sides`]), else if the geometry
+    /// is closed (an open one shows its inside).
     pub fn of(geometry: Arc<Geometry>, color: Rgb) -> Mesh {
-        let cull = if geometry.closed {
-            Cull::Back
-        } else {
-            Cull::None
+        let cull = match geometry.sides {
+            crate::scene::Sides::Single => Cull::Back,
+            crate::scene::Sides::Double => Cull::None,
+            crate::scene::Sides::Unsaid if geometry.closed => Cull::Back,
+            crate::scene::Sides::Unsaid => Cull::None,
         };
         Mesh {
             geometry,

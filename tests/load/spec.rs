@@ -195,3 +195,148 @@ fn restride(file: &[u8], strides: &[(usize, usize)]) -> Vec<u8> {
     let bin = &file[bin_json_len + 8..];
     common::glb(&v.to_string(), bin)
 }
+
+/// Two squares side by side facing +z (x in [−2, 0] and [0, 2]), each its
+/// own primitive and material, `doubleSided` as given.
+fn two_squares(left: bool, right: bool) -> Geometry {
+    let mut d = Doc::default();
+    let mut prims = Vec::new();
+    for (k, x0) in [-2.0f32, 0.0].into_iter().enumerate() {
+        let pos = d.vec3(&[
+            [x0, -1.0, 0.0],
+            [x0 + 2.0, -1.0, 0.0],
+            [x0 + 2.0, 1.0, 0.0],
+            [x0, 1.0, 0.0],
+        ]);
+        let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+        let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+        prims.push(format!(
+            r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx},"material":{k}}}"#
+        ));
+    }
+    load(&d.glb(&format!(
+        r#""materials":[{{"doubleSided":{left}}},{{"doubleSided":{right}}}],
+"meshes":[{{"primitives":[{}]}}],"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#,
+        prims.join(",")
+    )))
+}
+
+/// The colours of the covered samples left and right of the frame's
+/// middle, seen from `eye` on the z axis, lit along `light`; `cull` as
+/// `--cull` would set it.
+fn halves(
+    g: Geometry,
+    eye: f32,
+    light: Vec3,
+    cull: Option<rastty::scene::Cull>,
+) -> [Vec<rastty::color::Lin>; 2] {
+    let scene = Scene::builder()
+        .camera(Camera {
+            projection: Projection::Orthographic {
+                height: 3.0,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.0, 0.0, eye),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        })
+        .mesh(Mesh::of(Arc::new(g), Rgb::new(200, 150, 100)))
+        .light(rastty::scene::Light {
+            direction: light,
+            color: Rgb::new(255, 255, 255),
+            ambient: 0.0,
+            ..Default::default()
+        })
+        .build()
+        .unwrap();
+    let opts = RenderOptions {
+        cols: 40,
+        rows: 20,
+        cull,
+        ..RenderOptions::default()
+    };
+    let mut r = Renderer::new();
+    r.render(&scene, &opts);
+    let w = opts.grid().width as usize;
+    let mut out = [Vec::new(), Vec::new()];
+    for (i, s) in r.framebuffer().samples().iter().enumerate() {
+        if let Some(c) = s {
+            out[usize::from(i % w >= w / 2)].push(*c);
+        }
+    }
+    for h in &mut out {
+        h.sort_by_key(|c| c.0);
+        h.dedup();
+    }
+    out
+}
+
+#[test]
+fn a_single_sided_back_face_is_culled_and_a_double_sided_one_drawn_lit_on_its_seen_side() {
+    // From the front, lit from the front: both squares the same colour.
+    let front = halves(
+        two_squares(false, true),
+        4.0,
+        Vec3::new(0.0, 0.0, -1.0),
+        None,
+    );
+    assert_eq!(front[0].len(), 1, "{front:?}");
+    assert_eq!(front[0], front[1]);
+    // From behind, lit from behind: seen from behind, the left square is
+    // to the right. The single-sided one culled, the double-sided one
+    // lit as its flipped normal says: as the front was from the front.
+    let back = halves(
+        two_squares(false, true),
+        -4.0,
+        Vec3::new(0.0, 0.0, 1.0),
+        None,
+    );
+    assert_eq!(
+        back,
+        [front[0].clone(), vec![]],
+        "double-sided on the left, as seen"
+    );
+    // Lit from the front instead, the back face is dark (no ambient).
+    let dark = halves(
+        two_squares(false, true),
+        -4.0,
+        Vec3::new(0.0, 0.0, -1.0),
+        None,
+    );
+    assert_eq!(dark[1], vec![]);
+    assert_ne!(dark[0], front[0]);
+    // --cull none draws both; --cull back culls both.
+    let none = halves(
+        two_squares(false, true),
+        -4.0,
+        Vec3::new(0.0, 0.0, 1.0),
+        Some(rastty::scene::Cull::None),
+    );
+    assert_eq!(none, [front[0].clone(), front[0].clone()]);
+    let back_culled = halves(
+        two_squares(false, true),
+        -4.0,
+        Vec3::new(0.0, 0.0, 1.0),
+        Some(rastty::scene::Cull::Back),
+    );
+    assert_eq!(back_culled, [vec![], vec![]]);
+    // Both single-sided: nothing from behind, though the mesh is open.
+    let g = two_squares(false, false);
+    assert_eq!(g.sides, rastty::scene::Sides::Single);
+    assert!(!g.closed);
+    assert_eq!(
+        halves(g, -4.0, Vec3::new(0.0, 0.0, 1.0), None),
+        [vec![], vec![]]
+    );
+    // Both double-sided: both drawn.
+    assert_eq!(
+        halves(
+            two_squares(true, true),
+            -4.0,
+            Vec3::new(0.0, 0.0, 1.0),
+            None
+        ),
+        [front[0].clone(), front[0].clone()]
+    );
+}

@@ -14,8 +14,8 @@ use rastty::Aa;
 use rastty::Pipeline;
 use rastty::Shading;
 use rastty::raster::Traversal;
-use rastty::scene::Cull;
 use rastty::scene::{Camera, Light, LightKind, Projection, Shape, Triangle, TriangleColor};
+use rastty::scene::{Cull, Sides};
 use rastty::{
     Frame, GlyphMode, RenderOptions, Renderer, Threads, color::ColorDepth, color::Rgb,
     encode::Encoder, scene::Scene,
@@ -152,17 +152,26 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
         alpha(),
         prop::option::weighted(0.25, (0u8..16, 0.0f32..1.0)),
         prop::option::weighted(0.25, 0.0f32..1.0),
+        prop::sample::select(vec![
+            Sides::Unsaid,
+            Sides::Unsaid,
+            Sides::Single,
+            Sides::Double,
+        ]),
     )
         .prop_map(
-            |(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps, texture)| {
+            |(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps, texture, sides)| {
                 let mut m = shape.mesh(c);
-                if alpha.is_some() || maps.is_some() || texture.is_some() {
+                if alpha.is_some() || maps.is_some() || texture.is_some() || sides != Sides::Unsaid
+                {
                     // The second half of its faces masked or blended, with
                     // maps (and UVs and tangents to read them by) or not, with
-                    // a base colour texture or not.
+                    // a base colour texture or not, its sides said or not
+                    // (glTF's `doubleSided`).
                     let g = m.geometry_mut();
                     let mut finish = rastty::scene::Finish {
                         alpha: alpha.unwrap_or_default(),
+                        sides,
                         ..Default::default()
                     };
                     if let Some((which, k)) = maps {

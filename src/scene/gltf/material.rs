@@ -140,6 +140,11 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
         alpha: alpha(material),
         // The primitive's to add, once the images are read.
         maps: crate::scene::Maps::default(),
+        sides: if material.double_sided() {
+            crate::scene::Sides::Double
+        } else {
+            crate::scene::Sides::Single
+        },
     }
 }
 

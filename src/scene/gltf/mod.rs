@@ -730,19 +730,30 @@ impl Parts<'_> {
         Ok(())
     }
 
-    fn geometry(self, name: &str, crease: f32) -> Geometry {
+    fn geometry(mut self, name: &str, crease: f32) -> Geometry {
+        // Sides said once for the whole where every material says the
+        // same; else each run keeps its own.
+        let sides = self.materials.first().map(|m| m.finish.sides);
+        let uniform = sides.filter(|&s| self.materials.iter().all(|m| m.finish.sides == s));
+        if uniform.is_some() {
+            for m in &mut self.materials {
+                m.finish.sides = crate::scene::Sides::Unsaid;
+            }
+        }
         let mut g = Geometry::new_raw(name, self.positions, self.faces);
+        g.sides = uniform.unwrap_or_default();
         // Runs that are all "the mesh's colour", untextured, say nothing.
         let maps = self.materials.iter().any(|m| !m.finish.maps.is_empty());
         if maps || self.materials.iter().any(|m| m.texture.is_some()) {
             g.uvs = self.uvs;
             g.textures = self.textures;
         }
-        if self
-            .materials
-            .iter()
-            .any(|m| m.color.is_some() || m.texture.is_some() || !m.finish.maps.is_empty())
-        {
+        if self.materials.iter().any(|m| {
+            m.color.is_some()
+                || m.texture.is_some()
+                || !m.finish.maps.is_empty()
+                || m.finish.sides != crate::scene::Sides::Unsaid
+        }) {
             g.materials = self.materials;
         }
         g.colors = self.colors;

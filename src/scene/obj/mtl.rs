@@ -50,6 +50,7 @@ impl Material {
             emissive: self.emissive,
             unlit: false,
             maps: crate::scene::Maps::default(),
+            sides: crate::scene::Sides::Unsaid,
             alpha: match self.opacity {
                 Some(d) if d < 1.0 => crate::scene::Alpha {
                     mode: crate::scene::AlphaMode::Blend,
