@@ -41,6 +41,7 @@ use crate::color::Lin;
 use crate::framebuffer::Target;
 use crate::raster::{Coverage, Traversal};
 use crate::scene::AlphaMode;
+use crate::scene::environment::EnvMap;
 use crate::shade::Lights;
 use crate::texture::{Sampler, Texture};
 use crate::transform::{self, Grid};
@@ -304,6 +305,9 @@ pub(crate) struct Shine<'a> {
     /// [`crate::Highlights::Vertex`]: the highlight found at each corner,
     /// interpolated.
     corners: Option<[Vec3A; 3]>,
+    /// A metal's reflection of the environment: the maps, and the metal's
+    /// colour, share and perceptual roughness.
+    reflect: Option<(&'a EnvMap, (Vec3A, f32, f32))>,
 }
 
 /// Where the viewer is: a point (perspective) or, for parallel views, a
@@ -338,6 +342,7 @@ impl<'a> Shine<'a> {
         finish: Option<(Vec3A, f32)>,
         (lights, eye): (&'a Lights, Eye),
         per_vertex: bool,
+        reflect: Option<(&'a EnvMap, (Vec3A, f32, f32))>,
     ) -> Shine<'a> {
         let mut s = Shine {
             normal: normal.map(Vec3A::from),
@@ -350,6 +355,7 @@ impl<'a> Shine<'a> {
                 Eye::Towards(d) => (Vec3A::ZERO, 0.0, Vec3A::from(d)),
             },
             corners: None,
+            reflect,
         };
         if per_vertex && let Some(f0) = s.f0 {
             s.corners = Some([0, 1, 2].map(|i| s.light(s.normal[i], s.world[i], f0)));
@@ -382,7 +388,13 @@ impl<'a> Shine<'a> {
         if n.dot(v) < 0.0 {
             n = -n;
         }
-        self.lights.specular_a(n, v, p, f0, self.a2) * 65535.0
+        let lit = self.lights.specular_a(n, v, p, f0, self.a2) * 65535.0;
+        match self.reflect {
+            Some((env, (metal, share, roughness))) => {
+                lit + env.reflect(n, v, metal, roughness) * (share * 65535.0)
+            }
+            None => lit,
+        }
     }
 }
 

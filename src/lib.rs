@@ -141,5 +141,5 @@ pub use options::{
 pub use pixels::{PixelRect, Pixels, Rgba};
 pub use plan::{Bands, Decision, Effect, Extras, Plan};
 pub use render::{Renderer, render, try_render};
-pub use shade::{Lights, Shading, specular_reference};
+pub use shade::{Lights, Shading, reflection_reference, specular_reference};
 pub use stats::{FrameStats, FrameTimes};

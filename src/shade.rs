@@ -417,6 +417,35 @@ pub fn specular_reference(n: glam::DVec3, l: glam::DVec3, v: glam::DVec3, f0: f6
     a2 / (k * k) * vis * nl * f
 }
 
+/// The light a metal of unit normal `n`, seen from unit `v`, of
+/// reflectance `f0` and α² `a2`, reflects of `radiance` towards the eye,
+/// in f64: the renderer's lobe ([`crate::specular_reference`], over π)
+/// integrated over the sphere on a grid of `steps × 2·steps` directions.
+/// What [`crate::scene::environment::EnvMap::reflect`] is measured against.
+pub fn reflection_reference(
+    radiance: &dyn Fn(glam::DVec3) -> f64,
+    n: glam::DVec3,
+    v: glam::DVec3,
+    f0: f64,
+    a2: f64,
+    steps: usize,
+) -> f64 {
+    let (w, h) = (2 * steps, steps);
+    let mut sum = 0.0;
+    for i in 0..w * h {
+        let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+        let l = crate::scene::environment::direction(x, y, w, h);
+        let solid = (y / h as f64 * std::f64::consts::PI).sin()
+            * (std::f64::consts::TAU / w as f64)
+            * (std::f64::consts::PI / h as f64);
+        let lobe = specular_reference(n, l, v, f0, a2);
+        if lobe > 0.0 {
+            sum += radiance(l) * lobe * solid;
+        }
+    }
+    sum / std::f64::consts::PI
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

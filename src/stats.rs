@@ -45,6 +45,8 @@ pub struct FrameStats {
     pub textured_samples: u64,
     /// Samples written with a specular highlight found for them.
     pub specular_samples: u64,
+    /// Samples written with the environment's reflection (metals).
+    pub reflecting_samples: u64,
     /// Of those, samples interpolated through `1/w`.
     pub perspective_samples: u64,
     /// Vertices tested against the clip planes.
@@ -89,6 +91,7 @@ impl FrameStats {
         self.interpolated_samples += band.interpolated_samples;
         self.textured_samples += band.textured_samples;
         self.specular_samples += band.specular_samples;
+        self.reflecting_samples += band.reflecting_samples;
         self.perspective_samples += band.perspective_samples;
         self.raster.samples_tested += band.raster.samples_tested;
         self.raster.samples_covered += band.raster.samples_covered;

@@ -194,6 +194,27 @@ pub struct InputArgs {
     /// [default: its first, or a scene file's own]
     #[arg(long, value_name = "NAME|N")]
     pub clip: Option<String>,
+    /// What metals reflect: a neutral studio, nothing, or an
+    /// equirectangular Radiance .hdr image [default: studio]
+    #[arg(long, value_name = "none|studio|FILE.hdr", value_parser = parse_environment)]
+    pub environment: Option<EnvironmentArg>,
+}
+
+/// `--environment`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum EnvironmentArg {
+    None,
+    Studio,
+    File(PathBuf),
+}
+
+fn parse_environment(s: &str) -> Result<EnvironmentArg, String> {
+    Ok(match s {
+        "none" => EnvironmentArg::None,
+        "studio" => EnvironmentArg::Studio,
+        "" => return Err("an empty name: none, studio or a .hdr file".into()),
+        path => EnvironmentArg::File(PathBuf::from(path)),
+    })
 }
 
 /// The accuracy and speed knobs: each changes how a frame is computed, and

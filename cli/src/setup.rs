@@ -9,6 +9,7 @@ use crate::cli::{self, ViewArgs};
 use crate::say::say;
 use crate::terminal;
 use rastty::outfile::OutFile;
+use rastty::scene::environment::Environment;
 use rastty::scene::{Projection, Scene, View};
 use rastty::{GlyphMode, Pipeline, RenderOptions, color::ColorDepth};
 
@@ -30,10 +31,20 @@ pub fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Resul
     if let Some(max) = budgets.max_triangles {
         options.max_triangles = max;
     }
-    let scene = match &input.scene {
+    let mut scene = match &input.scene {
         Some(p) => Scene::open_within(p, &options)?,
         None => rastty::scene::default_scene(),
     };
+    match &input.environment {
+        None => {}
+        Some(cli::EnvironmentArg::None) => scene.environment = Environment::None,
+        Some(cli::EnvironmentArg::Studio) => scene.environment = Environment::Studio,
+        Some(cli::EnvironmentArg::File(p)) => {
+            let (environment, source) = rastty::scene::environment::load(p, &options)?;
+            scene.environment = environment;
+            scene.sources.push(source);
+        }
+    }
     for note in &scene.notes {
         say("note", note);
     }

@@ -55,6 +55,13 @@ pub(crate) struct MapSet {
 }
 
 impl MapSet {
+    /// The metal share of its finish (before the metallic map).
+    pub(crate) fn metallic(&self) -> f32 {
+        self.specular
+            .filter(|_| !self.unlit)
+            .map_or(0.0, |s| s.metallic)
+    }
+
     /// `maps` of a run of `finish`, their textures taken from `textures`
     /// (an index out of range reads as no map) and read through
     /// `sampler` (the plan's filter applied to each texture's own).
@@ -105,6 +112,8 @@ pub(crate) struct Mapped<'a> {
     pub lights: Option<(&'a Lights, Eye)>,
     /// Whether the rim light is added.
     pub rim: bool,
+    /// What its metal share reflects, where the plan draws it.
+    pub environment: Option<&'a crate::scene::environment::EnvMap>,
 }
 
 impl Mapped<'_> {
@@ -172,6 +181,13 @@ impl Mapped<'_> {
             let f0 = dielectric + (albedo / 65535.0 - dielectric) * metallic;
             let a = roughness * roughness;
             lit += lights.specular_a(n.into(), v.into(), p.into(), f0, a * a) * 65535.0;
+            // The metal share's reflection, shadowed as the ambient light
+            // is by the occlusion map.
+            if let Some(env) = self.environment.filter(|_| metallic > 0.0) {
+                let metal = albedo / 65535.0;
+                lit += env.reflect(n.into(), v.into(), metal, roughness)
+                    * (metallic * occlusion * 65535.0);
+            }
         }
         if self.rim {
             lit += lights.rim_a(n);

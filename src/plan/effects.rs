@@ -205,6 +205,22 @@ effects! {
         ),
         witness: "tests/models/fox.obj",
     }
+    /// Light from the environment, reflected by metals.
+    Environment "environment" {
+        runs: "a shining material is metal and the scene has an environment (the studio unless `--environment none`): its metal share reflects it, the prefiltered radiance about the reflected direction times the lobe's integral (the split sum), per sample with its highlight",
+        skipped: "no metal, no environment, or no highlights; not forced by the full pipeline: a reflection is what a metal asks for, so both pipelines reflect exactly the metal runs",
+        counter: Some(|s| s.reflecting_samples),
+        work: |s, scene, _, _| format!(
+            "{} samples reflect the {}",
+            s.reflecting_samples,
+            match scene.environment {
+                crate::scene::environment::Environment::None => "nothing",
+                crate::scene::environment::Environment::Studio => "studio",
+                crate::scene::environment::Environment::Map(_) => "environment map",
+            }
+        ),
+        witness: "examples/models/metals.glb",
+    }
     /// Masked and blended materials.
     Alpha "alpha" {
         runs: "a material is masked or blended: its triangles, and only they, go through the see-through fill (a mask's cut decided per sample before the depth test; blended runs drawn after every other, back to front)",

@@ -464,6 +464,19 @@ impl Plan {
         self.culls.clear();
         self.culls
             .extend(scene.meshes.iter().map(|m| mesh_cull(m, opts.cull)));
+        let metal = scene.meshes.iter().any(|m| {
+            (m.materials.iter())
+                .any(|r| !r.finish.unlit && r.finish.specular.is_some_and(|s| s.metallic > 0.0))
+        });
+        let environment = if scene.environment.maps().is_none() {
+            Decision::skip("no environment (`--environment none`)")
+        } else if !specular.run {
+            Decision::skip("no highlights are drawn")
+        } else if metal {
+            Decision::run("a shining material is metal: it reflects the environment")
+        } else {
+            Decision::skip("no material is metal")
+        };
         let (faces, edges) = wire(scene, opts);
         let lean = lean(opts);
         let decision = |e: Effect| match e {
@@ -478,6 +491,7 @@ impl Plan {
             Effect::Texturing => texturing,
             Effect::Glow => glow,
             Effect::Specular => specular,
+            Effect::Environment => environment,
             Effect::Alpha => alpha,
             Effect::Maps => maps,
             Effect::Faces => faces,
@@ -628,6 +642,12 @@ impl Plan {
     /// skipping it for matte runs changes nothing.
     pub fn shines(&self, shines: bool) -> bool {
         self[Effect::Specular].run && (shines || self.full)
+    }
+
+    /// Whether a shining run whose metal share is `metallic` reflects the
+    /// environment: in both pipelines, exactly the metal runs.
+    pub fn reflects(&self, metallic: f32) -> bool {
+        self[Effect::Environment].run && metallic > 0.0
     }
 
     /// Whether a run of faces of `alpha` goes through the see-through

@@ -139,9 +139,15 @@ impl Painter<'_> {
                         .run
                         .then_some((&stage.lights, stage.eye)),
                     rim: stage.plan[Effect::Rim].run,
+                    environment: stage
+                        .environment
+                        .filter(|_| stage.plan.reflects(set.metallic())),
                 };
                 let done = sink.see_through(setup, a, |x, y, e| mapped.at(a, flat, x, y, e), &fill);
                 self.stats.mapped_samples += done.written;
+                if mapped.environment.is_some() {
+                    self.stats.reflecting_samples += done.written;
+                }
                 // White, where the run has no base texture, is not read.
                 if mapped.base.is_some() {
                     self.stats.textured_samples += done.written;
@@ -155,12 +161,16 @@ impl Painter<'_> {
                         self.surface.shine,
                         (&stage.lights, stage.eye),
                         stage.highlights == Highlights::Vertex,
+                        stage.environment.zip(self.surface.reflect),
                     )
                 });
                 let shade = |x, y, e| fill::surface_at(a, flat, tex, shine.as_ref(), x, y, e);
                 let done = sink.see_through(setup, a, shade, &fill);
                 if self.surface.shine.is_some() {
                     self.stats.specular_samples += done.written;
+                }
+                if stage.environment.is_some() && self.surface.reflect.is_some() {
+                    self.stats.reflecting_samples += done.written;
                 }
                 if tex.is_some() {
                     self.stats.textured_samples += done.written;

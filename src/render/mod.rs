@@ -26,10 +26,13 @@ mod bands;
 mod explain;
 mod lean;
 mod mapped;
+mod surface;
 mod triangle;
 mod vertex;
 mod vertex_lanes;
 mod wire;
+
+use surface::Surface;
 
 use crate::plan::Effect;
 use crate::stats::{FrameStats, FrameTimes};
@@ -82,6 +85,8 @@ struct Stage<'a> {
     behind: crate::color::Lin,
     /// How much nearer edges over faces are drawn ([`crate::Wire::Edges`]).
     edge_bias: wire::EdgeBias,
+    /// What metals reflect, where the plan draws it.
+    environment: Option<&'a crate::scene::environment::EnvMap>,
 }
 
 /// Which runs a pass over the meshes draws: blended runs are drawn after
@@ -216,76 +221,6 @@ struct PosedMesh {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     work: Posed,
-}
-
-/// What a run's material adds to its lit colour, in the renderer's linear
-/// units (0–65535 a channel): set once a run.
-#[derive(Clone, Debug)]
-struct Surface {
-    /// Its alpha and alpha texture, where the plan draws it through the
-    /// see-through fill ([`Plan::sees_through`]).
-    see: Option<(crate::scene::Alpha, Option<Arc<crate::texture::Texture>>)>,
-    /// The light it gives off (zero: none).
-    emissive: glam::Vec3A,
-    /// Drawn in its colour, whatever the lights.
-    unlit: bool,
-    /// Its highlight: reflectance at normal incidence and α² (roughness
-    /// to the fourth); `None`: matte.
-    shine: Option<(glam::Vec3A, f32)>,
-    /// The share of its colour lit diffusely: 1 − metallic.
-    diffuse: f32,
-    /// Its triangles go through the specular fill (the plan's
-    /// [`Plan::shines`]).
-    shiny: bool,
-}
-
-impl Default for Surface {
-    fn default() -> Surface {
-        Surface {
-            see: None,
-            emissive: glam::Vec3A::ZERO,
-            unlit: false,
-            shine: None,
-            diffuse: 1.0,
-            shiny: false,
-        }
-    }
-}
-
-impl Surface {
-    /// A run's surface as `plan` draws it; `base` its colour (a metal
-    /// reflects in it).
-    fn of(finish: &crate::scene::Finish, base: crate::color::Lin, plan: &Plan) -> Surface {
-        let shine = finish.specular.filter(|_| !finish.unlit).map(|s| {
-            let base = glam::Vec3A::from(base.to_f32()) / 65535.0;
-            let dielectric = glam::Vec3A::from(s.reflectance);
-            let f0 = dielectric + (base - dielectric) * s.metallic;
-            let a = s.roughness * s.roughness;
-            (f0, a * a)
-        });
-        let shiny = plan.shines(shine.is_some());
-        let shine = shine.filter(|_| shiny);
-        Surface {
-            see: None,
-            emissive: finish.emissive.to_lanes(),
-            unlit: finish.unlit,
-            diffuse: shine.map_or(1.0, |_| 1.0 - finish.specular.map_or(0.0, |s| s.metallic)),
-            shine,
-            shiny,
-        }
-    }
-
-    /// A mapped run's surface: its vertices carry its base colour alone
-    /// (unlit, without glow or a highlight: the mapped fill adds them per
-    /// sample, from [`mapped::Mapping`]), and its triangles' corners'
-    /// normals and positions are found (as a shining run's are).
-    fn mapped() -> Surface {
-        Surface {
-            unlit: true,
-            shiny: true,
-            ..Surface::default()
-        }
-    }
 }
 
 /// What the vertex, triangle and fill stages draw with: the samples drawn
@@ -516,6 +451,10 @@ impl Renderer {
                 .background
                 .map_or(crate::color::Lin::BLACK, crate::color::Lin::from_srgb),
             edge_bias: wire::EdgeBias::of(&cam.projection),
+            environment: scene
+                .environment
+                .maps()
+                .filter(|_| p[Effect::Environment].run),
         };
 
         self.pose(scene, p);

@@ -81,7 +81,6 @@ impl Painter<'_> {
         let p = stage.plan;
         let mesh = f.mesh;
         for run in mesh.runs(Lin::from_srgb(mesh.color)) {
-            // Culled as its material says (glTF's `doubleSided`).
             let f = &Faces {
                 cull: p.run_cull(mesh, &run.finish),
                 ..*f
@@ -700,6 +699,7 @@ impl Painter<'_> {
             self.surface.shine,
             (&stage.lights, stage.eye),
             stage.highlights == Highlights::Vertex,
+            stage.environment.zip(self.surface.reflect),
         );
         let done = self.sink(stage).shiny(setup, a, flat, tex, Some(&shine));
         if tex.is_some() {
@@ -707,6 +707,9 @@ impl Painter<'_> {
         }
         if self.surface.shine.is_some() {
             self.stats.specular_samples += done.written;
+        }
+        if stage.environment.is_some() && self.surface.reflect.is_some() {
+            self.stats.reflecting_samples += done.written;
         }
         self.stats.count_fill(done);
     }

@@ -371,6 +371,7 @@ mod tests {
             eye: Eye::Towards(Vec3::Z),
             behind: crate::color::Lin::BLACK,
             edge_bias: Default::default(),
+            environment: None,
         };
         f(&stage, &Transforms::new(vp, turn * scene.meshes[0].model));
     }

@@ -61,6 +61,7 @@
 //! and line.
 
 pub mod anim;
+pub mod environment;
 mod builder;
 mod camera;
 pub(crate) mod file;
@@ -125,6 +126,9 @@ pub struct Scene {
     pub meshes: Vec<Mesh>,
     /// Directional lights (none: colours are drawn unlit).
     pub lights: Vec<Light>,
+    /// What metals reflect ([`crate::environment`]): the neutral studio
+    /// unless set.
+    pub environment: crate::scene::environment::Environment,
     /// What loading found but did not draw (non-finite vertices, line
     /// elements…), one line each, for the user to be told.
     pub notes: Vec<String>,
@@ -353,6 +357,7 @@ impl Scene {
             triangles: Vec::new(),
             meshes: vec![mesh],
             lights,
+            environment: crate::scene::environment::Environment::Studio,
             notes: Vec::new(),
             sources: Vec::new(),
         }

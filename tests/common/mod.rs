@@ -460,3 +460,55 @@ impl Doc {
         glb(&json, &self.bin)
     }
 }
+
+/// The example model `examples/models/metals.glb`: three spheres in a
+/// row, each a metal of its own (`metallicFactor` 1): polished gold
+/// (roughness 0.1), brushed silver (0.4) and rough copper (0.8). The
+/// witness of the environment's reflection.
+pub fn metals_glb() -> Vec<u8> {
+    let mut d = Doc::default();
+    let (rings, segments) = (16u16, 32u16);
+    let mut unit = Vec::new();
+    for i in 0..=rings {
+        let theta = std::f32::consts::PI * f32::from(i) / f32::from(rings);
+        for j in 0..=segments {
+            let phi = std::f32::consts::TAU * f32::from(j) / f32::from(segments);
+            unit.push([
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            ]);
+        }
+    }
+    let row = segments + 1;
+    let mut faces = Vec::new();
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b) = (i * row + j, (i + 1) * row + j);
+            if i > 0 {
+                faces.push([a, b, a + 1]);
+            }
+            if i + 1 < rings {
+                faces.push([a + 1, b, b + 1]);
+            }
+        }
+    }
+    let mut prims = Vec::new();
+    for (k, x) in [-2.2f32, 0.0, 2.2].into_iter().enumerate() {
+        let pos: Vec<[f32; 3]> = unit.iter().map(|&[a, b, c]| [a + x, b, c]).collect();
+        let pos = d.vec3(&pos);
+        let normal = d.vec3(&unit);
+        let idx = d.indices(&faces);
+        prims.push(format!(
+            r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx},"material":{k}}}"#
+        ));
+    }
+    d.glb(&format!(
+        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[1.0,0.766,0.336,1],"metallicFactor":1,"roughnessFactor":0.1}}}},
+{{"pbrMetallicRoughness":{{"baseColorFactor":[0.972,0.960,0.915,1],"metallicFactor":1,"roughnessFactor":0.4}}}},
+{{"pbrMetallicRoughness":{{"baseColorFactor":[0.955,0.638,0.538,1],"metallicFactor":1,"roughnessFactor":0.8}}}}],
+"meshes":[{{"primitives":[{}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#,
+        prims.join(",")
+    ))
+}

@@ -19,5 +19,7 @@ mod maps;
 mod materials;
 #[cfg(feature = "gltf")]
 mod spec;
+#[cfg(feature = "gltf")]
+mod environment;
 #[cfg(all(feature = "gltf", feature = "textures"))]
 mod textures;

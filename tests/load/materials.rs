@@ -62,7 +62,12 @@ fn scene(geometry: Geometry, lights: &[(Vec3, Rgb, f32)]) -> Scene {
             ..Default::default()
         });
     }
-    b.build().unwrap()
+    // The lights alone: no environment for a metal to reflect (its
+    // reflection is tested in `environment.rs`).
+    Scene {
+        environment: rastty::scene::environment::Environment::None,
+        ..b.build().unwrap()
+    }
 }
 
 fn opts() -> RenderOptions {
@@ -359,6 +364,11 @@ fn a_mirror_like_sphere_lit_from_the_eye_has_its_brightest_sample_where_the_refl
         })
         .build()
         .unwrap();
+    // The light's reflection alone.
+    let scene = Scene {
+        environment: rastty::scene::environment::Environment::None,
+        ..scene
+    };
     let mut r = Renderer::new();
     r.render(&scene, &odd_grid(rastty::Highlights::Sample));
     let (b, at) = brightest(&r);

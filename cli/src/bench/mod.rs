@@ -13,6 +13,7 @@
 //! | traversal | scan, bounding box, incremental, spans | samples that differ from spans, the default (must be 0) |
 //! | interpolation | affine, perspective-correct | largest and mean colour error (0–255) against an f64 ray cast, on a floor running away from the eye |
 //! | highlights | per vertex, per sample | largest and mean colour error (0–255) against the same specular lobe in f64 at the true sphere's normal, on a white metal sphere |
+//! | environment | none, studio | largest and mean colour error (0–255) of a white metal sphere lit by the studio alone against the f64 integral of the studio through the same lobe at the true sphere's normal; time on the metals example |
 //! | effects | planned, full pipeline | samples unlike the planned frame (must be 0): the time column is what drawing highlights, masks, blends, glow and textures on runs whose materials have none would cost, and what the planner saves |
 //! | texture filtering | nearest, bilinear, trilinear | largest and mean colour error (0–255) against an f64 reference supersampled 16×16 per sample, on a textured floor running away from the eye |
 //! | two-colour cells | exhaustive split, widest-channel split | mean RMS colour error (0–255) of a cell's samples against the two colours drawn |
@@ -100,6 +101,19 @@ pub fn workloads(models: &Path) -> (Vec<Workload>, Vec<String>) {
             scene: textured_floor(),
         },
     ];
+    // The metals example, carried in the program: metals lit by the
+    // environment.
+    let metals = include_bytes!("../../../examples/models/metals.glb");
+    match rastty::scene::gltf::parse(metals, None, "metals.glb", &Default::default()) {
+        Ok(loaded) => w.push(Workload {
+            name: "metals".into(),
+            scene: Scene::of_mesh(rastty::scene::Mesh::of(
+                std::sync::Arc::new(loaded.geometry),
+                rastty::color::Rgb::WHITE,
+            )),
+        }),
+        Err(e) => notes.push(format!("left out: {e}")),
+    }
     for file in [
         "bunny.obj",
         "teapot.obj",
@@ -265,6 +279,37 @@ pub fn run(workloads: &[Workload], reps: usize) -> Report {
                 highlights,
                 ..base()
             }),
+            errors: vec![("max colour error", max), ("mean colour error", mean)],
+        });
+    }
+
+    // 4b'. The environment metals reflect: its time on the metals
+    // example, its error on a white metal sphere against the f64 integral.
+    for (setting, environment) in [
+        (
+            "none: metals lit by the lights alone",
+            rastty::scene::environment::Environment::None,
+        ),
+        (
+            "studio: the split sum, prefiltered",
+            rastty::scene::environment::Environment::Studio,
+        ),
+    ] {
+        let (max, mean) = environment_error(environment.clone());
+        let times = workloads
+            .iter()
+            .map(|w| {
+                let scene = Scene {
+                    environment: environment.clone(),
+                    ..w.scene.clone()
+                };
+                render_time(&scene, &base(), reps)
+            })
+            .collect();
+        rows.push(Row {
+            knob: "environment",
+            setting: setting.into(),
+            times,
             errors: vec![("max colour error", max), ("mean colour error", mean)],
         });
     }

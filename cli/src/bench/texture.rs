@@ -263,6 +263,11 @@ pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
         })
         .build()
         .expect("the sphere's scene");
+    // The lights' highlight alone: no environment to reflect.
+    let scene = Scene {
+        environment: rastty::scene::environment::Environment::None,
+        ..scene
+    };
     let opts = RenderOptions {
         cols: 81,
         rows: 81,
@@ -294,6 +299,91 @@ pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
             let want = 255.0
                 * strength
                 * rastty::specular_reference(normal, l, glam::DVec3::Z, 1.0, a * a);
+            let got = f64::from(c.to_f32()[0]) / 257.0;
+            let e = (got - want.min(255.0)).abs();
+            max = max.max(e);
+            sum += e;
+            n += 1;
+        }
+    }
+    (max, sum / f64::from(n.max(1)))
+}
+
+/// The white metal sphere (roughness 0.5) lit by `environment` alone (a
+/// black light, so that highlights are drawn and add nothing): the largest
+/// and mean colour error (0–255, linear) of its samples against the f64
+/// integral of the studio through the renderer's own lobe at the true
+/// sphere's normal, every third sample across and down.
+pub fn environment_error(environment: rastty::scene::environment::Environment) -> (f64, f64) {
+    use rastty::scene::{Finish, Light, MaterialRun, Mesh, Shape, Specular};
+    let mut sphere = (*Shape::Sphere.geometry()).clone();
+    let roughness = 0.5f32;
+    sphere.materials = vec![MaterialRun {
+        first: 0,
+        color: None,
+        texture: None,
+        finish: Finish {
+            specular: Specular::metallic_roughness(1.0, roughness),
+            ..Finish::default()
+        },
+    }];
+    let scene = Scene::builder()
+        .camera(Camera {
+            shift: rastty::glam::Vec2::ZERO,
+            projection: Projection::Orthographic {
+                height: 2.4,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fit: None,
+        })
+        .mesh(Mesh::of(std::sync::Arc::new(sphere), Rgb::WHITE))
+        .light(Light {
+            color: Rgb::BLACK,
+            ambient: 0.0,
+            ..Light::default()
+        })
+        .build()
+        .expect("the sphere's scene");
+    let scene = Scene {
+        environment,
+        ..scene
+    };
+    let opts = RenderOptions {
+        cols: 81,
+        rows: 81,
+        glyphs: GlyphMode::Block,
+        cell_aspect: 1.0,
+        ..RenderOptions::default()
+    };
+    let mut renderer = Renderer::new();
+    renderer.render(&scene, &opts);
+    let fb = renderer.framebuffer();
+    let grid = fb.grid();
+    let a = f64::from(roughness * roughness);
+    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0);
+    for y in (1..grid.height).step_by(3) {
+        for x in (1..grid.width).step_by(3) {
+            let Some(c) = fb.get(x, y) else { continue };
+            let px = ((x as f64 + 0.5) / grid.width as f64 * 2.0 - 1.0) * 1.2;
+            let py = ((y as f64 + 0.5) / grid.height as f64 * 2.0 - 1.0) * 1.2;
+            let r2 = px * px + py * py;
+            if r2 > 0.9 {
+                continue;
+            }
+            let normal = glam::DVec3::new(px, py, (1.0 - r2).sqrt());
+            let want = 255.0
+                * rastty::reflection_reference(
+                    &rastty::scene::environment::studio_radiance,
+                    normal,
+                    glam::DVec3::Z,
+                    1.0,
+                    a * a,
+                    96,
+                );
             let got = f64::from(c.to_f32()[0]) / 257.0;
             let e = (got - want.min(255.0)).abs();
             max = max.max(e);
