@@ -340,3 +340,49 @@ fn a_single_sided_back_face_is_culled_and_a_double_sided_one_drawn_lit_on_its_se
         [front[0].clone(), front[0].clone()]
     );
 }
+
+#[test]
+fn an_instanced_mesh_is_drawn_once_an_instance_each_placed_before_its_node() {
+    // A triangle, three instances: moved 10 along x, turned a quarter
+    // about z, and scaled 2 (its rotation a normalized short quaternion);
+    // the node then moves everything 100 along y.
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let idx = d.indices(&[[0, 1, 2]]);
+    let t = d.vec3(&[[10.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]);
+    let h = (std::f32::consts::FRAC_1_SQRT_2 * 32767.0).round() as i16;
+    let shorts: Vec<u8> = [0, 0, 0, 32767, 0, 0, h, h, 0, 0, 0, 32767]
+        .iter()
+        .flat_map(|v: &i16| v.to_le_bytes())
+        .collect();
+    let view = d.view(&shorts);
+    let r = d.accessor(format!(
+        r#"{{"bufferView":{view},"componentType":5122,"normalized":true,"count":3,"type":"VEC4"}}"#
+    ));
+    let s = d.vec3(&[[1.0, 1.0, 1.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]);
+    let glb = d.glb(&format!(
+        r#""extensionsUsed":["EXT_mesh_gpu_instancing"],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}},"indices":{idx}}}]}}],
+"nodes":[{{"mesh":0,"translation":[0,100,0],"extensions":{{"EXT_mesh_gpu_instancing":{{"attributes":{{"TRANSLATION":{t},"ROTATION":{r},"SCALE":{s}}}}}}}}}],
+"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ));
+    let g = load(&glb);
+    assert_eq!(g.faces.len(), 3);
+    let round = |v: Vec3| (v * 1e4).round() / 1e4;
+    let got: Vec<Vec3> = g.positions.iter().map(|&p| round(p)).collect();
+    assert_eq!(
+        got,
+        [
+            [10.0, 100.0, 0.0],
+            [11.0, 100.0, 0.0],
+            [10.0, 101.0, 0.0],
+            [0.0, 100.0, 0.0],
+            [0.0, 101.0, 0.0],
+            [-1.0, 100.0, 0.0],
+            [0.0, 100.0, 0.0],
+            [2.0, 100.0, 0.0],
+            [0.0, 102.0, 0.0],
+        ]
+        .map(Vec3::from)
+    );
+}

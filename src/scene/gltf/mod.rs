@@ -44,6 +44,7 @@
 
 mod accessor;
 mod buffers;
+mod instances;
 mod material;
 mod numbers;
 mod rig;
@@ -238,7 +239,20 @@ fn parse_in(
                 })?);
             }
         }
-        if let Some(mesh) = node.mesh() {
+        // Instanced (EXT_mesh_gpu_instancing): the mesh drawn once an
+        // instance, each placed in the node's space; a model that moves
+        // draws its first instance alone.
+        let mut each = instances::of(&node, &document, &buffers, options.max_bytes)
+            .map_err(|e| bad(format!("node {}: {e}", node.index())))?;
+        if rig.is_some() && each.len() > 1 {
+            *ignored
+                .entry("instances of moving meshes past the first")
+                .or_default() += each.len() - 1;
+            each.truncate(1);
+        }
+        for instance in each.iter().filter(|_| node.mesh().is_some()) {
+            let world = world * *instance;
+            let Some(mesh) = node.mesh() else { continue };
             for prim in mesh.primitives() {
                 let placed = match (&mut rig, me) {
                     (Some(r), Some(at)) => Some((
@@ -378,7 +392,10 @@ fn placed(
         let mut stack = vec![(root.index(), false)];
         while let Some((i, expanded)) = stack.pop() {
             if expanded {
-                let own = nodes[i].mesh().map_or(0, |m| meshes[m.index()]);
+                let own = nodes[i]
+                    .mesh()
+                    .map_or(0, |m| meshes[m.index()])
+                    .saturating_mul(instances::count(&nodes[i], document));
                 let mut c = (1u128, own);
                 for child in nodes[i].children() {
                     let (n, t) = counts[child.index()].flatten().unwrap_or_default();
@@ -789,4 +806,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_texture_transform",
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_mesh_quantization",
+    instances::EXTENSION,
 ];
