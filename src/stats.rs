@@ -47,6 +47,8 @@ pub struct FrameStats {
     pub specular_samples: u64,
     /// Samples written with the environment's reflection (metals).
     pub reflecting_samples: u64,
+    /// Line and point primitives drawn (glTF's).
+    pub lines: u64,
     /// Of those, samples interpolated through `1/w`.
     pub perspective_samples: u64,
     /// Vertices tested against the clip planes.
@@ -92,6 +94,7 @@ impl FrameStats {
         self.textured_samples += band.textured_samples;
         self.specular_samples += band.specular_samples;
         self.reflecting_samples += band.reflecting_samples;
+        self.lines += band.lines;
         self.perspective_samples += band.perspective_samples;
         self.raster.samples_tested += band.raster.samples_tested;
         self.raster.samples_covered += band.raster.samples_covered;

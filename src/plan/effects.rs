@@ -258,6 +258,14 @@ effects! {
         ),
         witness: "cube" with |o| o.wire = crate::options::Wire::Edges,
     }
+    /// A model's own line and point primitives.
+    Lines "lines" {
+        runs: "a model has line or point primitives (glTF's LINES, LINE_STRIP, LINE_LOOP, POINTS): drawn as the wireframe draws edges, one sample wide, unlit in their colour, at their own depth; a point as one sample",
+        skipped: "no model has lines or points, or exact coverage; what the file draws, not a stage: the full pipeline draws exactly the lines the planned one does",
+        counter: Some(|s| s.lines),
+        work: |s, _, _, _| format!("{} lines and points drawn", s.lines),
+        witness: "examples/models/lines.gltf",
+    }
     /// The lean path: triangles inside every clip plane culled, sized and
     /// found empty from their snapped vertices, lit and filled only where
     /// they cover a sample. Speed alone: the general path draws the same

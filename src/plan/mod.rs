@@ -478,6 +478,13 @@ impl Plan {
             Decision::skip("no material is metal")
         };
         let (faces, edges) = wire(scene, opts);
+        let lines = if !scene.meshes.iter().any(|m| !m.lines.is_empty()) {
+            Decision::skip("no model has lines or points")
+        } else if opts.aa == Aa::Exact {
+            Decision::skip("exact coverage adds up faces' areas: no lines")
+        } else {
+            Decision::run("a model has line or point primitives: drawn one sample wide")
+        };
         let lean = lean(opts);
         let decision = |e: Effect| match e {
             Effect::Pose => posing,
@@ -496,6 +503,7 @@ impl Plan {
             Effect::Maps => maps,
             Effect::Faces => faces,
             Effect::Edges => edges,
+            Effect::Lines => lines,
             Effect::Lean => lean,
         };
         *self = Plan {
@@ -725,7 +733,8 @@ fn lean(opts: &RenderOptions) -> Decision {
 
 /// Whether samples need a depth test.
 fn depth(scene: &Scene, vp: Mat4, turn: Mat4) -> Decision {
-    if scene.triangle_count() <= 1 {
+    let lines: usize = scene.meshes.iter().map(|m| m.lines.len()).sum();
+    if scene.triangle_count().saturating_add(lines) <= 1 {
         return Decision::skip("one primitive cannot overlap another");
     }
     if scene.meshes.is_empty() && scene.camera.projection == Projection::None {

@@ -161,6 +161,9 @@ impl Renderer {
                 if p[Effect::Edges].run {
                     painter.edges(stage, mesh, faces.positions, transforms, opts.wire);
                 }
+                if p[Effect::Lines].run {
+                    painter.lines(stage, mesh, faces.positions, transforms);
+                }
             }
             painter.loose(scene, opts, stage, vp, turn);
             for &i in blended.iter().filter(|_| p[Effect::Faces].run) {

@@ -617,6 +617,9 @@ impl Renderer {
             if p[Effect::Edges].run {
                 painter.edges(stage, mesh, positions, &transforms, opts.wire);
             }
+            if p[Effect::Lines].run {
+                painter.lines(stage, mesh, positions, &transforms);
+            }
             (*painter.verts, *painter.kept) = (verts, kept);
             times.triangles += lap();
         }

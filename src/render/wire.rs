@@ -118,6 +118,40 @@ impl Painter<'_> {
         }
     }
 
+    /// The mesh's own lines and points ([`crate::scene::Geometry::lines`]),
+    /// each in its colour (or the mesh's), unlit, one sample wide, at their
+    /// own depth; a point is one sample.
+    pub(super) fn lines(
+        &mut self,
+        stage: &Stage<'_>,
+        mesh: &Mesh,
+        positions: &[Vec3],
+        transforms: &Transforms,
+    ) {
+        self.surface = Surface::default();
+        let own = Lin::from_srgb(mesh.color);
+        let at = |i: u32| {
+            positions
+                .get(i as usize)
+                .filter(|p| p.is_finite())
+                .map(|p| DVec4::from((p.as_dvec3(), 1.0)))
+        };
+        for &([a, b], colour) in &mesh.geometry.lines {
+            let (Some(a), Some(b)) = (at(a), at(b)) else {
+                continue;
+            };
+            if let Some(ends) =
+                stage
+                    .clipper
+                    .clip_segment([a, b], &transforms.mvp64, &stage.viewport)
+            {
+                self.stats.lines += 1;
+                let colour = Vec3::from(colour.unwrap_or(own).to_f32());
+                self.line(stage, ends, colour, EdgeBias::default());
+            }
+        }
+    }
+
     /// One line from `s` to `e` (on screen): its rectangle, as two
     /// triangles sharing a diagonal.
     fn line(&mut self, stage: &Stage<'_>, [s, e]: [ScreenVertex; 2], colour: Vec3, bias: EdgeBias) {

@@ -132,6 +132,10 @@ pub struct Geometry {
     /// Every edge (corners matched by position) shared by exactly two faces
     /// walking it in opposite directions: closed and consistently wound.
     pub closed: bool,
+    /// Lines the file draws besides its faces (glTF's line and point
+    /// primitives), each a pair of indices into `positions` (a point: the
+    /// same index twice) and its colour (`None`: the mesh's).
+    pub lines: Vec<([u32; 2], Option<Lin>)>,
     /// Which sides of every face are drawn, where the file says one thing
     /// for all (glTF's `doubleSided`); where its materials differ, each
     /// run's [`Finish::sides`](crate::scene::Finish::sides) says.
@@ -169,6 +173,7 @@ impl Clone for Geometry {
             materials: self.materials.clone(),
             bounds: self.bounds,
             closed: self.closed,
+            lines: self.lines.clone(),
             sides: self.sides,
             sphere_like: self.sphere_like,
             convex: self.convex.clone(),
@@ -228,6 +233,7 @@ impl Geometry {
             materials: Vec::new(),
             bounds: None,
             closed: false,
+            lines: Vec::new(),
             sides: crate::scene::Sides::Unsaid,
             sphere_like: false,
             convex: OnceLock::new(),

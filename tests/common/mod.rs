@@ -512,3 +512,96 @@ pub fn metals_glb() -> Vec<u8> {
         prims.join(",")
     ))
 }
+
+/// The example model `examples/models/lines.gltf` (its buffer a data
+/// URI): a grey triangle with glTF's line and point primitives around it,
+/// a red square outline (LINE_LOOP), green diagonals (LINES), a blue
+/// zigzag (LINE_STRIP) and a grid of white points (POINTS), each in its
+/// material's colour. The witness of the lines effect.
+pub fn lines_gltf() -> String {
+    use base64::Engine as _;
+    let mut d = Doc::default();
+    let tri = d.vec3(&[[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.0, 0.5, 0.0]]);
+    let square = d.vec3(&[
+        [-1.0, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+    ]);
+    let diagonals = d.vec3(&[
+        [-0.9, -0.9, 0.1],
+        [0.9, 0.9, 0.1],
+        [-0.9, 0.9, 0.1],
+        [0.9, -0.9, 0.1],
+    ]);
+    let zigzag: Vec<[f32; 3]> = (0..7)
+        .map(|i| {
+            [
+                -1.2 + 0.4 * i as f32,
+                if i % 2 == 0 { 1.2 } else { 1.4 },
+                0.0,
+            ]
+        })
+        .collect();
+    let zigzag = d.vec3(&zigzag);
+    let grid: Vec<[f32; 3]> = (0..25)
+        .map(|i| {
+            [
+                -1.2 + 0.6 * (i % 5) as f32,
+                -1.2 + 0.6 * (i / 5) as f32,
+                -0.1,
+            ]
+        })
+        .collect();
+    let grid = d.vec3(&grid);
+    let prim = |pos: usize, mode: u32, material: usize| {
+        format!(r#"{{"attributes":{{"POSITION":{pos}}},"mode":{mode},"material":{material}}}"#)
+    };
+    let prims = [
+        prim(tri, 4, 0),
+        prim(square, 2, 1),
+        prim(diagonals, 1, 2),
+        prim(zigzag, 3, 3),
+        prim(grid, 0, 4),
+    ];
+    let (json_bin, bin) = {
+        let glb = d.glb("\"scenes\":[]");
+        // The GLB's chunks: its JSON's views and accessors, and its binary.
+        let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+        let json: serde_json::Value = serde_json::from_str(
+            std::str::from_utf8(&glb[20..20 + json_len])
+                .unwrap()
+                .trim_end(),
+        )
+        .unwrap();
+        (json, glb[20 + json_len + 8..].to_vec())
+    };
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bin)
+    );
+    let color = |c: [f32; 3]| {
+        format!(
+            r#"{{"pbrMetallicRoughness":{{"baseColorFactor":[{},{},{},1]}}}}"#,
+            c[0], c[1], c[2]
+        )
+    };
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+"meshes":[{{"primitives":[{}]}}],
+"materials":[{},{},{},{},{}],
+"buffers":[{{"byteLength":{},"uri":"{uri}"}}],
+"bufferViews":{},
+"accessors":{}}}
+"#,
+        prims.join(","),
+        color([0.5, 0.5, 0.5]),
+        color([1.0, 0.0, 0.0]),
+        color([0.0, 1.0, 0.0]),
+        color([0.0, 0.2, 1.0]),
+        color([1.0, 1.0, 1.0]),
+        bin.len(),
+        json_bin["bufferViews"],
+        json_bin["accessors"],
+    )
+}

@@ -386,3 +386,73 @@ fn an_instanced_mesh_is_drawn_once_an_instance_each_placed_before_its_node() {
         .map(Vec3::from)
     );
 }
+
+#[test]
+fn line_and_point_primitives_are_drawn_one_sample_wide_in_their_colours() {
+    // `RASTTY_BLESS=1 cargo test --test load` writes the example again.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/lines.gltf");
+    let made = common::lines_gltf();
+    if std::env::var_os("RASTTY_BLESS").is_some() {
+        std::fs::write(&path, &made).unwrap();
+    }
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), made);
+    let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
+    assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
+    let g = loaded.geometry;
+    assert_eq!(g.faces.len(), 1);
+    // A loop of 4, 2 diagonals, a strip of 7 (6 lines), 25 points.
+    assert_eq!(g.lines.len(), 4 + 2 + 6 + 25);
+    let first = |k: usize| g.lines[k].1.unwrap();
+    assert_eq!(first(0), rastty::color::Lin::from_unit([1.0, 0.0, 0.0]));
+    assert_eq!(
+        g.lines[12],
+        (
+            [18, 18],
+            Some(rastty::color::Lin::from_unit([1.0, 1.0, 1.0]))
+        )
+    );
+    // Seen face on, unlit: a point is one sample of white; the square's
+    // lines are red; the triangle grey.
+    let scene = Scene::builder()
+        .camera(Camera {
+            projection: Projection::Orthographic {
+                height: 3.2,
+                near: 0.1,
+                far: 20.0,
+            },
+            eye: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        })
+        .mesh(Mesh::of(Arc::new(g), Rgb::new(9, 9, 9)))
+        .build()
+        .unwrap();
+    let mut r = Renderer::new();
+    r.render(
+        &scene,
+        &RenderOptions {
+            cols: 64,
+            rows: 32,
+            ..RenderOptions::default()
+        },
+    );
+    let count = |c: [f32; 3]| {
+        let c = rastty::color::Lin::from_unit(c);
+        r.framebuffer()
+            .samples()
+            .iter()
+            .filter(|s| **s == Some(c))
+            .count()
+    };
+    // 25 points, less those the square's lines or the triangle cover.
+    let white = count([1.0, 1.0, 1.0]);
+    assert!((16..=25).contains(&white), "{white} white samples");
+    assert!(count([1.0, 0.0, 0.0]) > 4 * 30, "the square's four sides");
+    assert!(
+        count([0.0, 1.0, 0.0]) > 2 * 30,
+        "the diagonals: {}",
+        count([0.0, 1.0, 0.0])
+    );
+    assert!(count([0.0, 0.2, 1.0]) > 20, "the zigzag");
+    assert!(count([0.5, 0.5, 0.5]) > 50, "the triangle");
+}

@@ -29,7 +29,11 @@
 //! MikkTSpace's (`scene/tangents.rs`); `KHR_texture_transform` moves the
 //! coordinates once, at load (`material.rs`).
 //!
-//! Not read, and said in one note: points and lines, textures read through
+//! Line and point primitives are the geometry's lines
+//! ([`Geometry::lines`], drawn one sample wide); `EXT_mesh_gpu_instancing`
+//! draws a node's mesh once an instance (`instances.rs`).
+//!
+//! Not read, and said in one note: textures read through
 //! a second texture coordinate set, cameras, and extensions other than
 //! unlit, emissive strength, punctual lights, texture transform and
 //! specular-glossiness (its diffuse colour and texture, specular colour
@@ -43,6 +47,7 @@
 //! refused with the accessor named, never read out of bounds.
 
 mod accessor;
+mod budget;
 mod buffers;
 mod instances;
 mod material;
@@ -69,6 +74,7 @@ use crate::color::Lin;
 use crate::error::{Error, Result};
 use crate::scene::anim::Posed;
 use crate::texture::Texture;
+use budget::{placed, shown};
 use buffers::{buffers, check};
 use material::{Decode, finish, light_of};
 use rig::{Placement, RigParts};
@@ -317,7 +323,7 @@ fn parse_in(
     let dropped =
         super::mesh::drop_unfinite_faces(&out.positions, &mut out.faces, &mut out.materials);
     notes.extend(super::mesh::unfinite_note(name, dropped));
-    if out.faces.is_empty() {
+    if out.faces.is_empty() && out.lines.is_empty() {
         return Err(bad(if dropped.1 > 0 {
             "no triangles to draw: every one has a vertex that is not a finite number".into()
         } else {
@@ -353,89 +359,11 @@ pub(super) fn local(node: &::gltf::Node, unrotated: &mut Vec<usize>) -> Mat4 {
     Mat4::from_cols_array_2d(&transform.matrix())
 }
 
-/// A count for a message: exact up to 2^64, a power of two beyond.
-fn shown(n: u128) -> String {
-    if n <= u128::from(u64::MAX) {
-        n.to_string()
-    } else {
-        format!("about 2^{}", 127 - n.leading_zeros())
-    }
-}
-
 /// An attribute's name as the file spells it.
 fn semantic_name(s: &::gltf::json::validation::Checked<::gltf::json::mesh::Semantic>) -> String {
     match s {
         ::gltf::json::validation::Checked::Valid(s) => s.to_string(),
         ::gltf::json::validation::Checked::Invalid => "(unknown)".into(),
-    }
-}
-
-/// How many nodes the scene places and how many triangles they draw, a
-/// node counted as often as it is placed: a node's counts are found once
-/// and reused wherever it appears (a graph of 60 nodes each holding the
-/// next twice places 2^60 nodes, and is counted in 60 steps, not walked).
-/// A node that holds itself, directly or not, is an error.
-fn placed(
-    document: &::gltf::Document,
-    scene: &::gltf::Scene,
-) -> std::result::Result<(u128, u128), String> {
-    let meshes: Vec<u128> = document
-        .meshes()
-        .map(|m| m.primitives().map(|p| triangles_of(&p)).sum())
-        .collect();
-    let nodes: Vec<::gltf::Node> = document.nodes().collect();
-    // Per node: None unvisited, Some(None) in progress, Some(Some(counts)).
-    let mut counts: Vec<Option<Option<(u128, u128)>>> = vec![None; nodes.len()];
-    let mut total = (0u128, 0u128);
-    for root in scene.nodes() {
-        // Post-order without recursion: (node, children pushed?).
-        let mut stack = vec![(root.index(), false)];
-        while let Some((i, expanded)) = stack.pop() {
-            if expanded {
-                let own = nodes[i]
-                    .mesh()
-                    .map_or(0, |m| meshes[m.index()])
-                    .saturating_mul(instances::count(&nodes[i], document));
-                let mut c = (1u128, own);
-                for child in nodes[i].children() {
-                    let (n, t) = counts[child.index()].flatten().unwrap_or_default();
-                    c = (c.0.saturating_add(n), c.1.saturating_add(t));
-                }
-                counts[i] = Some(Some(c));
-                continue;
-            }
-            match counts[i] {
-                Some(Some(_)) => continue,
-                Some(None) => return Err(format!("node {i} holds itself (a cycle)")),
-                None => {}
-            }
-            counts[i] = Some(None);
-            stack.push((i, true));
-            for child in nodes[i].children() {
-                match counts[child.index()] {
-                    Some(None) => {
-                        return Err(format!("node {} holds itself (a cycle)", child.index()));
-                    }
-                    Some(Some(_)) => {}
-                    None => stack.push((child.index(), false)),
-                }
-            }
-        }
-        let (n, t) = counts[root.index()].flatten().unwrap_or_default();
-        total = (total.0.saturating_add(n), total.1.saturating_add(t));
-    }
-    Ok(total)
-}
-
-/// The triangles a primitive draws (0 for points and lines).
-fn triangles_of(p: &::gltf::Primitive) -> u128 {
-    let n = p
-        .indices()
-        .map_or_else(|| positions_count(p), |i| i.count()) as u128;
-    match p.mode() {
-        Mode::Triangles => n / 3,
-        Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
-        _ => 0,
     }
 }
 
@@ -499,6 +427,8 @@ struct Parts<'a> {
     materials: Vec<MaterialRun>,
     /// The lights its nodes place (`KHR_lights_punctual`), in the world.
     lights: Vec<Light>,
+    /// Line and point primitives' lines (see [`Geometry::lines`]).
+    lines: Vec<([u32; 2], Option<Lin>)>,
     /// The load's byte budget, for what no buffer bounds.
     budget: u64,
 }
@@ -514,11 +444,14 @@ impl Parts<'_> {
         document: &::gltf::Document,
     ) -> std::result::Result<(), String> {
         let mode = prim.mode();
-        if matches!(
+        let lines = matches!(
             mode,
             Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
-        ) {
-            *ignored.entry("point and line primitives").or_default() += 1;
+        );
+        if lines && placed.is_some() {
+            *ignored
+                .entry("point and line primitives of moving meshes")
+                .or_default() += 1;
             return Ok(());
         }
         if prim.morph_targets().next().is_some() && placed.is_none() {
@@ -692,6 +625,29 @@ impl Parts<'_> {
         if let Some(&bad) = indices.iter().find(|&&i| i as usize >= n) {
             return Err(format!("index {bad} is out of range for {n} vertices"));
         }
+        if lines {
+            // Each line in its first end's colour: its vertex colour where
+            // the file has them, else its material's.
+            let color = |i: u32| match &self.colors {
+                Some(c) => c.get((first + i) as usize).copied(),
+                None => own.then_some(base),
+            };
+            let ends: Vec<[u32; 2]> = match mode {
+                Mode::Points => indices.iter().map(|&i| [i, i]).collect(),
+                Mode::Lines => indices.chunks_exact(2).map(|w| [w[0], w[1]]).collect(),
+                Mode::LineStrip => indices.windows(2).map(|w| [w[0], w[1]]).collect(),
+                _ => (indices.iter().copied())
+                    .zip(indices.iter().copied().cycle().skip(1))
+                    .take(if indices.len() > 1 { indices.len() } else { 0 })
+                    .map(|(a, b)| [a, b])
+                    .collect(),
+            };
+            self.lines.extend(
+                ends.into_iter()
+                    .map(|[a, b]| ([first + a, first + b], color(a))),
+            );
+            return Ok(());
+        }
         let flip = world.determinant() < 0.0;
         let faces_before = self.faces.len();
         let mut push = |a: u32, b: u32, c: u32| {
@@ -759,6 +715,7 @@ impl Parts<'_> {
         }
         let mut g = Geometry::new_raw(name, self.positions, self.faces);
         g.sides = uniform.unwrap_or_default();
+        g.lines = self.lines;
         // Runs that are all "the mesh's colour", untextured, say nothing.
         let maps = self.materials.iter().any(|m| !m.finish.maps.is_empty());
         if maps || self.materials.iter().any(|m| m.texture.is_some()) {
