@@ -456,3 +456,43 @@ fn line_and_point_primitives_are_drawn_one_sample_wide_in_their_colours() {
     assert!(count([0.0, 0.2, 1.0]) > 20, "the zigzag");
     assert!(count([0.5, 0.5, 0.5]) > 50, "the triangle");
 }
+
+/// A square textured with a 2×2 image of four colours (nearest), its
+/// proper coordinates on set `set` and zeros on the other, the texture
+/// read through `set`.
+fn textured_square(set: u32) -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&CORNERS);
+    let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let proper: Vec<f32> = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]].concat();
+    let uv = d.floats(&proper, "VEC2", 2);
+    let zeros = d.floats(&[0.0; 8], "VEC2", 2);
+    let (uv0, uv1) = if set == 0 { (uv, zeros) } else { (zeros, uv) };
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let png = common::png_rgb(
+        2,
+        2,
+        &[[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 0]],
+    );
+    let view = d.view(&png);
+    d.glb(&format!(
+        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0,"texCoord":{set}}}}}}}],
+"samplers":[{{"magFilter":9728,"minFilter":9728}}],
+"images":[{{"bufferView":{view},"mimeType":"image/png"}}],"textures":[{{"source":0,"sampler":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal},"TEXCOORD_0":{uv0},"TEXCOORD_1":{uv1}}},"indices":{idx},"material":0}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+#[test]
+fn a_texture_on_the_second_coordinate_set_is_read_through_it() {
+    let (on0, on1) = (load(&textured_square(0)), load(&textured_square(1)));
+    assert_eq!(on1.uvs, on0.uvs);
+    let (a, b) = (samples(on0), samples(on1));
+    assert_eq!(a, b);
+    // Four colours, not the one texel the zeros would read.
+    let mut seen: Vec<_> = a.iter().flatten().map(|c| c.0).collect();
+    seen.sort_unstable();
+    seen.dedup();
+    assert!(seen.len() >= 4, "{seen:?}");
+}

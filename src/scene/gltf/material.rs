@@ -170,15 +170,17 @@ fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
 impl Parts<'_> {
     /// A material's textures: its base colour's (and, masked or blended,
     /// its alpha) and its maps, each decoded once, onto `finish`; and the
-    /// `KHR_texture_transform` its coordinates are moved by. A texture on
-    /// a second coordinate set is counted in `ignored` and left out.
+    /// `KHR_texture_transform` its coordinates are moved by; and the
+    /// coordinate set they are read through (`TEXCOORD_n`): the base
+    /// colour's, or else the first map's. A texture on another set is
+    /// counted in `ignored` and left out.
     pub(super) fn textures_of(
         &mut self,
         material: &::gltf::Material<'_>,
         finish: &mut crate::scene::Finish,
         buffers: &[Buffer],
         ignored: &mut BTreeMap<&'static str, usize>,
-    ) -> std::result::Result<(Option<u32>, Option<glam::Affine2>), String> {
+    ) -> std::result::Result<(Option<u32>, Option<glam::Affine2>, u32), String> {
         // KHR_texture_transform: the coordinates moved once, here
         // (T · R · S, as the extension says), by the base colour's
         // transform, or the first other map's where the base has none.
@@ -210,12 +212,23 @@ impl Parts<'_> {
         let set = |i: &::gltf::texture::Info| {
             (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
         };
-        // Only the first coordinate set is read: a texture on another is
-        // noted and left out.
+        // One coordinate set is read, the base colour's or else the first
+        // map's: a texture on another is noted and left out.
+        let chosen = [
+            base_info.as_ref().map(set),
+            metallic_roughness.as_ref().map(set),
+            material.emissive_texture().as_ref().map(set),
+            material.normal_texture().map(|n| n.tex_coord()),
+            material.occlusion_texture().map(|o| o.tex_coord()),
+        ]
+        .into_iter()
+        .flatten()
+        .next()
+        .unwrap_or(0);
         let mut second = 0;
         let mut first_set = |set: u32| {
-            second += usize::from(set != 0);
-            set == 0
+            second += usize::from(set != chosen);
+            set == chosen
         };
         let texture = match base_info {
             Some(info) if first_set(set(&info)) => {
@@ -256,7 +269,7 @@ impl Parts<'_> {
                 .entry("textures on a second coordinate set")
                 .or_default() += second;
         }
-        Ok((texture, uv_transform))
+        Ok((texture, uv_transform, chosen))
     }
 
     /// The texture of glTF texture `t` decoded as `how` says (`None` for

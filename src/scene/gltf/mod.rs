@@ -33,8 +33,11 @@
 //! ([`Geometry::lines`], drawn one sample wide); `EXT_mesh_gpu_instancing`
 //! draws a node's mesh once an instance (`instances.rs`).
 //!
-//! Not read, and said in one note: textures read through
-//! a second texture coordinate set, cameras, and extensions other than
+//! A material's textures are read through one coordinate set, its base
+//! colour's (or first map's) `texCoord`, any `TEXCOORD_n`.
+//!
+//! Not read, and said in one note: a material's textures on another
+//! coordinate set than that one, cameras, and extensions other than
 //! unlit, emissive strength, punctual lights, texture transform and
 //! specular-glossiness (its diffuse colour and texture, specular colour
 //! and glossiness; not its specular-glossiness texture). One of
@@ -459,7 +462,8 @@ impl Parts<'_> {
         }
         let material = prim.material();
         let mut finish = finish(&material);
-        let (texture, uv_transform) = self.textures_of(&material, &mut finish, buffers, ignored)?;
+        let (texture, uv_transform, uv_set) =
+            self.textures_of(&material, &mut finish, buffers, ignored)?;
         let wants_uvs = texture.is_some() || !finish.maps.is_empty();
         let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
         let n = positions.count();
@@ -485,14 +489,15 @@ impl Parts<'_> {
             DataType::U16,
         ];
         const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
+        let uv_name = format!("TEXCOORD_{uv_set}");
         let tex_coords = read(
-            Semantic::TexCoords(0),
-            "TEXCOORD_0",
+            Semantic::TexCoords(uv_set),
+            &uv_name,
             &QUANTIZED,
             &[Dimensions::Vec2],
         )?;
         if wants_uvs && tex_coords.is_none() {
-            return Err("it has a texture but no TEXCOORD_0".into());
+            return Err(format!("it has a texture but no {uv_name}"));
         }
         let file_positions = read(
             Semantic::Positions,
