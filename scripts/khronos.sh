@@ -48,7 +48,7 @@ while IFS= read -r file; do
   b=$(said "$before" "$file")
   a=$(said "$after" "$file")
   # A variant the snapshot does not have whole is left out, counted.
-  if [[ $b == *"No such file"* && $a == *"No such file"* ]]; then
+  if [[ $b == *"No such file"* || $a == *"No such file"* ]]; then
     incomplete=$((incomplete + 1))
     continue
   fi
@@ -71,3 +71,19 @@ echo "| draws, with a note of what it does not | ${counts_b[1]} | ${counts_a[1]}
 echo "| refused | ${counts_b[2]} | ${counts_a[2]} |"
 echo
 echo "$incomplete variants are left out: the snapshot does not have all their files."
+
+# Peak memory of the largest textured samples, one frame of 120×40 cells:
+# each build as it stands, and the after build keeping textures whole.
+echo
+echo "## Memory"
+echo
+echo "Peak resident memory drawing one frame of 120×40 cells (\`/usr/bin/time -f %M\`)."
+echo
+echo "| model | before | after | after, \`--texture-size full\` |"
+echo "|---|---:|---:|---:|"
+peak() { /usr/bin/time -f %M "$@" >/dev/null 2>"$work/time" || true; echo "$(( $(tail -1 "$work/time") / 1024 )) MiB"; }
+for m in StainedGlassLamp DamagedHelmet; do
+  f=$samples/Models/$m/glTF/$m.gltf
+  [ -f "$f" ] || continue
+  echo "| $m | $(peak "$before" render "$f" --cols 120 --rows 40 --color none) | $(peak "$after" render "$f" --cols 120 --rows 40 --color none) | $(peak "$after" render "$f" --cols 120 --rows 40 --color none --texture-size full) |"
+done

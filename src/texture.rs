@@ -45,6 +45,16 @@ use crate::color::srgb;
 /// at load until they fit.
 pub const MAX_SIDE: u32 = 2048;
 
+/// A pixel of 8-bit sRGB `channels` (grey, grey and alpha, RGB, RGBA) as
+/// a linear texel: alpha ignored.
+pub fn srgb_texel(channels: usize) -> impl Fn(&[u8]) -> [f32; 3] {
+    let decode = |v: u8| f32::from(srgb::DECODE[v as usize]) / 65535.0;
+    move |p: &[u8]| match channels {
+        1 | 2 => [decode(p[0]); 3],
+        _ => [decode(p[0]), decode(p[1]), decode(p[2])],
+    }
+}
+
 /// What a coordinate outside [0, 1] reads.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Wrap {
@@ -184,7 +194,33 @@ impl Texture {
         pixels: &[u8],
         sampler: Sampler,
     ) -> Result<Texture, String> {
+        Texture::from_pixels(
+            name,
+            (width, height, channels),
+            pixels,
+            sampler,
+            srgb_texel(channels),
+            MAX_SIDE,
+        )
+    }
+
+    /// A texture from 8-bit pixels of `channels` each (`size` is width,
+    /// height and channels), row by row from the top, each pixel made a
+    /// linear texel by `texel`, its finest level at most `max_side` on a
+    /// side (at least 1): a larger image is halved as its rows are read,
+    /// so the whole image is never held as texels (12 bytes each), the
+    /// same texels as converting first and halving after. An error names
+    /// what does not fit.
+    pub fn from_pixels(
+        name: impl Into<String>,
+        (width, height, channels): (u32, u32, usize),
+        pixels: &[u8],
+        sampler: Sampler,
+        texel: impl Fn(&[u8]) -> [f32; 3],
+        max_side: u32,
+    ) -> Result<Texture, String> {
         let name = name.into();
+        let max_side = max_side.max(1);
         if width == 0 || height == 0 {
             return Err(format!("{name}: the image is empty ({width}×{height})"));
         }
@@ -198,24 +234,16 @@ impl Texture {
                 pixels.len()
             ));
         }
-        let decode = |v: u8| f32::from(srgb::DECODE[v as usize]) / 65535.0;
-        let linear = |p: &[u8]| match channels {
-            1 | 2 => [decode(p[0]); 3],
-            _ => [decode(p[0]), decode(p[1]), decode(p[2])],
-        };
         let row = |y: usize, out: &mut Vec<[f32; 3]>| {
             let w = width as usize * channels;
             out.clear();
             out.extend(
                 pixels[y * w..(y + 1) * w]
                     .chunks_exact(channels)
-                    .map(linear),
+                    .map(&texel),
             );
         };
-        let first = if width > MAX_SIDE || height > MAX_SIDE {
-            // Halved as the rows are made linear: the whole image is never
-            // held in f32 (12 bytes a texel), the same texels as converting
-            // first and halving after.
+        let first = if width > max_side || height > max_side {
             Level::halve(width as usize, height as usize, row)
         } else {
             let mut texels = Vec::with_capacity(n);
@@ -230,7 +258,7 @@ impl Texture {
                 texels,
             }
         };
-        let mut texture = Texture::from_level(name, first, sampler);
+        let mut texture = Texture::from_level(name, first, sampler, max_side);
         texture.original = (width, height);
         Ok(texture)
     }
@@ -256,12 +284,13 @@ impl Texture {
                 texels,
             },
             sampler,
+            MAX_SIDE,
         )
     }
 
-    fn from_level(name: String, mut first: Level, sampler: Sampler) -> Texture {
+    fn from_level(name: String, mut first: Level, sampler: Sampler, max_side: u32) -> Texture {
         let original = (first.width, first.height);
-        while first.width > MAX_SIDE || first.height > MAX_SIDE {
+        while first.width > max_side || first.height > max_side {
             first = first.halved();
         }
         let mut levels = vec![first];
@@ -572,6 +601,41 @@ mod tests {
                     .iter()
                     .zip(&b.texels)
                     .all(|(x, y)| x.map(f32::to_bits) == y.map(f32::to_bits))
+            );
+        }
+    }
+
+    #[test]
+    fn an_image_kept_to_a_smaller_side_is_the_full_texture_from_that_level_on() {
+        // 37×23 bytes of RGB, kept to 8 texels a side: its levels are the
+        // full texture's from the first that fits (9×5 halved once more is
+        // not; 37→18→9→4: level 3, 4×2), texel for texel, to 1×1.
+        let (w, h) = (37u32, 23u32);
+        let pixels: Vec<u8> = (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect();
+        let make = |side| {
+            Texture::from_pixels(
+                "t",
+                (w, h, 3),
+                &pixels,
+                Sampler::default(),
+                srgb_texel(3),
+                side,
+            )
+            .unwrap()
+        };
+        let (full, kept) = (make(MAX_SIDE), make(8));
+        assert_eq!(kept.size(), (4, 2));
+        assert_eq!(kept.original_size(), (w, h));
+        assert_eq!(kept.levels(), full.levels() - 3);
+        for level in 0..kept.levels() {
+            let l = &kept.levels[level];
+            let f = &full.levels[level + 3];
+            assert_eq!((l.width, l.height), (f.width, f.height));
+            assert!(
+                l.texels
+                    .iter()
+                    .zip(&f.texels)
+                    .all(|(a, b)| a.map(f32::to_bits) == b.map(f32::to_bits))
             );
         }
     }

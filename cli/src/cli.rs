@@ -275,6 +275,33 @@ pub struct BudgetArgs {
     /// anti-aliasing passes), refused before any work [default: 64M]
     #[arg(long, value_name = "N", value_parser = parse_count)]
     pub max_samples: Option<u64>,
+    /// The largest side of a texture kept: auto, what the frame can show
+    /// (render: its samples or pixels, at --zoom, twice over; spin, which
+    /// zooms up to 20×: 2048), full (2048), or a number of texels
+    /// [default: auto]
+    #[arg(long, value_name = "auto|full|N", value_parser = parse_texture_size)]
+    pub texture_size: Option<TextureSize>,
+}
+
+/// `--texture-size`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextureSize {
+    Auto,
+    Full,
+    Side(u32),
+}
+
+fn parse_texture_size(s: &str) -> Result<TextureSize, String> {
+    match s {
+        "auto" => Ok(TextureSize::Auto),
+        "full" => Ok(TextureSize::Full),
+        n => n
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| n >= 1)
+            .map(TextureSize::Side)
+            .ok_or_else(|| format!("{s:?} is not auto, full or a side in texels (1 or more)")),
+    }
 }
 
 /// How a frame is laid out and drawn.

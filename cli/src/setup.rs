@@ -14,8 +14,14 @@ use rastty::scene::{Projection, Scene, View};
 use rastty::{GlyphMode, Pipeline, RenderOptions, color::ColorDepth};
 
 /// The scene to draw; what the loaders read but cannot draw is said on
-/// stderr.
-pub fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Result<Scene> {
+/// stderr. `frame` is the frame a still is drawn at (its samples, and how
+/// many times the view is zoomed in), which bounds the textures kept
+/// (`--texture-size auto`); `None` for `spin`, which zooms up to 20×.
+pub fn scene(
+    input: &cli::InputArgs,
+    budgets: &cli::BudgetArgs,
+    frame: Option<((u32, u32), f32)>,
+) -> rastty::Result<Scene> {
     let mut options = rastty::scene::LoadOptions {
         up: input.up,
         crease: input.crease,
@@ -31,6 +37,11 @@ pub fn scene(input: &cli::InputArgs, budgets: &cli::BudgetArgs) -> rastty::Resul
     if let Some(max) = budgets.max_triangles {
         options.max_triangles = max;
     }
+    options.max_texture_side = match (budgets.texture_size, frame) {
+        (Some(cli::TextureSize::Side(n)), _) => n.min(rastty::texture::MAX_SIDE),
+        (Some(cli::TextureSize::Full), _) | (_, None) => rastty::texture::MAX_SIDE,
+        (_, Some((samples, zoom))) => rastty::scene::texture_side_for(samples, zoom),
+    };
     let mut scene = match &input.scene {
         Some(p) => Scene::open_within(p, &options)?,
         None => rastty::scene::default_scene(),

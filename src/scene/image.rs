@@ -26,32 +26,49 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 pub const MAX_DECODE_BYTES: u64 = 512 << 20;
 
 /// Reads and decodes the image `file` at `path` (opened as the model
-/// itself is), within `max_texels`; the error says what is wrong, naming
-/// the file.
+/// itself is), within `max_texels`, its finest level at most `max_side` on
+/// a side; the error says what is wrong, naming the file.
 pub fn load(
     mut file: file::Opened<'_>,
     path: &Path,
     sampler: Sampler,
-    max_texels: u64,
+    (max_texels, max_side): (u64, u32),
 ) -> Result<Texture, String> {
     use std::io::Read;
     let name = path.display().to_string();
     let mut bytes = Vec::with_capacity(usize::try_from(file.size()).unwrap_or(0));
     file.read_to_end(&mut bytes)
         .map_err(|e| format!("{name}: {e}"))?;
-    decode(&bytes, &name, sampler, max_texels).map_err(|e| format!("{name}: {e}"))
+    decode(&bytes, &name, sampler, (max_texels, max_side)).map_err(|e| format!("{name}: {e}"))
+}
+
+/// An image's 8-bit pixels as decoded (grey, grey and alpha, RGB or RGBA:
+/// no copy for an 8-bit image), with its size and channels.
+fn pixels(image: &image::DynamicImage) -> (std::borrow::Cow<'_, [u8]>, (u32, u32, usize)) {
+    use image::DynamicImage as D;
+    let (w, h) = (image.width(), image.height());
+    match image {
+        D::ImageLuma8(i) => (i.as_raw().into(), (w, h, 1)),
+        D::ImageLumaA8(i) => (i.as_raw().into(), (w, h, 2)),
+        D::ImageRgb8(i) => (i.as_raw().into(), (w, h, 3)),
+        D::ImageRgba8(i) => (i.as_raw().into(), (w, h, 4)),
+        other => (other.to_rgba8().into_raw().into(), (w, h, 4)),
+    }
 }
 
 /// Decodes PNG or JPEG bytes into a texture named `name`, refusing (from
-/// the header, before decoding) an image of more than `max_texels` pixels.
+/// the header, before decoding) an image of more than `max_texels` pixels,
+/// its finest level at most `max_side` on a side.
 pub fn decode(
     bytes: &[u8],
     name: &str,
     sampler: Sampler,
-    max_texels: u64,
+    (max_texels, max_side): (u64, u32),
 ) -> Result<Texture, String> {
-    let rgb = open(bytes, max_texels)?.into_rgb8();
-    Texture::from_srgb8(name, rgb.width(), rgb.height(), 3, rgb.as_raw(), sampler)
+    let image = open(bytes, max_texels)?;
+    let (raw, size) = pixels(&image);
+    let texel = crate::texture::srgb_texel(size.2);
+    Texture::from_pixels(name, size, &raw, sampler, texel, max_side)
 }
 
 /// Decodes PNG or JPEG bytes whose numbers are not colours (a normal,
@@ -63,15 +80,16 @@ pub fn decode_linear(
     bytes: &[u8],
     name: &str,
     sampler: Sampler,
-    max_texels: u64,
+    (max_texels, max_side): (u64, u32),
 ) -> Result<Texture, String> {
-    let rgb = open(bytes, max_texels)?.into_rgb8();
-    let texels = rgb
-        .pixels()
-        .map(|p| p.0.map(|v| f32::from(v) / 255.0))
-        .collect();
-    let (w, h) = rgb.dimensions();
-    Ok(Texture::from_linear(name, w, h, texels, sampler))
+    let image = open(bytes, max_texels)?;
+    let (raw, size) = pixels(&image);
+    let value = |v: u8| f32::from(v) / 255.0;
+    let texel = |p: &[u8]| match p.len() {
+        1 | 2 => [value(p[0]); 3],
+        _ => [value(p[0]), value(p[1]), value(p[2])],
+    };
+    Texture::from_pixels(name, size, &raw, sampler, texel, max_side)
 }
 
 /// The alpha channel of a PNG image as a texture (linear, as alpha is, in
@@ -82,22 +100,23 @@ pub fn decode_alpha(
     bytes: &[u8],
     name: &str,
     sampler: Sampler,
-    max_texels: u64,
+    (max_texels, max_side): (u64, u32),
 ) -> Result<Option<Texture>, String> {
     let image = open(bytes, max_texels)?;
     if !image.color().has_alpha() {
         return Ok(None);
     }
-    let a = image.into_rgba8();
-    let texels = a.pixels().map(|p| [f32::from(p.0[3]) / 255.0; 3]).collect();
-    let (w, h) = a.dimensions();
-    Ok(Some(Texture::from_linear(
+    let (raw, size) = pixels(&image);
+    let alpha = |p: &[u8]| [f32::from(p[p.len() - 1]) / 255.0; 3];
+    Texture::from_pixels(
         format!("{name} (alpha)"),
-        w,
-        h,
-        texels,
+        size,
+        &raw,
         sampler,
-    )))
+        alpha,
+        max_side,
+    )
+    .map(Some)
 }
 
 /// A PNG or JPEG image decoded within the side, allocation and texel limits.

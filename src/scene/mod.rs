@@ -62,6 +62,7 @@
 
 pub mod anim;
 pub mod environment;
+mod load_options;
 mod builder;
 mod camera;
 pub(crate) mod file;
@@ -105,6 +106,7 @@ pub use light::{Light, LightKind, MAX_LIGHTS};
 pub use load::load_geometry;
 use load::*;
 pub(crate) use load::{Format, Kind};
+pub use load_options::{DEFAULT_MAX_TEXELS, DEFAULT_MAX_TRIANGLES, LoadOptions, texture_side_for};
 pub use mesh::{Cull, DEFAULT_CREASE, Geometry, MaterialRun, Mesh};
 pub use shapes::Shape;
 
@@ -163,52 +165,6 @@ impl TriangleColor {
         match self {
             TriangleColor::Flat(c) => [c; 3],
             TriangleColor::PerVertex(c) => c,
-        }
-    }
-}
-
-/// How model and scene files are read.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LoadOptions {
-    /// The largest file read, in bytes (a larger one is refused before it
-    /// is opened).
-    pub max_bytes: u64,
-    /// How MTL `Kd` numbers are read: linear light by default, as
-    /// exporters write them.
-    pub mtl_colors: ColorSpace,
-    /// The crease angle of computed normals, in degrees: faces meeting at
-    /// a sharper angle keep their own normals along the edge.
-    pub crease: f32,
-    /// For a model shown alone: which of its axes points up (`None`: the
-    /// format's convention, y for OBJ, z for STL).
-    pub up: Option<transform::Axis>,
-    /// The most texels decoded, across all of a scene's images
-    /// ([`DEFAULT_MAX_TEXELS`]); each costs its linear texel, its mipmaps'
-    /// share and, while it is decoded, its 8-bit pixel. An image's size is
-    /// read from its header and refused before it is decoded.
-    pub max_texels: u64,
-    /// The most triangles a scene may draw once every glTF node and every
-    /// scene mesh is counted as often as it is placed
-    /// ([`DEFAULT_MAX_TRIANGLES`]), counted before anything is expanded.
-    pub max_triangles: u64,
-}
-
-/// The default texel budget: 64 Mi texels (an 8192² image, or four of
-/// 4096²), about 1 GiB of linear texels with their mipmaps.
-pub const DEFAULT_MAX_TEXELS: u64 = 1 << 26;
-/// The default triangle budget: 256 Mi triangles placed (the largest
-/// shared model has 41 thousand; a frame of that many takes seconds).
-pub const DEFAULT_MAX_TRIANGLES: u64 = 1 << 28;
-
-impl Default for LoadOptions {
-    fn default() -> Self {
-        LoadOptions {
-            max_bytes: file::DEFAULT_MAX_BYTES,
-            mtl_colors: ColorSpace::Linear,
-            crease: mesh::DEFAULT_CREASE,
-            up: None,
-            max_texels: DEFAULT_MAX_TEXELS,
-            max_triangles: DEFAULT_MAX_TRIANGLES,
         }
     }
 }

@@ -496,3 +496,53 @@ fn a_texture_on_the_second_coordinate_set_is_read_through_it() {
     seen.dedup();
     assert!(seen.len() >= 4, "{seen:?}");
 }
+
+#[test]
+fn textures_kept_to_the_side_a_frame_can_show_draw_the_same_picture() {
+    assert_eq!(rastty::scene::texture_side_for((120, 80), 1.0), 256);
+    assert_eq!(rastty::scene::texture_side_for((960, 540), 1.0), 2048);
+    assert_eq!(rastty::scene::texture_side_for((200, 120), 3.0), 2048);
+    assert_eq!(rastty::scene::texture_side_for((300, 120), 1.0), 1024);
+    // A 512² texture of stripes and noise on the square, trilinear, drawn
+    // at 40×20 cells: kept to 256 it is the same picture, sample for
+    // sample.
+    let texels: Vec<[u8; 3]> = (0..512 * 512u32)
+        .map(|i| {
+            let (x, y) = (i % 512, i / 512);
+            [
+                ((x / 8) % 2 * 255) as u8,
+                (y * 7 % 256) as u8,
+                ((x ^ y) % 256) as u8,
+            ]
+        })
+        .collect();
+    let png = common::png_rgb(512, 512, &texels);
+    let mut d = Doc::default();
+    let pos = d.vec3(&CORNERS);
+    let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let uv = d.floats(
+        &[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]].concat(),
+        "VEC2",
+        2,
+    );
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let view = d.view(&png);
+    let glb = d.glb(&format!(
+        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}],
+"images":[{{"bufferView":{view},"mimeType":"image/png"}}],"textures":[{{"source":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal},"TEXCOORD_0":{uv}}},"indices":{idx},"material":0}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ));
+    let with = |side| {
+        let options = LoadOptions {
+            max_texture_side: side,
+            ..LoadOptions::default()
+        };
+        gltf::parse(&glb, None, "t.glb", &options).unwrap().geometry
+    };
+    let (full, kept) = (with(rastty::texture::MAX_SIDE), with(256));
+    assert_eq!(full.textures[0].size(), (512, 512));
+    assert_eq!(kept.textures[0].size(), (256, 256));
+    assert_eq!(kept.textures[0].original_size(), (512, 512));
+    assert_eq!(samples(kept), samples(full));
+}

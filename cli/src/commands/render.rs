@@ -55,7 +55,7 @@ fn render_pixels(args: &RenderArgs, format: Option<Format>, g: Graphics) -> rast
     opts.cell_pixels = Some(g.cell);
     opts.check()?;
     let mut output = args.output.as_deref().map(OutFile::create).transpose()?;
-    let scene = scene(&args.input, &args.budgets)?;
+    let scene = scene(&args.input, &args.budgets, still_frame(&opts, &args.view))?;
     check_outputs(&scene, &[output.as_ref()])?;
     let scene = posed_scene(args, scene)?;
     let mut renderer = Renderer::new();
@@ -148,7 +148,7 @@ pub fn render(args: &RenderArgs) -> rastty::Result<()> {
     opts.check()?;
     let mut output = args.output.as_deref().map(OutFile::create).transpose()?;
     let mut record = args.record.as_deref().map(OutFile::create).transpose()?;
-    let scene = scene(&args.input, &args.budgets)?;
+    let scene = scene(&args.input, &args.budgets, still_frame(&opts, &args.view))?;
     check_outputs(&scene, &[output.as_ref(), record.as_ref()])?;
     let scene = posed_scene(args, scene)?;
     let mut renderer = Renderer::new();
@@ -204,4 +204,14 @@ pub fn render(args: &RenderArgs) -> rastty::Result<()> {
         say_lines(&lines);
     }
     Ok(())
+}
+
+/// The frame a still is drawn at, for the textures it can show: its
+/// samples (pixels in the pixel mode) and how far `--zoom` brings it in.
+fn still_frame(
+    opts: &rastty::RenderOptions,
+    view: &crate::cli::ViewArgs,
+) -> Option<((u32, u32), f32)> {
+    let grid = opts.grid();
+    Some(((grid.width, grid.height), view.zoom.unwrap_or(1.0)))
 }

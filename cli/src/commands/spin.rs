@@ -20,7 +20,7 @@ pub fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let opts = options(&args.view, &args.knobs, &args.budgets, 0);
     opts.check()?;
     let record = args.record.as_deref().map(OutFile::create).transpose()?;
-    let scene = scene(&args.input, &args.budgets)?;
+    let scene = scene(&args.input, &args.budgets, None)?;
     check_outputs(&scene, &[record.as_ref()])?;
     let (scene, view) = with_view(scene, &args.view)?;
     let spin = Spin {

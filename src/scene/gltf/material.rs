@@ -354,7 +354,10 @@ impl Parts<'_> {
             (Some(_), Some(_)) => return Err(bad("it has both a uri and a bufferView".into())),
             (None, None) => return Err(bad("it has neither a uri nor a bufferView".into())),
         };
-        let (sampler, left) = (sampler(&t.sampler()), self.images.texels_left);
+        let (sampler, left) = (
+            sampler(&t.sampler()),
+            (self.images.texels_left, self.images.max_side),
+        );
         let texture = match how {
             Decode::Alpha => {
                 crate::scene::image::decode_alpha(bytes, &what, sampler, left).map_err(bad)?

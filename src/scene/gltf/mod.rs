@@ -202,6 +202,7 @@ fn parse_in(
             owner: name,
             files: Some(files),
             texels_left: options.max_texels,
+            max_side: options.max_texture_side,
             root: Some(document.as_json()),
             notes: Vec::new(),
             decoded: FxHashMap::default(),
@@ -393,6 +394,8 @@ struct Images<'a> {
     files: Option<&'a Files>,
     /// What is left of the texel budget.
     texels_left: u64,
+    /// The largest side of a texture's finest level.
+    max_side: u32,
     /// The document, for what the crate's `Image::source` would panic on.
     root: Option<&'a ::gltf::json::Root>,
     /// Notes on the files read.

@@ -167,6 +167,8 @@ struct Reader<'a> {
     /// What is left of the texel budget.
     #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     texels_left: u64,
+    /// The largest side of a texture's finest level.
+    max_texture_side: u32,
     /// Notes on the files named (absolute paths, paths out of the folder).
     reference_notes: Vec<String>,
     /// The names `usemtl` gave that no library read defines, and the
@@ -258,6 +260,7 @@ impl<'a> Reader<'a> {
             textures: Vec::new(),
             texture_ids: FxHashMap::default(),
             texels_left: options.max_texels,
+            max_texture_side: options.max_texture_side,
             reference_notes: Vec::new(),
             unknown_materials: FxHashSet::default(),
             first_unknown: None,
@@ -513,8 +516,9 @@ impl<'a> Reader<'a> {
                 return Ok(Some(id));
             }
             let key = opened.id().clone();
-            let texture = super::image::load(opened, &map.path, map.sampler, self.texels_left)
-                .map_err(at_map)?;
+            let budget = (self.texels_left, self.max_texture_side);
+            let texture =
+                super::image::load(opened, &map.path, map.sampler, budget).map_err(at_map)?;
             let (w, h) = texture.original_size();
             self.texels_left -= u64::from(w) * u64::from(h);
             let id = self.textures.len() as u32;
