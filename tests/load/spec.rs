@@ -546,3 +546,45 @@ fn textures_kept_to_the_side_a_frame_can_show_draw_the_same_picture() {
     assert_eq!(kept.textures[0].original_size(), (512, 512));
     assert_eq!(samples(kept), samples(full));
 }
+
+#[test]
+fn a_transmissive_material_is_drawn_see_through_with_a_note_that_refraction_is_not() {
+    for (material, mode, factor) in [
+        (
+            r#"{"extensions":{"KHR_materials_transmission":{"transmissionFactor":1}}}"#,
+            "blend",
+            0.25,
+        ),
+        (
+            r#"{"alphaMode":"BLEND","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.8]},"extensions":{"KHR_materials_transmission":{"transmissionFactor":0.5}}}"#,
+            "blend",
+            0.8 * 0.625,
+        ),
+        (
+            r#"{"extensions":{"KHR_materials_transmission":{"transmissionFactor":0}}}"#,
+            "opaque",
+            1.0,
+        ),
+    ] {
+        let mut d = Doc::default();
+        let pos = d.vec3(&CORNERS);
+        let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+        let glb = d.glb(&format!(
+            r#""extensionsUsed":["KHR_materials_transmission"],"materials":[{material}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}},"indices":{idx},"material":0}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+        ));
+        let loaded = gltf::parse(&glb, None, "t.glb", &LoadOptions::default()).unwrap();
+        assert_eq!(
+            loaded.notes,
+            ["t.glb: not drawn: 1 transmissive primitives' refraction (drawn see-through)"]
+        );
+        let alpha = loaded.geometry.materials[0].finish.alpha;
+        let got = match alpha.mode {
+            rastty::scene::AlphaMode::Blend => "blend",
+            rastty::scene::AlphaMode::Opaque => "opaque",
+            rastty::scene::AlphaMode::Mask { .. } => "mask",
+        };
+        assert_eq!((got, alpha.factor), (mode, factor), "{material}");
+    }
+}

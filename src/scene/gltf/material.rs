@@ -148,21 +148,37 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
     }
 }
 
+/// How much of its colour a fully transmissive material keeps, drawn as
+/// see-through: glass tints what is behind it (refraction is not drawn),
+/// and a surface of no alpha would not be seen at all.
+pub(super) const GLASS_ALPHA: f32 = 0.25;
+
 /// A material's `alphaMode`, `alphaCutoff` and base colour alpha (JSON has
 /// no NaN; a factor outside [0, 1] is held to it). The texture's alpha is
-/// the primitive's to add, once the image is read.
+/// the primitive's to add, once the image is read. A transmissive material
+/// (`KHR_materials_transmission`) not masked is blended, its alpha times
+/// `1 − (1 − GLASS_ALPHA)·transmission`.
 fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
     use crate::scene::AlphaMode;
+    let transmission = (material.transmission())
+        .map_or(0.0, |t| t.transmission_factor())
+        .clamp(0.0, 1.0);
     let mode = match material.alpha_mode() {
+        ::gltf::material::AlphaMode::Opaque if transmission > 0.0 => AlphaMode::Blend,
         ::gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
         ::gltf::material::AlphaMode::Mask => AlphaMode::Mask {
             cutoff: material.alpha_cutoff().unwrap_or(0.5).max(0.0),
         },
         ::gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
+    let factor = base_color(material).0[3].clamp(0.0, 1.0);
+    let seen = match mode {
+        AlphaMode::Blend => 1.0 - (1.0 - GLASS_ALPHA) * transmission,
+        _ => 1.0,
+    };
     crate::scene::Alpha {
         mode,
-        factor: base_color(material).0[3].clamp(0.0, 1.0),
+        factor: factor * seen,
         texture: None,
     }
 }

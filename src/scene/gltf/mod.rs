@@ -464,6 +464,11 @@ impl Parts<'_> {
             *ignored.entry("morph targets").or_default() += 1;
         }
         let material = prim.material();
+        if material.transmission().is_some() {
+            *ignored
+                .entry("transmissive primitives' refraction (drawn see-through)")
+                .or_default() += 1;
+        }
         let mut finish = finish(&material);
         let (texture, uv_transform, uv_set) =
             self.textures_of(&material, &mut finish, buffers, ignored)?;
@@ -772,4 +777,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_mesh_quantization",
     instances::EXTENSION,
+    "KHR_materials_transmission",
 ];
