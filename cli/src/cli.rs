@@ -190,9 +190,10 @@ pub struct InputArgs {
     /// exporters write them) or sRGB
     #[arg(long, value_parser = named::<ColorSpace>(), default_value = ColorSpace::Linear.name())]
     pub mtl_colors: ColorSpace,
-    /// The clip a model that moves plays, by name or number (from 0)
-    /// [default: its first, or a scene file's own]
-    #[arg(long, value_name = "NAME|N")]
+    /// The clip a model that moves plays, by name or number (from 0), or
+    /// all: every clip at once, looping at the longest [default: its
+    /// first, or a scene file's own]
+    #[arg(long, value_name = "NAME|N|all")]
     pub clip: Option<String>,
     /// What metals reflect: a neutral studio, nothing, or an
     /// equirectangular Radiance .hdr image [default: studio]

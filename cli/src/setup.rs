@@ -64,7 +64,10 @@ pub fn scene(
 
 /// The clip `--clip` names (a number from 0, or a name), the first by
 /// default; `None` when no model moves.
-pub fn clip(scene: &Scene, named: Option<&str>) -> rastty::Result<Option<usize>> {
+pub fn clip(scene: &mut Scene, named: Option<&str>) -> rastty::Result<Option<usize>> {
+    if named == Some("all") && !scene.clips().is_empty() {
+        return Ok(scene.add_all_clips());
+    }
     let clips = scene.clips();
     if clips.is_empty() {
         return match named {

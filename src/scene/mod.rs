@@ -343,6 +343,23 @@ impl Scene {
             .map_or(&[], |r| &r.clips[..])
     }
 
+    /// Adds to each moving model a clip that plays all its clips at once
+    /// ([`anim::Rig::add_all_clips`]); returns its index in the first's
+    /// clips ([`Scene::clips`]), `None` where no model moves.
+    pub fn add_all_clips(&mut self) -> Option<usize> {
+        let mut first = None;
+        for mesh in &mut self.meshes {
+            if mesh.rig.as_ref().is_some_and(|r| !r.clips.is_empty()) {
+                let g = mesh.geometry_mut();
+                if let Some(rig) = g.rig.as_mut() {
+                    let i = Arc::make_mut(rig).add_all_clips();
+                    first = first.or(Some(i));
+                }
+            }
+        }
+        first
+    }
+
     /// Draws every moving model at `time` seconds into its clip `clip`
     /// (one without that clip at rest).
     pub fn set_pose(&mut self, clip: usize, time: f64) {

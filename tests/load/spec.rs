@@ -588,3 +588,46 @@ fn a_transmissive_material_is_drawn_see_through_with_a_note_that_refraction_is_n
         assert_eq!((got, alpha.factor), (mode, factor), "{material}");
     }
 }
+
+#[test]
+fn all_clips_play_at_once_each_moving_its_own_node() {
+    // Two triangles, each its node's; clip 0 moves node 0 along x, clip 1
+    // node 1 along y, over a second (the second clip half as long).
+    let mut d = Doc::default();
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let idx = d.indices(&[[0, 1, 2]]);
+    let times = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let short = d.floats(&[0.0, 0.5], "SCALAR", 1);
+    let along_x = d.vec3(&[[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]]);
+    let along_y = d.vec3(&[[0.0, 0.0, 0.0], [0.0, 4.0, 0.0]]);
+    let glb = d.glb(&format!(
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos}}},"indices":{idx}}}]}}],
+"nodes":[{{"mesh":0}},{{"mesh":0,"translation":[0,0,10]}}],"scenes":[{{"nodes":[0,1]}}],"scene":0,
+"animations":[
+ {{"channels":[{{"sampler":0,"target":{{"node":0,"path":"translation"}}}}],"samplers":[{{"input":{times},"output":{along_x}}}]}},
+ {{"channels":[{{"sampler":0,"target":{{"node":1,"path":"translation"}}}}],"samplers":[{{"input":{short},"output":{along_y}}}]}}]"#
+    ));
+    let g = load(&glb);
+    let mut rig = (**g.rig.as_ref().unwrap()).clone();
+    assert_eq!(rig.clips.len(), 2);
+    let all = rig.add_all_clips();
+    assert_eq!(
+        (all, rig.clips[all].name.as_str(), rig.clips[all].length),
+        (2, "all", 1.0)
+    );
+    let pose = |clip, time| {
+        let (mut ps, mut ns) = (g.positions.clone(), g.normals.clone());
+        let pose = rastty::scene::anim::Pose { clip, time };
+        rig.pose_into(Some(pose), &mut Default::default(), &mut ps, &mut ns);
+        // Each triangle's first corner.
+        [ps[0], ps[3]]
+    };
+    // The walk places node 1 first. At a quarter of a second: node 0 a
+    // quarter of the way along x, node 1 half of the way along y (its clip
+    // is half as long; the clip's translation replaces its own).
+    let (x, y) = (Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0));
+    assert_eq!(pose(all, 0.25), [y, x]);
+    // Each clip alone moves its own node only.
+    assert_eq!(pose(0, 0.25), [Vec3::new(0.0, 0.0, 10.0), x]);
+    assert_eq!(pose(1, 0.25), [y, Vec3::ZERO]);
+}

@@ -24,7 +24,7 @@ fn posed_scene(
     let mut s = scene;
     // A scene file's own poses stand unless a clip or time is asked.
     if (args.input.clip.is_some() || args.time.is_some())
-        && let Some(c) = clip(&s, args.input.clip.as_deref())?
+        && let Some(c) = clip(&mut s, args.input.clip.as_deref())?
     {
         s.set_pose(c, args.time.unwrap_or(0.0));
     }

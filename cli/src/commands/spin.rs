@@ -22,7 +22,7 @@ pub fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
     let record = args.record.as_deref().map(OutFile::create).transpose()?;
     let scene = scene(&args.input, &args.budgets, None)?;
     check_outputs(&scene, &[record.as_ref()])?;
-    let (scene, view) = with_view(scene, &args.view)?;
+    let (mut scene, view) = with_view(scene, &args.view)?;
     let spin = Spin {
         axis: args.axis,
         step: args
@@ -30,13 +30,13 @@ pub fn spin(args: &SpinArgs) -> rastty::Result<ExitCode> {
             .map_or(args.step, |per_second| per_second / args.fps as f32),
         view,
         play: match &args.input.clip {
-            Some(named) => clip(&scene, Some(named))?,
+            Some(named) => clip(&mut scene, Some(named))?,
             // The scene's own clip (a scene file's), else the first.
             None => scene
                 .meshes
                 .iter()
                 .find_map(|m| m.pose.map(|p| p.clip))
-                .or(clip(&scene, None)?),
+                .or(clip(&mut scene, None)?),
         }
         .map(|clip| animate::Playback {
             clip,

@@ -225,6 +225,30 @@ pub struct Posed {
 }
 
 impl Rig {
+    /// Adds a clip that plays every clip at once (their channels together,
+    /// looping at the longest; where two move the same node's property the
+    /// later clip's wins), named `all`, and returns its index: the one clip
+    /// where there is only one.
+    pub fn add_all_clips(&mut self) -> usize {
+        if self.clips.len() < 2 {
+            return 0;
+        }
+        let all = Clip {
+            name: "all".into(),
+            channels: self
+                .clips
+                .iter()
+                .flat_map(|c| c.channels.iter().cloned())
+                .collect(),
+            length: self.clips.iter().map(|c| c.length).fold(0.0, f64::max),
+            moves: (0..self.parts.len())
+                .map(|k| self.clips.iter().any(|c| c.moves.get(k).is_none_or(|&m| m)))
+                .collect(),
+        };
+        self.clips.push(all);
+        self.clips.len() - 1
+    }
+
     /// Whether clip `clip` moves any vertex (as [`Rig::settle`] found).
     pub fn moves(&self, clip: usize) -> bool {
         self.clips
