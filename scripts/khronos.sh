@@ -10,6 +10,7 @@
 # repository used a 2023 snapshot, DRx3D/glTF-Sample-Assets-OLD, its files
 # written out of git); BEFORE and AFTER: two `rastty` binaries.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 samples=$1 before=$2 after=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -71,6 +72,20 @@ echo "| draws, with a note of what it does not | ${counts_b[1]} | ${counts_a[1]}
 echo "| refused | ${counts_b[2]} | ${counts_a[2]} |"
 echo
 echo "$incomplete variants are left out: the snapshot does not have all their files."
+
+# The pictures scripts/khronos-pictures.sh made, where there are any.
+if compgen -G "docs/khronos/*.png" >/dev/null; then
+  echo
+  echo "## Pictures"
+  echo
+  echo "Samples this work changed, at 100×32 cells: the build before, the build"
+  echo "after, and the sample's own reference screenshot (\`scripts/khronos-pictures.sh\`)."
+  for png in docs/khronos/*.png; do
+    name=$(basename "$png" .png)
+    echo
+    echo "![$name: before, after, reference](khronos/$name.png)"
+  done
+fi
 
 # Peak memory of the largest textured samples, one frame of 120×40 cells:
 # each build as it stands, and the after build keeping textures whole.

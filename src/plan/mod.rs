@@ -468,7 +468,7 @@ impl Plan {
             (m.materials.iter())
                 .any(|r| !r.finish.unlit && r.finish.specular.is_some_and(|s| s.metallic > 0.0))
         });
-        let environment = if scene.environment.maps().is_none() {
+        let environment = if !scene.environment.is_some() {
             Decision::skip("no environment (`--environment none`)")
         } else if !specular.run {
             Decision::skip("no highlights are drawn")

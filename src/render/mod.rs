@@ -451,10 +451,13 @@ impl Renderer {
                 .background
                 .map_or(crate::color::Lin::BLACK, crate::color::Lin::from_srgb),
             edge_bias: wire::EdgeBias::of(&cam.projection),
-            environment: scene
-                .environment
-                .maps()
-                .filter(|_| p[Effect::Environment].run),
+            // Prefiltered (the studio, once a process) only where a metal
+            // reflects it.
+            environment: if p[Effect::Environment].run {
+                scene.environment.maps()
+            } else {
+                None
+            },
         };
 
         self.pose(scene, p);

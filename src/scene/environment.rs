@@ -54,7 +54,13 @@ impl PartialEq for Environment {
 }
 
 impl Environment {
-    /// Its prefiltered maps (`None` for no environment).
+    /// Whether there is one (without making the studio's maps).
+    pub fn is_some(&self) -> bool {
+        !matches!(self, Environment::None)
+    }
+
+    /// Its prefiltered maps (`None` for no environment): the studio's are
+    /// made the first time they are asked for.
     pub fn maps(&self) -> Option<&EnvMap> {
         match self {
             Environment::None => None,
