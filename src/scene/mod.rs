@@ -128,7 +128,7 @@ pub struct Scene {
     pub meshes: Vec<Mesh>,
     /// Directional lights (none: colours are drawn unlit).
     pub lights: Vec<Light>,
-    /// What metals reflect ([`crate::environment`]): the neutral studio
+    /// What metals reflect ([`environment`]): the neutral studio
     /// unless set.
     pub environment: crate::scene::environment::Environment,
     /// What loading found but did not draw (non-finite vertices, line
