@@ -218,112 +218,30 @@ pub fn filter_error(filter: FilterMode) -> (f64, f64) {
     (max, sum / n.max(1) as f64)
 }
 
-/// A white metal sphere (the built-in one, roughness 0.5) seen through a
-/// parallel view and lit from the upper left: every drawn sample's colour
-/// (its highlight alone: a metal has no diffuse light) against the same
-/// lobe evaluated in f64 at the true sphere's normal behind it. Largest and
-/// mean error, 0–255 in linear light, over samples well inside the disc.
-pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
-    use rastty::scene::{Finish, Light, MaterialRun, Mesh, Shape, Specular};
-    let mut sphere = (*Shape::Sphere.geometry()).clone();
-    let roughness = 0.5f32;
-    sphere.materials = vec![MaterialRun {
-        first: 0,
-        color: None,
-        texture: None,
-        finish: Finish {
-            specular: Specular::metallic_roughness(1.0, roughness),
-            ..Finish::default()
-        },
-    }];
-    let light = Rgb::new(63, 63, 63);
-    let direction = Vec3::new(0.5, -0.4, -1.0);
-    let scene = Scene::builder()
-        .camera(Camera {
-            shift: rastty::glam::Vec2::ZERO,
-            projection: Projection::Orthographic {
-                height: 2.4,
-                near: 0.1,
-                far: 20.0,
-            },
-            eye: Vec3::new(0.0, 0.0, 4.0),
-            target: Vec3::ZERO,
-            up: Vec3::Y,
-            fit: None,
-        })
-        .mesh(Mesh::of(
-            std::sync::Arc::new(sphere),
-            Rgb::new(255, 255, 255),
-        ))
-        .light(Light {
-            direction,
-            color: light,
-            ambient: 0.0,
-            ..Light::default()
-        })
-        .build()
-        .expect("the sphere's scene");
-    // The lights' highlight alone: no environment to reflect.
-    let scene = Scene {
-        environment: rastty::scene::environment::Environment::None,
-        ..scene
-    };
-    let opts = RenderOptions {
-        cols: 81,
-        rows: 81,
-        glyphs: GlyphMode::Block,
-        cell_aspect: 1.0,
-        highlights,
-        ..RenderOptions::default()
-    };
-    let mut renderer = Renderer::new();
-    renderer.render(&scene, &opts);
-    let fb = renderer.framebuffer();
-    let grid = fb.grid();
-    let strength = f64::from(Lin::from_srgb(light).to_f32()[0]) / 65535.0;
-    let l = -direction.as_dvec3().normalize();
-    let a = f64::from(roughness * roughness);
-    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0);
-    for y in 0..grid.height {
-        for x in 0..grid.width {
-            let Some(c) = fb.get(x, y) else { continue };
-            // The sample's centre on the view plane, in the sphere's units
-            // (y up: the grid's rows count up from the bottom).
-            let px = ((x as f64 + 0.5) / grid.width as f64 * 2.0 - 1.0) * 1.2;
-            let py = ((y as f64 + 0.5) / grid.height as f64 * 2.0 - 1.0) * 1.2;
-            let r2 = px * px + py * py;
-            if r2 > 0.9 {
-                continue;
-            }
-            let normal = glam::DVec3::new(px, py, (1.0 - r2).sqrt());
-            let want = 255.0
-                * strength
-                * rastty::specular_reference(normal, l, glam::DVec3::Z, 1.0, a * a);
-            let got = f64::from(c.to_f32()[0]) / 257.0;
-            let e = (got - want.min(255.0)).abs();
-            max = max.max(e);
-            sum += e;
-            n += 1;
-        }
-    }
-    (max, sum / f64::from(n.max(1)))
-}
+/// The roughness of the white metal sphere the highlight and environment
+/// rows measure.
+const SPHERE_ROUGHNESS: f32 = 0.5;
 
-/// The white metal sphere (roughness 0.5) lit by `environment` alone (a
-/// black light, so that highlights are drawn and add nothing): the largest
-/// and mean colour error (0–255, linear) of its samples against the f64
-/// integral of the studio through the renderer's own lobe at the true
-/// sphere's normal, every third sample across and down.
-pub fn environment_error(environment: rastty::scene::environment::Environment) -> (f64, f64) {
-    use rastty::scene::{Finish, Light, MaterialRun, Mesh, Shape, Specular};
+/// A white metal sphere of [`SPHERE_ROUGHNESS`] seen through a parallel
+/// view, lit by `light` and `environment` (at 81×81 samples, square), drawn
+/// with `highlights`; then, for every `step`-th sample across and down well
+/// inside the disc, `want(normal)` (0–255, linear) against the drawn
+/// colour: the largest and mean error.
+fn sphere_error(
+    light: rastty::scene::Light,
+    environment: rastty::scene::environment::Environment,
+    highlights: Highlights,
+    step: usize,
+    want: impl Fn(glam::DVec3) -> f64,
+) -> (f64, f64) {
+    use rastty::scene::{Finish, MaterialRun, Mesh, Shape, Specular};
     let mut sphere = (*Shape::Sphere.geometry()).clone();
-    let roughness = 0.5f32;
     sphere.materials = vec![MaterialRun {
         first: 0,
         color: None,
         texture: None,
         finish: Finish {
-            specular: Specular::metallic_roughness(1.0, roughness),
+            specular: Specular::metallic_roughness(1.0, SPHERE_ROUGHNESS),
             ..Finish::default()
         },
     }];
@@ -341,11 +259,7 @@ pub fn environment_error(environment: rastty::scene::environment::Environment) -
             fit: None,
         })
         .mesh(Mesh::of(std::sync::Arc::new(sphere), Rgb::WHITE))
-        .light(Light {
-            color: Rgb::BLACK,
-            ambient: 0.0,
-            ..Light::default()
-        })
+        .light(light)
         .build()
         .expect("the sphere's scene");
     let scene = Scene {
@@ -357,17 +271,19 @@ pub fn environment_error(environment: rastty::scene::environment::Environment) -
         rows: 81,
         glyphs: GlyphMode::Block,
         cell_aspect: 1.0,
+        highlights,
         ..RenderOptions::default()
     };
     let mut renderer = Renderer::new();
     renderer.render(&scene, &opts);
     let fb = renderer.framebuffer();
     let grid = fb.grid();
-    let a = f64::from(roughness * roughness);
     let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0);
-    for y in (1..grid.height).step_by(3) {
-        for x in (1..grid.width).step_by(3) {
+    for y in (0..grid.height).step_by(step) {
+        for x in (0..grid.width).step_by(step) {
             let Some(c) = fb.get(x, y) else { continue };
+            // The sample's centre on the view plane, in the sphere's units
+            // (y up: the grid's rows count up from the bottom).
             let px = ((x as f64 + 0.5) / grid.width as f64 * 2.0 - 1.0) * 1.2;
             let py = ((y as f64 + 0.5) / grid.height as f64 * 2.0 - 1.0) * 1.2;
             let r2 = px * px + py * py;
@@ -375,21 +291,54 @@ pub fn environment_error(environment: rastty::scene::environment::Environment) -
                 continue;
             }
             let normal = glam::DVec3::new(px, py, (1.0 - r2).sqrt());
-            let want = 255.0
-                * rastty::reflection_reference(
-                    &rastty::scene::environment::studio_radiance,
-                    normal,
-                    glam::DVec3::Z,
-                    1.0,
-                    a * a,
-                    96,
-                );
             let got = f64::from(c.to_f32()[0]) / 257.0;
-            let e = (got - want.min(255.0)).abs();
+            let e = (got - want(normal).min(255.0)).abs();
             max = max.max(e);
             sum += e;
             n += 1;
         }
     }
     (max, sum / f64::from(n.max(1)))
+}
+
+/// A white metal sphere (roughness 0.5) seen through a
+/// parallel view and lit from the upper left: every drawn sample's colour
+/// (its highlight alone: a metal has no diffuse light, and no environment
+/// is reflected) against the same lobe evaluated in f64 at the true
+/// sphere's normal behind it. Largest and mean error, 0–255 in linear
+/// light, over samples well inside the disc.
+pub fn highlight_error(highlights: Highlights) -> (f64, f64) {
+    let light = Rgb::new(63, 63, 63);
+    let direction = Vec3::new(0.5, -0.4, -1.0);
+    let strength = f64::from(Lin::from_srgb(light).to_f32()[0]) / 65535.0;
+    let l = -direction.as_dvec3().normalize();
+    let a = f64::from(SPHERE_ROUGHNESS * SPHERE_ROUGHNESS);
+    let light = rastty::scene::Light {
+        direction,
+        color: light,
+        ambient: 0.0,
+        ..rastty::scene::Light::default()
+    };
+    let none = rastty::scene::environment::Environment::None;
+    sphere_error(light, none, highlights, 1, |normal| {
+        255.0 * strength * rastty::specular_reference(normal, l, glam::DVec3::Z, 1.0, a * a)
+    })
+}
+
+/// The white metal sphere lit by `environment` alone (a black light, so
+/// that highlights are drawn and add nothing): the largest and mean colour
+/// error (0–255, linear) of its samples against the f64 integral of the
+/// studio through the renderer's own lobe at the true sphere's normal,
+/// every third sample across and down.
+pub fn environment_error(environment: rastty::scene::environment::Environment) -> (f64, f64) {
+    let a = f64::from(SPHERE_ROUGHNESS * SPHERE_ROUGHNESS);
+    let black = rastty::scene::Light {
+        color: Rgb::BLACK,
+        ambient: 0.0,
+        ..rastty::scene::Light::default()
+    };
+    sphere_error(black, environment, Highlights::Sample, 3, |normal| {
+        let studio = &rastty::scene::environment::studio_radiance;
+        255.0 * rastty::reflection_reference(studio, normal, glam::DVec3::Z, 1.0, a * a, 96)
+    })
 }
