@@ -50,10 +50,18 @@ pub fn scene(
         None => {}
         Some(cli::EnvironmentArg::None) => scene.environment = Environment::None,
         Some(cli::EnvironmentArg::Studio) => scene.environment = Environment::Studio,
+        #[cfg(feature = "textures")]
         Some(cli::EnvironmentArg::File(p)) => {
             let (environment, source) = rastty::scene::environment::load(p, &options)?;
             scene.environment = environment;
             scene.sources.push(source);
+        }
+        #[cfg(not(feature = "textures"))]
+        Some(cli::EnvironmentArg::File(p)) => {
+            return Err(rastty::Error::Invalid(format!(
+                "--environment {}: built without the textures feature, which reads images",
+                rastty::text::name(&p.display().to_string(), 80)
+            )));
         }
     }
     for note in &scene.notes {

@@ -103,8 +103,13 @@ pub fn workloads(models: &Path) -> (Vec<Workload>, Vec<String>) {
     ];
     // The metals example, carried in the program: metals lit by the
     // environment.
-    let metals = include_bytes!("../../../examples/models/metals.glb");
-    match rastty::scene::gltf::parse(metals, None, "metals.glb", &Default::default()) {
+    #[cfg(feature = "gltf")]
+    match rastty::scene::gltf::parse(
+        include_bytes!("../../../examples/models/metals.glb"),
+        None,
+        "metals.glb",
+        &Default::default(),
+    ) {
         Ok(loaded) => w.push(Workload {
             name: "metals".into(),
             scene: Scene::of_mesh(rastty::scene::Mesh::of(

@@ -168,6 +168,7 @@ struct Reader<'a> {
     #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     texels_left: u64,
     /// The largest side of a texture's finest level.
+    #[cfg_attr(not(feature = "textures"), allow(dead_code))]
     max_texture_side: u32,
     /// Notes on the files named (absolute paths, paths out of the folder).
     reference_notes: Vec<String>,
