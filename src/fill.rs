@@ -297,6 +297,9 @@ pub(crate) struct Shine<'a> {
     f0: Option<Vec3A>,
     /// α², the roughness to the fourth.
     a2: f32,
+    /// Reflectance at grazing incidence, which the lobe of `f0` (over it)
+    /// is multiplied by.
+    f90: f32,
     lights: &'a Lights,
     /// The eye as `(e, k, d)`, towards it from `p` being `e − k·p + d`:
     /// `(eye, 1, 0)` for a point, `(0, 0, direction)` for a direction; no
@@ -333,13 +336,13 @@ impl Eye {
 
 impl<'a> Shine<'a> {
     /// `normal` and `world` in the set-up's vertex order; `finish` is the
-    /// run's `(f0, α²)`.
+    /// run's `(f0 / f90, α², f90)`.
     /// `per_vertex`: found at the corners and interpolated
     /// ([`crate::Highlights::Vertex`]).
     #[inline(always)]
     pub(crate) fn new(
         (normal, world): ([Vec3; 3], [Vec3; 3]),
-        finish: Option<(Vec3A, f32)>,
+        finish: Option<(Vec3A, f32, f32)>,
         (lights, eye): (&'a Lights, Eye),
         per_vertex: bool,
         reflect: Option<(&'a EnvMap, (Vec3A, f32, f32))>,
@@ -349,6 +352,7 @@ impl<'a> Shine<'a> {
             world: world.map(Vec3A::from),
             f0: finish.map(|f| f.0),
             a2: finish.map_or(1.0, |f| f.1),
+            f90: finish.map_or(1.0, |f| f.2),
             lights,
             eye: match eye {
                 Eye::At(e) => (Vec3A::from(e), 1.0, Vec3A::ZERO),
@@ -388,7 +392,8 @@ impl<'a> Shine<'a> {
         if n.dot(v) < 0.0 {
             n = -n;
         }
-        let lit = self.lights.specular_a(n, v, p, f0, self.a2) * 65535.0;
+        // Times f90 (1 but for `KHR_materials_specular`: exact).
+        let lit = self.lights.specular_a(n, v, p, f0, self.a2) * (65535.0 * self.f90);
         match self.reflect {
             Some((env, (metal, share, roughness))) => {
                 lit + env.reflect(n, v, metal, roughness) * (share * 65535.0)

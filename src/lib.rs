@@ -141,5 +141,8 @@ pub use options::{
 pub use pixels::{PixelRect, Pixels, Rgba};
 pub use plan::{Bands, Decision, Effect, Extras, Plan};
 pub use render::{Renderer, render, try_render};
-pub use shade::{Lights, Shading, reflection_reference, specular_reference};
+pub use shade::{
+    Lights, Shading, reflection_reference, sheen_albedo_reference, sheen_reference,
+    specular_reference,
+};
 pub use stats::{FrameStats, FrameTimes};

@@ -12,6 +12,10 @@
 //! fill (`fill.rs`) and added to the lit colour; [`specular_reference`] is
 //! the same lobe in f64, which the bench and tests measure it against.
 //!
+//! **Layers** (a material's clear coat and sheen) are found per sample
+//! by the mapped fill: a clear coat is the same GGX lobe of reflectance
+//! 0.04, and sheen the Charlie lobe of `sheen.rs`.
+//!
 //! A **rim light** (`RenderOptions::rim`) is added, not multiplied: its
 //! colour times `(1 − max(0, n·v))³`, where `v` is the direction towards
 //! the eye, so it is nothing on a surface facing the viewer and its whole
@@ -25,6 +29,10 @@
 use glam::{Vec3, Vec3A, Vec4};
 
 use crate::scene::{Light, LightKind, MAX_LIGHTS};
+
+pub(crate) mod sheen;
+
+pub use sheen::{sheen_albedo_reference, sheen_reference};
 
 /// How surfaces are shaded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

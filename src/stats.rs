@@ -47,6 +47,10 @@ pub struct FrameStats {
     pub specular_samples: u64,
     /// Samples written with the environment's reflection (metals).
     pub reflecting_samples: u64,
+    /// Samples written with a clear coat.
+    pub coated_samples: u64,
+    /// Samples written with sheen.
+    pub sheen_samples: u64,
     /// Line and point primitives drawn (glTF's).
     pub lines: u64,
     /// Of those, samples interpolated through `1/w`.
@@ -94,6 +98,8 @@ impl FrameStats {
         self.textured_samples += band.textured_samples;
         self.specular_samples += band.specular_samples;
         self.reflecting_samples += band.reflecting_samples;
+        self.coated_samples += band.coated_samples;
+        self.sheen_samples += band.sheen_samples;
         self.lines += band.lines;
         self.perspective_samples += band.perspective_samples;
         self.raster.samples_tested += band.raster.samples_tested;

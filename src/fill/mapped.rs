@@ -13,8 +13,11 @@
 //! share times the occlusion (`1 + strength·(texel − 1)`); the highlight of
 //! the same GGX lobe as the specular fill, with the reflectance at normal
 //! incidence tinted by the textured base colour where the surface is
-//! metal; the rim light from the bent normal; and the emissive factor
-//! times its texel, added last.
+//! metal; the material's layers (`KHR_materials_sheen`'s lobe over what
+//! is beneath, dimmed by its albedo; then `KHR_materials_clearcoat`'s lobe
+//! over the geometry's normal, dimming everything beneath, glow included,
+//! by its Fresnel); the rim light from the bent normal; and the emissive
+//! factor times its texel.
 //!
 //! Trade-offs. Everything is found per sample, so a mapped run costs a few
 //! texture reads and one lighting evaluation a sample where a Gouraud run
@@ -30,7 +33,7 @@ use glam::{Vec3, Vec3A};
 
 use super::{Attributes, Eye, UvPlanes};
 use crate::color::Lin;
-use crate::scene::{Maps, Specular};
+use crate::scene::{Layers, Maps, Specular};
 use crate::shade::Lights;
 use crate::texture::{Sampler, Texture};
 
@@ -52,6 +55,10 @@ pub(crate) struct MapSet {
     specular: Option<Specular>,
     /// Drawn in its colour, whatever the lights.
     unlit: bool,
+    /// Its layers, as the plan draws them.
+    layers: Layers,
+    /// Whether it has a map (not layers alone).
+    has_maps: bool,
 }
 
 impl MapSet {
@@ -62,11 +69,22 @@ impl MapSet {
             .map_or(0.0, |s| s.metallic)
     }
 
-    /// `maps` of a run of `finish`, their textures taken from `textures`
-    /// (an index out of range reads as no map) and read through
-    /// `sampler` (the plan's filter applied to each texture's own).
+    /// Whether it has a map (a run with layers alone has none).
+    pub(crate) fn has_maps(&self) -> bool {
+        self.has_maps
+    }
+
+    /// Its layers, as the plan draws them.
+    pub(crate) fn layers(&self) -> Layers {
+        self.layers
+    }
+
+    /// `maps` and `layers` of a run of `finish`, the maps' textures taken
+    /// from `textures` (an index out of range reads as no map) and read
+    /// through `sampler` (the plan's filter applied to each texture's
+    /// own).
     pub(crate) fn new(
-        maps: Maps,
+        (maps, layers): (Maps, Layers),
         finish: &crate::scene::Finish,
         textures: &[Arc<Texture>],
         sampler: impl Fn(&Texture) -> Sampler,
@@ -86,6 +104,8 @@ impl MapSet {
             emissive: finish.emissive.to_lanes(),
             specular: finish.specular,
             unlit: finish.unlit,
+            layers,
+            has_maps: !maps.is_empty(),
         }
     }
 }
@@ -160,6 +180,8 @@ impl Mapped<'_> {
         if n.dot(v) < 0.0 {
             (n, t, b) = (-n, -t, -b);
         }
+        // A clear coat lies over the geometry, not the normal map.
+        let geometric = n;
         if let Some((m, scale)) = &s.normal {
             let m = Vec3::from(map(m)) * 2.0 - Vec3::ONE;
             n = (t * (m.x * scale) + b * (m.y * scale) + n * m.z).normalize_or(n);
@@ -179,8 +201,14 @@ impl Mapped<'_> {
         if let Some(k) = s.specular {
             let dielectric = Vec3A::from(k.reflectance);
             let f0 = dielectric + (albedo / 65535.0 - dielectric) * metallic;
+            let f90 = k.f90 + (1.0 - k.f90) * metallic;
             let a = roughness * roughness;
-            lit += lights.specular_a(n.into(), v.into(), p.into(), f0, a * a) * 65535.0;
+            if f90 > 0.0 {
+                // `f90` times the lobe of `f0 / f90` (both 1 but for
+                // `KHR_materials_specular`: exact).
+                lit += lights.specular_a(n.into(), v.into(), p.into(), f0 / f90, a * a)
+                    * (65535.0 * f90);
+            }
             // The metal share's reflection, shadowed as the ambient light
             // is by the occlusion map.
             if let Some(env) = self.environment.filter(|_| metallic > 0.0) {
@@ -189,8 +217,30 @@ impl Mapped<'_> {
                     * (metallic * occlusion * 65535.0);
             }
         }
+        let (n, v, p) = (Vec3A::from(n), Vec3A::from(v), Vec3A::from(p));
+        if let Some(sheen) = s.layers.sheen {
+            // What is beneath, dimmed by the sheen's albedo seen from `v`.
+            let color = Vec3A::from(sheen.color);
+            let e = crate::shade::sheen::albedo(n.dot(v), sheen.roughness);
+            lit = lit * (1.0 - color.max_element() * e)
+                + lights.sheen_a(n, v, p, color, sheen.roughness) * 65535.0;
+        }
+        if let Some(coat) = s.layers.clearcoat {
+            // The coat's Fresnel at `n·v` dims what is beneath, its glow too.
+            let nc = Vec3A::from(geometric);
+            let m = 1.0 - nc.dot(v).clamp(0.0, 1.0);
+            let keep = 1.0 - coat.factor * (0.04 + 0.96 * (m * m) * (m * m) * m);
+            let a = coat.roughness * coat.roughness;
+            let f0 = Vec3A::splat(0.04);
+            let mut coated = lights.specular_a(nc, v, p, f0, a * a);
+            if let Some(env) = self.environment {
+                coated += env.reflect(nc, v, f0, coat.roughness) * occlusion;
+            }
+            lit = lit * keep + coated * (coat.factor * 65535.0);
+            emitted *= keep;
+        }
         if self.rim {
-            lit += lights.rim_a(n);
+            lit += lights.rim_a(n.into());
         }
         Lin::from_lanes(lit + emitted)
     }

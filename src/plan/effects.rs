@@ -221,6 +221,22 @@ effects! {
         ),
         witness: "examples/models/metals.glb",
     }
+    /// A clear coat's lobe over its material (`KHR_materials_clearcoat`).
+    Clearcoat "clearcoat" {
+        runs: "a lit material is coated: its triangles, and only they, are shaded per sample (the mapped fill), the coat's GGX lobe of reflectance 0.04 over the geometry's normal added and what is beneath dimmed by its Fresnel; with an environment, the coat reflects it too",
+        skipped: "no material is coated, or nothing is lit, or exact coverage; not forced by the full pipeline: a coat is what a material asks for, so both pipelines coat exactly the coated runs",
+        counter: Some(|s| s.coated_samples),
+        work: |s, _, _, _| format!("{} samples given a clear coat", s.coated_samples),
+        witness: "examples/models/layers.glb",
+    }
+    /// Sheen over its material (`KHR_materials_sheen`).
+    Sheen "sheen" {
+        runs: "a lit material has sheen: its triangles, and only they, are shaded per sample (the mapped fill), the Charlie lobe in the sheen's colour added and what is beneath dimmed by the sheen's albedo",
+        skipped: "no material has sheen, or nothing is lit, or exact coverage; not forced by the full pipeline: sheen is what a material asks for, so both pipelines add it to exactly the runs with it",
+        counter: Some(|s| s.sheen_samples),
+        work: |s, _, _, _| format!("{} samples given sheen", s.sheen_samples),
+        witness: "examples/models/layers.glb",
+    }
     /// Masked and blended materials.
     Alpha "alpha" {
         runs: "a material is masked or blended: its triangles, and only they, go through the see-through fill (a mask's cut decided per sample before the depth test; blended runs drawn after every other, back to front)",

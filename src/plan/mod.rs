@@ -48,17 +48,16 @@ use std::fmt;
 use glam::{Mat4, Vec3};
 
 use crate::clip::Clipper;
-use crate::options::{
-    Aa, Interpolation, MAX_THREADS, PARALLEL_CELLS, PARALLEL_PIXELS, Pipeline, RenderOptions,
-    Threads, Wire,
-};
+use crate::options::{Aa, Interpolation, Pipeline, RenderOptions, Wire};
 use crate::raster::{Precision, Traversal};
 use crate::scene::{Projection, Scene, TriangleColor};
 use crate::shade::Shading;
 use crate::texture::{FilterMode, Sampler, Texture};
-use crate::transform::MAX_GRID;
 
+mod bands;
 mod effects;
+pub use bands::Bands;
+use bands::bands;
 pub use effects::Effect;
 
 /// One stage's decision, and why.
@@ -123,25 +122,6 @@ pub struct Plan {
     pub bands: Bands,
 }
 
-/// How many bands of sample rows a frame is drawn in (each by a thread of
-/// its own, with the `parallel` feature), and why. Speed alone: every
-/// band sets up each triangle that reaches it, clamped to its rows, and the
-/// set-up's edge values are exact integers from any row, so the bands draw
-/// exactly the samples one thread would, in the same order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Bands {
-    /// Bands, one or more; never more than the frame's cell rows.
-    pub count: u16,
-    /// Why.
-    pub why: &'static str,
-}
-
-impl fmt::Display for Bands {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:<4}  {}", self.count, self.why)
-    }
-}
-
 /// What the vertex stage keeps of a mesh's vertices beyond the 14 bytes
 /// every face reads (snapped position, centre key, outcode), as the plan
 /// decides ([`Plan::vertex_extras`]): memory and speed alone, the frame is
@@ -159,15 +139,6 @@ pub enum Extras {
     /// Those and the world position, normal and unsnapped screen position
     /// (52 bytes), for faces that may read them.
     All,
-}
-
-/// The threads this process may run at once (asked once: the answer reads
-/// files on Linux).
-fn cores() -> u16 {
-    static CORES: std::sync::OnceLock<u16> = std::sync::OnceLock::new();
-    *CORES.get_or_init(|| {
-        std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS as usize) as u16)
-    })
 }
 
 /// The culling that `sides` asks for, `own` where it says nothing.
@@ -191,51 +162,6 @@ fn mesh_cull(mesh: &crate::scene::Mesh, asked: Option<crate::scene::Cull>) -> cr
             own
         }
     })
-}
-
-/// How many bands `opts` asks for and allows.
-fn bands(opts: &RenderOptions) -> Bands {
-    let one = |why| Bands { count: 1, why };
-    if opts.aa != Aa::None {
-        return one("anti-aliasing accumulates over the whole grid");
-    }
-    if opts.precision != Precision::Fixed {
-        return one("the f64 and f32 set-ups draw the whole grid (comparison modes)");
-    }
-    if opts.traversal == Traversal::Scan {
-        return one("a scan tests every sample of the grid");
-    }
-    let (w, h) = opts.cell_samples();
-    if opts.cols == 0 || opts.rows == 0 {
-        return one("an empty frame");
-    }
-    if opts.cols as u32 * w > MAX_GRID || opts.rows as u32 * h > MAX_GRID {
-        // The grid is cut to its largest side, not to whole cells.
-        return one("a frame beyond the largest grid");
-    }
-    let rows = opts.rows.max(1);
-    let pixels = opts.cols as u32 * w * opts.rows as u32 * h;
-    match opts.threads {
-        Threads::Exactly(n) => Bands {
-            count: n.clamp(1, MAX_THREADS).min(rows),
-            why: "as many as asked for, at most one a cell row",
-        },
-        Threads::Auto if !cfg!(feature = "parallel") => one("built without the parallel feature"),
-        Threads::Auto if opts.cell_pixels.is_some() && pixels < PARALLEL_PIXELS => {
-            one("a frame under 640×360 pixels is faster on one thread")
-        }
-        Threads::Auto
-            if opts.cell_pixels.is_none()
-                && (opts.cols as u32 * opts.rows as u32) < PARALLEL_CELLS =>
-        {
-            one("a frame under 600×180 cells is faster on one thread")
-        }
-        Threads::Auto if cores() < 2 => one("one core"),
-        Threads::Auto => Bands {
-            count: cores().min(rows),
-            why: "one a core, for a frame of 600×180 cells or 640×360 pixels or more",
-        },
-    }
 }
 
 const FORCED: &str = "forced on by the full pipeline";
@@ -309,6 +235,11 @@ impl Plan {
             Decision::skip("shading is none")
         };
         let shading = if lit { opts.shading } else { Shading::None };
+        // A lit material's layers (an unlit one has none).
+        let layered = |has: fn(&crate::scene::Layers) -> bool| {
+            (scene.meshes.iter().flat_map(|m| m.materials.iter()))
+                .any(|r| !r.finish.unlit && has(&r.finish.layers))
+        };
         let rim = if !lit {
             Decision::skip("nothing is lit")
         } else if full {
@@ -387,6 +318,8 @@ impl Plan {
             Decision::run("a highlight's normal and position vary over its triangles")
         } else if maps.run {
             Decision::run("a mapped material's coordinates vary over its triangles")
+        } else if layered(|l| !l.is_empty()) && lit && opts.aa != Aa::Exact {
+            Decision::run("a layered material's normals vary over its triangles")
         } else if shading == Shading::Smooth {
             Decision::run("smooth shading varies the light over each triangle")
         } else if vertex_colors {
@@ -468,14 +401,35 @@ impl Plan {
             (m.materials.iter())
                 .any(|r| !r.finish.unlit && r.finish.specular.is_some_and(|s| s.metallic > 0.0))
         });
+        let layer = |has: fn(&crate::scene::Layers) -> bool, what: &'static str| {
+            if opts.aa == Aa::Exact {
+                Decision::skip("exact coverage shades a triangle by its mean colour")
+            } else if !lit {
+                Decision::skip("nothing is lit")
+            } else if layered(has) {
+                Decision::run(what)
+            } else {
+                Decision::skip("no material has the layer")
+            }
+        };
+        let clearcoat = layer(
+            |l| l.clearcoat.is_some(),
+            "a lit material is coated: its triangles shaded per sample with the coat's lobe",
+        );
+        let sheen = layer(
+            |l| l.sheen.is_some(),
+            "a lit material has sheen: its triangles shaded per sample with the sheen's lobe",
+        );
         let environment = if !scene.environment.is_some() {
             Decision::skip("no environment (`--environment none`)")
+        } else if clearcoat.run {
+            Decision::run("a material is coated: its coat reflects the environment")
         } else if !specular.run {
             Decision::skip("no highlights are drawn")
         } else if metal {
             Decision::run("a shining material is metal: it reflects the environment")
         } else {
-            Decision::skip("no material is metal")
+            Decision::skip("no material is metal or coated")
         };
         let (faces, edges) = wire(scene, opts);
         let lines = if !scene.meshes.iter().any(|m| !m.lines.is_empty()) {
@@ -499,6 +453,8 @@ impl Plan {
             Effect::Glow => glow,
             Effect::Specular => specular,
             Effect::Environment => environment,
+            Effect::Clearcoat => clearcoat,
+            Effect::Sheen => sheen,
             Effect::Alpha => alpha,
             Effect::Maps => maps,
             Effect::Faces => faces,
@@ -603,8 +559,13 @@ impl Plan {
             all("the rim reads each corner's normal")
         } else if self[Effect::Specular].run {
             all("a highlight reads each corner's normal and world position")
-        } else if self[Effect::Texturing].run || self[Effect::Alpha].run || self[Effect::Maps].run {
-            all("textures, alpha or maps read each corner's unsnapped position")
+        } else if self[Effect::Texturing].run
+            || self[Effect::Alpha].run
+            || self[Effect::Maps].run
+            || self[Effect::Clearcoat].run
+            || self[Effect::Sheen].run
+        {
+            all("textures, alpha, maps or layers read each corner's unsnapped position")
         } else if !self[Effect::Lean].run {
             all("the general path reads every extra")
         } else if cull != crate::scene::Cull::Back {
@@ -656,6 +617,34 @@ impl Plan {
     /// environment: in both pipelines, exactly the metal runs.
     pub fn reflects(&self, metallic: f32) -> bool {
         self[Effect::Environment].run && metallic > 0.0
+    }
+
+    /// The layers of a run of `finish` the plan draws (in both pipelines:
+    /// see [`Effect::Clearcoat`] and [`Effect::Sheen`]); none for an unlit
+    /// one.
+    pub fn layers_of(&self, finish: &crate::scene::Finish) -> crate::scene::Layers {
+        let l = finish.layers;
+        crate::scene::Layers {
+            clearcoat: l
+                .clearcoat
+                .filter(|_| self[Effect::Clearcoat].run && !finish.unlit),
+            sheen: l.sheen.filter(|_| self[Effect::Sheen].run && !finish.unlit),
+        }
+    }
+
+    /// Whether a run of `finish` is shaded per sample (the mapped fill),
+    /// with which maps and layers: its maps where the mesh has coordinates
+    /// to read them by (`uvs`), its layers as drawn.
+    pub fn per_sample(
+        &self,
+        finish: &crate::scene::Finish,
+        uvs: bool,
+    ) -> Option<(crate::scene::Maps, crate::scene::Layers)> {
+        let maps = self.maps_of(finish).filter(|_| uvs);
+        let layers = self.layers_of(finish);
+        let layered = !layers.is_empty();
+        maps.or(layered.then(crate::scene::Maps::default))
+            .map(|m| (m, layers))
     }
 
     /// Whether a run of faces of `alpha` goes through the see-through
@@ -782,6 +771,8 @@ impl fmt::Display for Plan {
         writeln!(f, "specular       {}", self[Effect::Specular])?;
         writeln!(f, "alpha          {}", self[Effect::Alpha])?;
         writeln!(f, "maps           {}", self[Effect::Maps])?;
+        writeln!(f, "clearcoat      {}", self[Effect::Clearcoat])?;
+        writeln!(f, "sheen          {}", self[Effect::Sheen])?;
         writeln!(f, "depth          {}", self[Effect::Depth])?;
         writeln!(f, "interpolation  {}", self[Effect::Interpolation])?;
         writeln!(f, "perspective    {}", self[Effect::Perspective])?;

@@ -139,12 +139,20 @@ impl Painter<'_> {
                         .run
                         .then_some((&stage.lights, stage.eye)),
                     rim: stage.plan[Effect::Rim].run,
-                    environment: stage
-                        .environment
-                        .filter(|_| stage.plan.reflects(set.metallic())),
+                    environment: stage.environment.filter(|_| {
+                        set.layers().clearcoat.is_some() || stage.plan.reflects(set.metallic())
+                    }),
                 };
                 let done = sink.see_through(setup, a, |x, y, e| mapped.at(a, flat, x, y, e), &fill);
-                self.stats.mapped_samples += done.written;
+                if set.has_maps() {
+                    self.stats.mapped_samples += done.written;
+                }
+                if set.layers().clearcoat.is_some() {
+                    self.stats.coated_samples += done.written;
+                }
+                if set.layers().sheen.is_some() {
+                    self.stats.sheen_samples += done.written;
+                }
                 if mapped.environment.is_some() {
                     self.stats.reflecting_samples += done.written;
                 }

@@ -15,9 +15,11 @@ pub(super) struct Surface {
     pub(super) emissive: glam::Vec3A,
     /// Drawn in its colour, whatever the lights.
     pub(super) unlit: bool,
-    /// Its highlight: reflectance at normal incidence and α² (roughness
-    /// to the fourth); `None`: matte.
-    pub(super) shine: Option<(glam::Vec3A, f32)>,
+    /// Its highlight: reflectance at normal incidence over that at
+    /// grazing incidence, α² (roughness to the fourth), and the
+    /// reflectance at grazing incidence (see [`crate::scene::Specular::f90`]);
+    /// `None`: matte.
+    pub(super) shine: Option<(glam::Vec3A, f32, f32)>,
     /// The share of its colour lit diffusely: 1 − metallic.
     pub(super) diffuse: f32,
     /// Its metal share's reflection of the environment, where the plan
@@ -51,12 +53,15 @@ impl Surface {
         base: crate::color::Lin,
         plan: &Plan,
     ) -> Surface {
-        let shine = finish.specular.filter(|_| !finish.unlit).map(|s| {
+        let shine = finish.specular.filter(|_| !finish.unlit).and_then(|s| {
             let base = glam::Vec3A::from(base.to_f32()) / 65535.0;
             let dielectric = glam::Vec3A::from(s.reflectance);
             let f0 = dielectric + (base - dielectric) * s.metallic;
+            // A metal's f90 is 1; a dielectric's of no specular is 0: no
+            // highlight.
+            let f90 = s.f90 + (1.0 - s.f90) * s.metallic;
             let a = s.roughness * s.roughness;
-            (f0, a * a)
+            (f90 > 0.0).then(|| (f0 / f90, a * a, f90))
         });
         let shiny = plan.shines(shine.is_some());
         let shine = shine.filter(|_| shiny);

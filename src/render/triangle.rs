@@ -93,7 +93,7 @@ impl Painter<'_> {
             // The plan's path; a run with a texture takes the general one,
             // which on the lean path skips (and counts) a triangle that
             // covers no sample once it is set up.
-            let maps = p.maps_of(&run.finish).filter(|_| mesh.uvs.is_some());
+            let maps = p.per_sample(&run.finish, mesh.uvs.is_some());
             self.mapping.set = maps.map(|maps| {
                 fill::MapSet::new(maps, &run.finish, &mesh.geometry.textures, |t| {
                     p.texture(Some(t)).map_or(t.sampler, |(_, s)| s)

@@ -7,13 +7,13 @@
 //! Trade-offs. A finish is a few numbers a run of faces and, where the
 //! file has them, its maps ([`Maps`]: normal, metallic-roughness,
 //! occlusion and emissive textures, read through the base colour's
-//! coordinates). A run with maps is shaded per sample from them (the
-//! renderer's mapped fill); one without is shaded per vertex, as before,
-//! whatever other runs have. A file that says
-//! nothing of its finish is drawn matte, as before: glTF's defaults
-//! (metallic 1, roughness 1) describe a rough metal, which without light
-//! from its surroundings (no image-based lighting here) is nearly black,
-//! so only factors a file writes make a surface specular. OBJ's Phong
+//! coordinates). A run with maps or layers ([`Layers`]: a clear coat,
+//! sheen) is shaded per sample (the renderer's mapped fill); one without
+//! is shaded per vertex, whatever other runs have. A file that says
+//! nothing of its finish is drawn matte: glTF's defaults (metallic 1,
+//! roughness 1) describe a rough metal, which lit by lights alone is
+//! nearly black, so only factors a file writes make a surface specular.
+//! OBJ's Phong
 //! exponent `Ns` becomes a roughness by the usual match of the Phong and
 //! GGX lobes (α = √(2 / (Ns + 2)), roughness = √α), its `Ks` the colour of
 //! the reflection at normal incidence; except in files Blender's exporter
@@ -31,8 +31,16 @@ use crate::color::Lin;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Specular {
     /// Reflectance at normal incidence of the non-metal part, linear, each
-    /// channel in [0, 1]: 0.04 for glTF's dielectrics, `Ks` for OBJ.
+    /// channel in [0, 1]: 0.04 for glTF's dielectrics (`((ior − 1) /
+    /// (ior + 1))²` times `KHR_materials_specular`'s colour and factor),
+    /// `Ks` for OBJ.
     pub reflectance: Vec3,
+    /// Reflectance at grazing incidence of the non-metal part, in [0, 1]:
+    /// 1 but for `KHR_materials_specular`'s factor. Schlick's Fresnel is
+    /// `f0 + (f90 − f0)·(1 − v·h)⁵`, linear in both, so the renderer finds
+    /// it as `f90` times the lobe of `f0 / f90` (of the mix with the
+    /// metal's: `f90` is 1 for a metal).
+    pub f90: f32,
     /// How much of the surface is metal, in [0, 1]: a metal has no diffuse
     /// colour and reflects in its base colour.
     pub metallic: f32,
@@ -53,9 +61,31 @@ impl Specular {
     pub fn metallic_roughness(metallic: f32, roughness: f32) -> Option<Specular> {
         (metallic.is_finite() && roughness.is_finite()).then(|| Specular {
             reflectance: Vec3::splat(0.04),
+            f90: 1.0,
             metallic: metallic.clamp(0.0, 1.0),
             roughness: roughness.clamp(Self::MIN_ROUGHNESS, 1.0),
         })
+    }
+
+    /// Its non-metal part as `KHR_materials_ior` and
+    /// `KHR_materials_specular` say: reflectance `((ior − 1) / (ior +
+    /// 1))²` times `color` (at most 1) times `factor`, and `factor` at
+    /// grazing incidence. glTF's defaults (ior 1.5, white, 1) give 0.04
+    /// and 1; an ior of 0 (the spec's "infinite") reflects fully. Numbers
+    /// that are not finite leave it as it is.
+    pub fn with_dielectric(mut self, ior: f32, color: Vec3, factor: f32) -> Specular {
+        if !(ior.is_finite() && color.is_finite() && factor.is_finite()) {
+            return self;
+        }
+        let r = if ior == 0.0 {
+            1.0
+        } else {
+            ((ior - 1.0) / (ior + 1.0)).powi(2)
+        };
+        let factor = factor.clamp(0.0, 1.0);
+        self.reflectance = (Vec3::splat(r) * color.max(Vec3::ZERO)).min(Vec3::ONE) * factor;
+        self.f90 = factor;
+        self
     }
 
     /// glTF's `KHR_materials_pbrSpecularGlossiness`: reflectance its
@@ -69,6 +99,7 @@ impl Specular {
         }
         Some(Specular {
             reflectance: specular.clamp(Vec3::ZERO, Vec3::ONE),
+            f90: 1.0,
             metallic: 0.0,
             roughness: (1.0 - glossiness).clamp(Self::MIN_ROUGHNESS, 1.0),
         })
@@ -84,6 +115,7 @@ impl Specular {
         let alpha = (2.0 / (ns.max(0.0) + 2.0)).sqrt();
         Some(Specular {
             reflectance: ks.clamp(Vec3::ZERO, Vec3::ONE),
+            f90: 1.0,
             metallic: 0.0,
             roughness: alpha.sqrt().clamp(Self::MIN_ROUGHNESS, 1.0),
         })
@@ -99,8 +131,78 @@ impl Specular {
         }
         Some(Specular {
             reflectance: (ks * 0.08).clamp(Vec3::ZERO, Vec3::ONE),
+            f90: 1.0,
             metallic: 0.0,
             roughness: (1.0 - ns.max(0.0).sqrt() / 30.0).clamp(Self::MIN_ROUGHNESS, 1.0),
+        })
+    }
+}
+
+/// A clear coat over a material (glTF's `KHR_materials_clearcoat`): a
+/// dielectric layer of index 1.5 (reflectance 0.04) with a GGX lobe of its
+/// own roughness, over the geometry's normal, that dims what is beneath
+/// by its Fresnel (`1 − factor·F(n·v)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clearcoat {
+    /// How much of the surface is coated, in (0, 1].
+    pub factor: f32,
+    /// The coat's perceptual roughness, in [[`Specular::MIN_ROUGHNESS`], 1].
+    pub roughness: f32,
+}
+
+/// Sheen over a material (glTF's `KHR_materials_sheen`): the back-scatter
+/// of cloth's fibres, the "Charlie" distribution with Estevez and Kulla's
+/// visibility, in its colour; what is beneath dimmed by the sheen's
+/// directional albedo (`1 − max(colour)·E(n·v)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sheen {
+    /// The sheen's colour, linear, each channel in [0, 1], not black.
+    pub color: Vec3,
+    /// Its perceptual roughness, in [[`Sheen::MIN_ROUGHNESS`], 1].
+    pub roughness: f32,
+}
+
+impl Sheen {
+    /// The smoothest sheen drawn (the distribution is undefined at 0).
+    pub const MIN_ROUGHNESS: f32 = 0.07;
+}
+
+/// A material's layers over its base: each shaded per sample (the mapped
+/// fill), and each a plan decision.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Layers {
+    /// A clear coat.
+    pub clearcoat: Option<Clearcoat>,
+    /// Sheen.
+    pub sheen: Option<Sheen>,
+}
+
+impl Layers {
+    /// Whether it has no layer.
+    pub fn is_empty(&self) -> bool {
+        *self == Layers::default()
+    }
+}
+
+impl Clearcoat {
+    /// glTF's factors, clamped into range; `None` for no coat (a factor of
+    /// 0) or a number that is not finite.
+    pub fn new(factor: f32, roughness: f32) -> Option<Clearcoat> {
+        (factor.is_finite() && roughness.is_finite() && factor > 0.0).then(|| Clearcoat {
+            factor: factor.min(1.0),
+            roughness: roughness.clamp(Specular::MIN_ROUGHNESS, 1.0),
+        })
+    }
+}
+
+impl Sheen {
+    /// glTF's factors (the colour linear), clamped into range; `None` for
+    /// no sheen (black) or a number that is not finite.
+    pub fn new(color: Vec3, roughness: f32) -> Option<Sheen> {
+        let color = color.clamp(Vec3::ZERO, Vec3::ONE);
+        (color.is_finite() && roughness.is_finite() && color.max_element() > 0.0).then(|| Sheen {
+            color,
+            roughness: roughness.clamp(Sheen::MIN_ROUGHNESS, 1.0),
         })
     }
 }
@@ -136,6 +238,8 @@ pub struct Finish {
     pub maps: Maps,
     /// Which sides of its faces are drawn.
     pub sides: Sides,
+    /// Its layers: a clear coat and sheen.
+    pub layers: Layers,
 }
 
 /// A material's textures beyond its base colour's, each an index into
@@ -245,5 +349,35 @@ mod tests {
         let s = Specular::metallic_roughness(2.0, -1.0).unwrap();
         assert_eq!((s.metallic, s.roughness), (1.0, Specular::MIN_ROUGHNESS));
         assert_eq!(Specular::metallic_roughness(f32::NAN, 0.5), None);
+    }
+
+    #[test]
+    fn ior_and_specular_set_the_dielectrics_reflectance() {
+        let s = Specular::metallic_roughness(0.0, 0.5).unwrap();
+        // glTF's defaults change nothing.
+        let same = s.with_dielectric(1.5, Vec3::ONE, 1.0);
+        assert!((same.reflectance - Vec3::splat(0.04)).abs().max_element() < 1e-7);
+        assert_eq!(same.f90, 1.0);
+        // Water: ((1.33 − 1) / 2.33)²; half the specular: half of each.
+        let w = s.with_dielectric(1.33, Vec3::ONE, 0.5);
+        let r = (0.33f32 / 2.33).powi(2) * 0.5;
+        assert!((w.reflectance - Vec3::splat(r)).abs().max_element() < 1e-7);
+        assert_eq!(w.f90, 0.5);
+        // A colour past 1 is held to 1 after the ior's product.
+        let c = s.with_dielectric(0.0, Vec3::new(2.0, 0.5, 0.0), 1.0);
+        assert_eq!(c.reflectance, Vec3::new(1.0, 0.5, 0.0));
+        assert_eq!(s.with_dielectric(f32::NAN, Vec3::ONE, 1.0), s);
+    }
+
+    #[test]
+    fn layers_of_nothing_are_none() {
+        assert_eq!(Clearcoat::new(0.0, 0.5), None);
+        assert_eq!(Sheen::new(Vec3::ZERO, 0.5), None);
+        let c = Clearcoat::new(2.0, 0.0).unwrap();
+        assert_eq!((c.factor, c.roughness), (1.0, Specular::MIN_ROUGHNESS));
+        assert_eq!(
+            Sheen::new(Vec3::ONE, 0.0).unwrap().roughness,
+            Sheen::MIN_ROUGHNESS
+        );
     }
 }

@@ -101,7 +101,7 @@ pub(crate) use camera::Fit;
 pub use camera::{Camera, Projection, View};
 use def::*;
 pub use file::{FileId, Source};
-pub use finish::{Alpha, AlphaMode, Finish, Maps, Sides, Specular};
+pub use finish::{Alpha, AlphaMode, Clearcoat, Finish, Layers, Maps, Sheen, Sides, Specular};
 pub use light::{Light, LightKind, MAX_LIGHTS};
 pub use load::load_geometry;
 use load::*;

@@ -466,6 +466,33 @@ impl Doc {
 /// (roughness 0.1), brushed silver (0.4) and rough copper (0.8). The
 /// witness of the environment's reflection.
 pub fn metals_glb() -> Vec<u8> {
+    spheres_glb(
+        r#"{"pbrMetallicRoughness":{"baseColorFactor":[1.0,0.766,0.336,1],"metallicFactor":1,"roughnessFactor":0.1}},
+{"pbrMetallicRoughness":{"baseColorFactor":[0.972,0.960,0.915,1],"metallicFactor":1,"roughnessFactor":0.4}},
+{"pbrMetallicRoughness":{"baseColorFactor":[0.955,0.638,0.538,1],"metallicFactor":1,"roughnessFactor":0.8}}"#,
+        "",
+    )
+}
+
+/// The example model `examples/models/layers.glb`: three spheres in a row
+/// of the layer extensions, a red paint under a clear coat
+/// (`KHR_materials_clearcoat`), a navy velvet with a pale sheen
+/// (`KHR_materials_sheen`) and a white plastic of index 1.8 with a gold
+/// specular tint (`KHR_materials_ior`, `KHR_materials_specular`). The
+/// witness of the clearcoat and sheen effects.
+pub fn layers_glb() -> Vec<u8> {
+    spheres_glb(
+        r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.6,0.02,0.02,1],"metallicFactor":0,"roughnessFactor":0.6},"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1,"clearcoatRoughnessFactor":0.05}}},
+{"pbrMetallicRoughness":{"baseColorFactor":[0.02,0.03,0.2,1],"metallicFactor":0,"roughnessFactor":0.9},"extensions":{"KHR_materials_sheen":{"sheenColorFactor":[0.7,0.75,1.0],"sheenRoughnessFactor":0.4}}},
+{"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3},"extensions":{"KHR_materials_ior":{"ior":1.8},"KHR_materials_specular":{"specularColorFactor":[1.0,0.8,0.3]}}}"#,
+        r#""extensionsUsed":["KHR_materials_clearcoat","KHR_materials_sheen","KHR_materials_ior","KHR_materials_specular"],"#,
+    )
+}
+
+/// Three unit spheres in a row along x (16 rings of 32 segments), of
+/// `materials` (three, JSON), with `extra` (top-level JSON members, each
+/// followed by a comma) before the rest.
+fn spheres_glb(materials: &str, extra: &str) -> Vec<u8> {
     let mut d = Doc::default();
     let (rings, segments) = (16u16, 32u16);
     let mut unit = Vec::new();
@@ -504,9 +531,7 @@ pub fn metals_glb() -> Vec<u8> {
         ));
     }
     d.glb(&format!(
-        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[1.0,0.766,0.336,1],"metallicFactor":1,"roughnessFactor":0.1}}}},
-{{"pbrMetallicRoughness":{{"baseColorFactor":[0.972,0.960,0.915,1],"metallicFactor":1,"roughnessFactor":0.4}}}},
-{{"pbrMetallicRoughness":{{"baseColorFactor":[0.955,0.638,0.538,1],"metallicFactor":1,"roughnessFactor":0.8}}}}],
+        r#"{extra}"materials":[{materials}],
 "meshes":[{{"primitives":[{}]}}],
 "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#,
         prims.join(",")

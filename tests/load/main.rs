@@ -21,5 +21,7 @@ mod materials;
 mod spec;
 #[cfg(feature = "gltf")]
 mod environment;
+#[cfg(feature = "gltf")]
+mod layers;
 #[cfg(all(feature = "gltf", feature = "textures"))]
 mod textures;

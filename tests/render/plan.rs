@@ -158,20 +158,41 @@ fn mesh() -> impl Strategy<Value = rastty::scene::Mesh> {
             Sides::Single,
             Sides::Double,
         ]),
+        prop::option::weighted(0.2, (1u8..4, 0.0f32..1.0)),
     )
         .prop_map(
-            |(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps, texture, sides)| {
+            |(shape, c, (x, y, z), (rx, ry), s, cull, alpha, maps, texture, sides, layers)| {
                 let mut m = shape.mesh(c);
-                if alpha.is_some() || maps.is_some() || texture.is_some() || sides != Sides::Unsaid
+                if alpha.is_some()
+                    || maps.is_some()
+                    || texture.is_some()
+                    || sides != Sides::Unsaid
+                    || layers.is_some()
                 {
                     // The second half of its faces masked or blended, with
                     // maps (and UVs and tangents to read them by) or not, with
                     // a base colour texture or not, its sides said or not
                     // (glTF's `doubleSided`).
                     let g = m.geometry_mut();
+                    // A clear coat, sheen or both (the bits of `which`),
+                    // over a dielectric that shines or not.
+                    let layers =
+                        layers.map_or_else(Default::default, |(which, k)| rastty::scene::Layers {
+                            clearcoat: (which & 1 != 0)
+                                .then(|| rastty::scene::Clearcoat::new(0.3 + k * 0.7, k))
+                                .flatten(),
+                            sheen: (which & 2 != 0)
+                                .then(|| {
+                                    rastty::scene::Sheen::new(Vec3::new(k, 0.5, 1.0 - k), 1.0 - k)
+                                })
+                                .flatten(),
+                        });
                     let mut finish = rastty::scene::Finish {
                         alpha: alpha.unwrap_or_default(),
                         sides,
+                        layers,
+                        specular: rastty::scene::Specular::metallic_roughness(0.0, 0.5)
+                            .filter(|_| layers.sheen.is_some()),
                         ..Default::default()
                     };
                     if let Some((which, k)) = maps {

@@ -118,6 +118,9 @@ pub(super) fn base_color<'a>(
 /// `KHR_materials_unlit`. Factors are linear, as glTF's colours are. A
 /// material with `KHR_materials_pbrSpecularGlossiness` takes its specular
 /// colour and glossiness instead ([`crate::scene::Specular::specular_glossiness`]).
+/// `KHR_materials_ior` and `KHR_materials_specular` set its non-metal
+/// part's reflectance ([`crate::scene::Specular::with_dielectric`]);
+/// `KHR_materials_clearcoat` and `KHR_materials_sheen` give its layers.
 pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
     let pbr = material.pbr_metallic_roughness();
     let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
@@ -131,8 +134,24 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
         ),
         None => said
             .then(|| crate::scene::Specular::metallic_roughness(metallic, roughness))
-            .flatten(),
+            .flatten()
+            .map(|s| {
+                let ior = extension_number(material, "KHR_materials_ior", "ior").unwrap_or(1.5);
+                let specular = "KHR_materials_specular";
+                let color = extension_color(material, specular, "specularColorFactor");
+                let factor = extension_number(material, specular, "specularFactor");
+                s.with_dielectric(ior, color.unwrap_or(Vec3::ONE), factor.unwrap_or(1.0))
+            }),
     };
+    let coat = "KHR_materials_clearcoat";
+    let clearcoat = crate::scene::Clearcoat::new(
+        extension_number(material, coat, "clearcoatFactor").unwrap_or(0.0),
+        extension_number(material, coat, "clearcoatRoughnessFactor").unwrap_or(0.0),
+    );
+    let sheen = crate::scene::Sheen::new(
+        extension_color(material, "KHR_materials_sheen", "sheenColorFactor").unwrap_or(Vec3::ZERO),
+        extension_number(material, "KHR_materials_sheen", "sheenRoughnessFactor").unwrap_or(0.0),
+    );
     crate::scene::Finish {
         specular,
         emissive: Lin::from_unit(e),
@@ -145,8 +164,66 @@ pub(super) fn finish(material: &::gltf::Material<'_>) -> crate::scene::Finish {
         } else {
             crate::scene::Sides::Single
         },
+        layers: crate::scene::Layers { clearcoat, sheen },
     }
 }
+
+/// Number `key` of extension `extension`'s object on `material`, if it is
+/// one (JSON has no NaN; a string or an array is none).
+fn extension_number(material: &::gltf::Material<'_>, extension: &str, key: &str) -> Option<f32> {
+    let v = material.extension_value(extension)?.get(key)?.as_f64()?;
+    Some(v as f32)
+}
+
+/// Colour `key` (three numbers, linear) of extension `extension`'s object
+/// on `material`, if it is one.
+fn extension_color(material: &::gltf::Material<'_>, extension: &str, key: &str) -> Option<Vec3> {
+    let v = material.extension_value(extension)?.get(key)?.as_array()?;
+    let c: Vec<f32> = v
+        .iter()
+        .map_while(|x| x.as_f64().map(|x| x as f32))
+        .collect();
+    match c[..] {
+        [r, g, b] => Some(Vec3::new(r, g, b)),
+        _ => None,
+    }
+}
+
+/// The textures of the layer extensions (`extension`, the texture's key),
+/// which are noted as not drawn: their factors are.
+const LAYER_TEXTURES: &[(&str, &str, &str)] = &[
+    (
+        "KHR_materials_clearcoat",
+        "clearcoatTexture",
+        "clearcoat textures",
+    ),
+    (
+        "KHR_materials_clearcoat",
+        "clearcoatRoughnessTexture",
+        "clearcoat textures",
+    ),
+    (
+        "KHR_materials_clearcoat",
+        "clearcoatNormalTexture",
+        "clearcoat textures",
+    ),
+    ("KHR_materials_sheen", "sheenColorTexture", "sheen textures"),
+    (
+        "KHR_materials_sheen",
+        "sheenRoughnessTexture",
+        "sheen textures",
+    ),
+    (
+        "KHR_materials_specular",
+        "specularTexture",
+        "specular textures",
+    ),
+    (
+        "KHR_materials_specular",
+        "specularColorTexture",
+        "specular textures",
+    ),
+];
 
 /// How much of its colour a fully transmissive material keeps, drawn as
 /// see-through: glass tints what is behind it (refraction is not drawn),
@@ -208,6 +285,15 @@ impl Parts<'_> {
         let metallic_roughness = pbr.metallic_roughness_texture().filter(|_| sg.is_none());
         if sg.is_some_and(|sg| sg.specular_glossiness_texture().is_some()) {
             *ignored.entry("specular-glossiness textures").or_default() += 1;
+        }
+        for &(extension, key, what) in LAYER_TEXTURES {
+            if material
+                .extension_value(extension)
+                .and_then(|e| e.get(key))
+                .is_some()
+            {
+                *ignored.entry(what).or_default() += 1;
+            }
         }
         let infos = [
             base_info.clone(),

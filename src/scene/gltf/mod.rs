@@ -778,4 +778,8 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_mesh_quantization",
     instances::EXTENSION,
     "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_materials_specular",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
 ];

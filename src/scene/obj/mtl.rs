@@ -51,6 +51,7 @@ impl Material {
             unlit: false,
             maps: crate::scene::Maps::default(),
             sides: crate::scene::Sides::Unsaid,
+            layers: crate::scene::Layers::default(),
             alpha: match self.opacity {
                 Some(d) if d < 1.0 => crate::scene::Alpha {
                     mode: crate::scene::AlphaMode::Blend,
