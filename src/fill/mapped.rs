@@ -49,6 +49,8 @@ pub(crate) struct MapSet {
     /// The occlusion map and its strength.
     occlusion: Option<(Read, f32)>,
     emissive_map: Option<Read>,
+    /// The specular-glossiness texture: its colour and its alpha.
+    specular_glossiness: Option<(Read, Read)>,
     /// The emitted colour, in the renderer's linear units.
     emissive: Vec3A,
     /// The metallic-roughness factors (`None`: matte, no highlight).
@@ -101,6 +103,7 @@ impl MapSet {
             metallic_roughness: maps.metallic_roughness.and_then(read),
             occlusion: with(maps.occlusion),
             emissive_map: maps.emissive.and_then(read),
+            specular_glossiness: (maps.specular_glossiness).and_then(|(c, a)| read(c).zip(read(a))),
             emissive: finish.emissive.to_lanes(),
             specular: finish.specular,
             unlit: finish.unlit,
@@ -197,9 +200,15 @@ impl Mapped<'_> {
             metallic *= texel.z;
             roughness = (roughness * texel.y).max(Specular::MIN_ROUGHNESS);
         }
+        let mut reflectance = s.specular.map(|k| Vec3A::from(k.reflectance));
+        if let Some((colour, gloss)) = &s.specular_glossiness {
+            // Specular colour times the texel; glossiness (1 − roughness)
+            // times the texel's alpha.
+            reflectance = reflectance.map(|r| r * map(colour));
+            roughness = (1.0 - (1.0 - roughness) * map(gloss).x).max(Specular::MIN_ROUGHNESS);
+        }
         let mut lit = albedo * (lights.lambert_occluded(n, p, occlusion) * (1.0 - metallic));
-        if let Some(k) = s.specular {
-            let dielectric = Vec3A::from(k.reflectance);
+        if let (Some(k), Some(dielectric)) = (s.specular, reflectance) {
             let f0 = dielectric + (albedo / 65535.0 - dielectric) * metallic;
             let f90 = k.f90 + (1.0 - k.f90) * metallic;
             let a = roughness * roughness;

@@ -163,6 +163,7 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
                         (maps.metallic_roughness.is_some(), "metallic-roughness"),
                         (maps.occlusion.is_some(), "occlusion"),
                         (maps.emissive.is_some(), "emissive"),
+                        (maps.specular_glossiness.is_some(), "specular-glossiness"),
                     ]
                     .iter()
                     .filter_map(|&(has, name)| has.then_some(name))
@@ -170,6 +171,16 @@ fn effects(out: &mut String, scene: &Scene, plan: &crate::plan::Plan) {
                     e.push(format!("maps ({}): shaded per sample", which.join(", ")));
                 } else if f.specular.is_some() && !f.unlit && plan.shines(true) {
                     e.push("highlight (its metallic-roughness or Ks)".into());
+                }
+                let layers = plan.layers_of(f);
+                if let Some(c) = layers.clearcoat {
+                    e.push(format!(
+                        "clear coat ({}, roughness {})",
+                        c.factor, c.roughness
+                    ));
+                }
+                if let Some(s) = layers.sheen {
+                    e.push(format!("sheen (roughness {})", s.roughness));
                 }
                 if plan[Effect::Glow].run && f.emissive != crate::color::Lin::BLACK {
                     e.push("glow (its emissive colour)".into());

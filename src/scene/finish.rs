@@ -244,8 +244,8 @@ pub struct Finish {
 
 /// A material's textures beyond its base colour's, each an index into
 /// [`crate::scene::Geometry::textures`], read through the base colour's
-/// texture coordinates (glTF's `TEXCOORD_0`). Any of them makes its faces
-/// shaded per sample.
+/// texture coordinates (glTF's `texCoord` of the base colour, or of the
+/// first map). Any of them makes its faces shaded per sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Maps {
     /// A tangent-space normal map (linear; x right along the tangent, y
@@ -260,6 +260,11 @@ pub struct Maps {
     pub occlusion: Option<(u32, f32)>,
     /// Emitted colour (sRGB-decoded), multiplying [`Finish::emissive`].
     pub emissive: Option<u32>,
+    /// `KHR_materials_pbrSpecularGlossiness`'s texture: its specular
+    /// colour (sRGB-decoded), multiplying [`Specular::reflectance`], and
+    /// its glossiness (the alpha channel, linear, in every channel of the
+    /// second), multiplying the glossiness (1 − roughness).
+    pub specular_glossiness: Option<(u32, u32)>,
 }
 
 impl Maps {

@@ -237,6 +237,44 @@ fn a_metallic_roughness_map_multiplies_the_factors() {
 }
 
 #[test]
+fn a_specular_glossiness_texture_multiplies_the_factors() {
+    // Texel (specular colour c, glossiness a) with factors 1 (and 0.6
+    // glossiness) draws as a white texel of full alpha with factors c
+    // (decoded from sRGB) and 0.6·a/255: within a step of rounding (the
+    // products are taken in another order).
+    let sg = |spec: [f32; 3], gloss: f32, t: [u8; 4]| {
+        square(
+            &format!(
+                r#"{{"extensions":{{"KHR_materials_pbrSpecularGlossiness":{{"diffuseFactor":[0.3,0.3,0.3,1],"specularFactor":{spec:?},"glossinessFactor":{gloss},"specularGlossinessTexture":{{"index":0}}}}}}}}"#
+            ),
+            &[common::png_rgba(1, 1, &[t])],
+            false,
+        )
+    };
+    let lights = [(Vec3::new(-0.3, -0.2, -1.0), 0.1)];
+    let (c, a) = ([255u8, 128, 0], 128u8);
+    let linear = |b: u8| rastty::color::Lin::from_srgb(Rgb::new(b, b, b)).to_f32()[0] / 65535.0;
+    let by_map = middle(&scene(sg([1.0; 3], 0.6, [c[0], c[1], c[2], a]), &lights));
+    let by_factor = middle(&scene(
+        sg(c.map(linear), 0.6 * f32::from(a) / 255.0, [255; 4]),
+        &lights,
+    ));
+    for i in 0..3 {
+        assert!(
+            by_map.0[i].abs_diff(by_factor.0[i]) <= 1,
+            "{by_map:?} {by_factor:?}"
+        );
+    }
+    // A black specular texel takes the highlight away.
+    let dull = middle(&scene(sg([1.0; 3], 0.6, [0, 0, 0, 255]), &lights));
+    assert_eq!(dull, Lin([18612; 3]));
+    assert!(
+        by_map.0[0] > dull.0[0] && by_map.0[1] > dull.0[1],
+        "{by_map:?}"
+    );
+}
+
+#[test]
 fn a_mapped_frame_is_the_same_planned_or_full_and_in_bands() {
     let (s, c) = 20f32.to_radians().sin_cos();
     let g = square(

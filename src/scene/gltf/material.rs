@@ -283,9 +283,6 @@ impl Parts<'_> {
         // Under specular-glossiness, the metallic-roughness texture is not
         // read, and the specular-glossiness one is noted.
         let metallic_roughness = pbr.metallic_roughness_texture().filter(|_| sg.is_none());
-        if sg.is_some_and(|sg| sg.specular_glossiness_texture().is_some()) {
-            *ignored.entry("specular-glossiness textures").or_default() += 1;
-        }
         for &(extension, key, what) in LAYER_TEXTURES {
             if material
                 .extension_value(extension)
@@ -319,6 +316,7 @@ impl Parts<'_> {
         let chosen = [
             base_info.as_ref().map(set),
             metallic_roughness.as_ref().map(set),
+            (sg.as_ref().and_then(|sg| sg.specular_glossiness_texture())).map(|i| set(&i)),
             material.emissive_texture().as_ref().map(set),
             material.normal_texture().map(|n| n.tex_coord()),
             material.occlusion_texture().map(|o| o.tex_coord()),
@@ -346,6 +344,12 @@ impl Parts<'_> {
         if let Some(info) = metallic_roughness.filter(|i| first_set(set(i))) {
             finish.maps.metallic_roughness =
                 self.texture(&info.texture(), buffers, Decode::Values)?;
+        }
+        let sg_texture = sg.as_ref().and_then(|sg| sg.specular_glossiness_texture());
+        if let Some(info) = sg_texture.filter(|i| first_set(set(i))) {
+            let colour = self.texture(&info.texture(), buffers, Decode::Colour)?;
+            let gloss = self.texture(&info.texture(), buffers, Decode::Alpha)?;
+            finish.maps.specular_glossiness = colour.zip(gloss);
         }
         if let Some(info) = material.emissive_texture().filter(|i| first_set(set(i))) {
             finish.maps.emissive = self.texture(&info.texture(), buffers, Decode::Colour)?;
