@@ -631,3 +631,110 @@ fn all_clips_play_at_once_each_moving_its_own_node() {
     assert_eq!(pose(0, 0.25), [Vec3::new(0.0, 0.0, 10.0), x]);
     assert_eq!(pose(1, 0.25), [y, Vec3::ZERO]);
 }
+
+/// The square of [`plain`] as a Draco stream (positions and normals as
+/// floats, unquantized; `method` 0 sequential, 1 Edgebreaker) in a glb
+/// whose accessors have no buffer view, as `KHR_draco_mesh_compression`
+/// writes it; `edit` changes the stream's bytes first.
+fn draco_square(method: i32, mut edit: impl FnMut(&mut Vec<u8>)) -> Vec<u8> {
+    use draco_core::{
+        DataType, EncoderBuffer, EncoderOptions, FaceIndex, GeometryAttributeType, MeshEncoder,
+        PointAttribute, PointIndex,
+    };
+    let mut mesh = draco_core::Mesh::new();
+    for (kind, values) in [
+        (GeometryAttributeType::Position, CORNERS),
+        (GeometryAttributeType::Normal, NORMALS),
+    ] {
+        let mut a = PointAttribute::new();
+        a.init(kind, 3, DataType::Float32, false, 4);
+        for (i, v) in values.iter().enumerate() {
+            a.buffer_mut().write(i * 12, &le(v, f32::to_le_bytes));
+        }
+        mesh.add_attribute(a);
+    }
+    mesh.set_num_faces(2);
+    for (f, [a, b, c]) in [[0, 1, 2], [0, 2, 3]].into_iter().enumerate() {
+        mesh.set_face(
+            FaceIndex(f as u32),
+            [PointIndex(a), PointIndex(b), PointIndex(c)],
+        );
+    }
+    let mut encoder = MeshEncoder::new();
+    encoder.set_mesh(mesh);
+    let mut options = EncoderOptions::new();
+    options.set_encoding_method(method);
+    let mut out = EncoderBuffer::new();
+    encoder.encode(&options, &mut out).unwrap();
+    let mut stream = out.data().to_vec();
+    edit(&mut stream);
+    let mut d = Doc::default();
+    let view = d.view(&stream);
+    let pos = d.accessor(
+        r#"{"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}"#.into(),
+    );
+    let normal = d.accessor(r#"{"componentType":5126,"count":4,"type":"VEC3"}"#.into());
+    let idx = d.accessor(r#"{"componentType":5123,"count":6,"type":"SCALAR"}"#.into());
+    d.glb(&format!(
+        r#""extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal}}},"indices":{idx},
+"extensions":{{"KHR_draco_mesh_compression":{{"bufferView":{view},"attributes":{{"POSITION":0,"NORMAL":1}}}}}}}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+#[test]
+fn a_draco_stream_reads_as_the_same_floats_and_samples() {
+    let want = load(&plain());
+    for method in [0, 1] {
+        let got = load(&draco_square(method, |_| {}));
+        // Edgebreaker orders the points as it walks the faces: the same
+        // vertices, in another order.
+        let vertices = |g: &Geometry| {
+            let mut v: Vec<[u32; 6]> = (g.positions.iter().zip(&g.normals))
+                .map(|(p, n)| [p.x, p.y, p.z, n.x, n.y, n.z].map(f32::to_bits))
+                .collect();
+            v.sort();
+            v
+        };
+        assert_eq!(vertices(&got), vertices(&want), "method {method}");
+        assert_eq!(samples(got), samples(want.clone()), "method {method}");
+    }
+}
+
+#[test]
+fn damaged_draco_streams_are_refused_never_drawn_as_another_mesh() {
+    let want = load(&plain());
+    let parse = |file: &[u8]| gltf::parse(file, None, "t.glb", &LoadOptions::default());
+    // A header that claims more faces than the accessors: refused before
+    // decoding (the sequential stream's face count is its 12th byte, a
+    // varint).
+    let more = draco_square(0, |s| s[11] = 200);
+    let e = parse(&more).err().expect("refused").to_string();
+    assert!(e.contains("more than its accessors'"), "{e}");
+    // Bytes flipped and streams cut short: each read as the square, or
+    // refused with a message; never a panic, never another mesh.
+    let mut seed = 7u64;
+    let mut refused = 0;
+    for t in 0..200 {
+        let file = draco_square(t % 2, |s| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let i = (seed >> 33) as usize % s.len();
+            if t % 3 == 0 {
+                s.truncate(i);
+            } else {
+                s[i] ^= (seed >> 20) as u8 | 1;
+            }
+        });
+        match parse(&file) {
+            Ok(got) => assert_eq!(got.geometry.faces.len(), want.faces.len()),
+            Err(e) => {
+                assert!(e.to_string().contains("Draco"), "{e}");
+                refused += 1;
+            }
+        }
+    }
+    assert!(refused > 50, "{refused} of 200 refused");
+}

@@ -52,6 +52,7 @@
 mod accessor;
 mod budget;
 mod buffers;
+mod draco;
 mod instances;
 mod material;
 mod numbers;
@@ -177,7 +178,7 @@ fn parse_in(
             }
         }
     }
-    let document = ::gltf::Document::from_json(root).map_err(|e| bad(describe(&e)))?;
+    let document = validated(root).map_err(|e| bad(describe(&e)))?;
     let mut notes = Vec::new();
     let buffers = buffers(&document, blob, base, name, files, &mut notes).map_err(bad)?;
 
@@ -475,6 +476,8 @@ impl Parts<'_> {
         let wants_uvs = texture.is_some() || !finish.maps.is_empty();
         let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
         let n = positions.count();
+        // A Draco stream holds the attributes it names and the indices.
+        let mut draco = draco::decode(prim, document, buffers)?;
         // Each attribute as floats, whatever its components (quantized
         // too) and sparse or not; every one as long as POSITION.
         let read = |sem: Semantic, what: &str, types: &[DataType], dims: &[Dimensions]| {
@@ -486,6 +489,12 @@ impl Parts<'_> {
                     "{what} has {} entries for {n} positions",
                     acc.count()
                 ));
+            }
+            if let Some((values, k)) = draco.as_ref().and_then(|d| d.get(what)) {
+                if k != dims[0].multiplicity() {
+                    return Err(format!("its Draco {what} has {k} components"));
+                }
+                return Ok(Some(values.to_vec()));
             }
             accessor::floats(&acc, buffers, types, dims, what, self.budget).map(Some)
         };
@@ -517,7 +526,8 @@ impl Parts<'_> {
         let file_normals = read(Semantic::Normals, "NORMAL", &SIGNED, &[Dimensions::Vec3])?;
         let file_tangents = read(Semantic::Tangents, "TANGENT", &SIGNED, &[Dimensions::Vec4])?;
         let colors = prim.get(&Semantic::Colors(0));
-        if let Some(c) = &colors {
+        let draco_colors = draco.as_ref().and_then(|d| d.get("COLOR_0"));
+        if let Some(c) = colors.as_ref().filter(|_| draco_colors.is_none()) {
             check(
                 c,
                 buffers,
@@ -533,7 +543,7 @@ impl Parts<'_> {
                 ));
             }
         }
-        if let Some(i) = prim.indices() {
+        if let Some(i) = prim.indices().filter(|_| draco.is_none()) {
             check(
                 &i,
                 buffers,
@@ -602,12 +612,19 @@ impl Parts<'_> {
         let own = material.index().is_some();
         self.base
             .extend(std::iter::repeat_n(if own { base } else { Lin::WHITE }, n));
-        if let Some(cs) = reader.read_colors(0) {
+        let file_colors: Option<Vec<[f32; 3]>> = match draco_colors {
+            Some((cs, k @ (3 | 4))) => {
+                Some(cs.chunks_exact(k).map(|c| [c[0], c[1], c[2]]).collect())
+            }
+            Some((_, k)) => return Err(format!("its Draco COLOR_0 has {k} components")),
+            None => reader.read_colors(0).map(|cs| cs.into_rgb_f32().collect()),
+        };
+        if let Some(cs) = file_colors {
             let all = self
                 .colors
                 .get_or_insert_with(|| self.base[..start].to_vec());
             let f = Vec3::from_slice(&factor[..3]);
-            all.extend(cs.into_rgb_f32().map(|c| {
+            all.extend(cs.into_iter().map(|c| {
                 let c = Vec3::from(c) * if own { f } else { Vec3::ONE };
                 Lin::from_unit(c.to_array())
             }));
@@ -631,9 +648,10 @@ impl Parts<'_> {
             }
         }
 
-        let indices: Vec<u32> = match reader.read_indices() {
-            Some(i) => i.into_u32().collect(),
-            None => (0..n as u32).collect(),
+        let indices: Vec<u32> = match (draco.as_mut(), reader.read_indices()) {
+            (Some(d), _) => std::mem::take(&mut d.indices),
+            (None, Some(i)) => i.into_u32().collect(),
+            (None, None) => (0..n as u32).collect(),
         };
         if let Some(&bad) = indices.iter().find(|&&i| i as usize >= n) {
             return Err(format!("index {bad} is out of range for {n} vertices"));
@@ -698,7 +716,8 @@ impl Parts<'_> {
                 .map(|f| f.map(|i| i - first))
                 .collect();
             let normals = normals.unwrap_or_else(|| rig::smooth_normals(&positions, &faces, flip));
-            rig.part(prim, place, buffers, (first, positions, normals), document)?;
+            let vertices = (first, positions, normals);
+            rig.part(prim, place, (buffers, draco.as_ref()), vertices, document)?;
         }
         if self.faces.len() > faces_before {
             let run = MaterialRun {
@@ -763,6 +782,27 @@ impl Parts<'_> {
     }
 }
 
+/// The crate's validation of `root`, but for an accessor without a buffer
+/// view, which glTF allows (its elements are zeros, or a Draco stream's)
+/// and the crate does not.
+fn validated(root: ::gltf::json::Root) -> std::result::Result<::gltf::Document, ::gltf::Error> {
+    use ::gltf::json::validation::{Error, Validate};
+    let mut errors = Vec::new();
+    root.validate(&root, ::gltf::json::Path::new, &mut |path, error| {
+        let path = path();
+        let p = path.as_str();
+        let viewless = p.starts_with("accessors[") && p.ends_with("].bufferView");
+        if !(viewless && matches!(error, Error::Missing)) {
+            errors.push((path, error));
+        }
+    });
+    if errors.is_empty() {
+        Ok(::gltf::Document::from_json_without_validation(root))
+    } else {
+        Err(::gltf::Error::Validation(errors))
+    }
+}
+
 /// How many positions a primitive has (0 without them).
 fn positions_count(prim: &::gltf::Primitive) -> usize {
     prim.get(&Semantic::Positions).map_or(0, |a| a.count())
@@ -782,4 +822,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_clearcoat",
     "KHR_materials_sheen",
+    draco::EXTENSION,
 ];

@@ -112,7 +112,7 @@ impl RigParts {
         &mut self,
         prim: &::gltf::Primitive,
         place: Placement,
-        buffers: &[Buffer],
+        (buffers, draco): (&[Buffer], Option<&super::draco::Decoded>),
         (first, positions, normals): (u32, Vec<Vec3>, Vec<Vec3>),
         document: &::gltf::Document,
     ) -> Result<(), String> {
@@ -133,20 +133,24 @@ impl RigParts {
                     prim.get(&::gltf::Semantic::Weights(set)),
                 ) {
                     let name = |what: &str| format!("{what}_{set}");
-                    check(
-                        &j,
-                        buffers,
-                        &[DataType::U8, DataType::U16],
-                        &[Dimensions::Vec4],
-                        &name("JOINTS"),
-                    )?;
-                    check(
-                        &w,
-                        buffers,
-                        &[DataType::F32, DataType::U8, DataType::U16],
-                        &[Dimensions::Vec4],
-                        &name("WEIGHTS"),
-                    )?;
+                    let packed =
+                        draco.and_then(|d| d.get(&name("JOINTS")).zip(d.get(&name("WEIGHTS"))));
+                    if packed.is_none() {
+                        check(
+                            &j,
+                            buffers,
+                            &[DataType::U8, DataType::U16],
+                            &[Dimensions::Vec4],
+                            &name("JOINTS"),
+                        )?;
+                        check(
+                            &w,
+                            buffers,
+                            &[DataType::F32, DataType::U8, DataType::U16],
+                            &[Dimensions::Vec4],
+                            &name("WEIGHTS"),
+                        )?;
+                    }
                     if j.count() != n || w.count() != n {
                         return Err(format!(
                             "{} and {} have {} and {} entries for {n} positions",
@@ -156,11 +160,39 @@ impl RigParts {
                             w.count()
                         ));
                     }
-                    let js = reader.read_joints(set).ok_or("JOINTS could not be read")?;
-                    let ws = reader
-                        .read_weights(set)
-                        .ok_or("WEIGHTS could not be read")?;
-                    for ((v, j), w) in per_vertex.iter_mut().zip(js.into_u16()).zip(ws.into_f32()) {
+                    let (js, ws): (Vec<[u16; 4]>, Vec<[f32; 4]>) = match packed {
+                        // A Draco stream's, four a vertex (joints whole
+                        // numbers of 16 bits).
+                        Some(((js, 4), (ws, 4))) => {
+                            let joint = |x: f32| {
+                                (x >= 0.0 && x <= f32::from(u16::MAX) && x.fract() == 0.0)
+                                    .then_some(x as u16)
+                            };
+                            let js = js.chunks_exact(4).map(|j| {
+                                let [a, b, c, d] = [j[0], j[1], j[2], j[3]].map(joint);
+                                Some([a?, b?, c?, d?])
+                            });
+                            let js: Option<Vec<[u16; 4]>> = js.collect();
+                            let js = js.ok_or("its Draco JOINTS are not joint numbers")?;
+                            let ws = ws
+                                .chunks_exact(4)
+                                .map(|w| [w[0], w[1], w[2], w[3]])
+                                .collect();
+                            (js, ws)
+                        }
+                        Some(_) => return Err("its Draco JOINTS or WEIGHTS are not of four".into()),
+                        None => {
+                            let js = reader.read_joints(set).ok_or("JOINTS could not be read")?;
+                            let ws = reader
+                                .read_weights(set)
+                                .ok_or("WEIGHTS could not be read")?;
+                            (js.into_u16().collect(), ws.into_f32().collect())
+                        }
+                    };
+                    if js.len() != n || ws.len() != n {
+                        return Err(format!("{} could not be read", name("JOINTS")));
+                    }
+                    for ((v, j), w) in per_vertex.iter_mut().zip(js).zip(ws) {
                         for k in 0..4 {
                             if !(w[k].is_finite() && w[k] >= 0.0) {
                                 return Err(format!(
