@@ -741,3 +741,108 @@ fn damaged_draco_streams_are_refused_never_drawn_as_another_mesh() {
     }
     assert!(refused > 50, "{refused} of 200 refused");
 }
+
+/// The square of [`plain`] with its views compressed by meshoptimizer's
+/// codecs as `EXT_meshopt_compression` writes them (gltfpack's output):
+/// positions as floats (no filter), normals as octahedral bytes with
+/// `KHR_mesh_quantization` (its filter), indices as triangles; the
+/// uncompressed copy a fallback buffer the file leaves out. `edit` changes
+/// the compressed bytes first.
+fn meshopt_square(mut edit: impl FnMut(&mut Vec<u8>)) -> Vec<u8> {
+    use meshoptimizer_rs::Workspace;
+    use meshoptimizer_rs::codec::{
+        IndexEncoding, VertexEncoding, encode_filter_oct, encode_index_buffer, encode_vertex_buffer,
+    };
+    let mut w = Workspace::default();
+    let v0 = VertexEncoding::new(0, 2).unwrap();
+    let positions = le(CORNERS.as_flattened(), f32::to_le_bytes);
+    let pos = encode_vertex_buffer(&positions, 4, 12, v0, &mut w).unwrap();
+    let oct = encode_filter_oct(
+        4,
+        4,
+        8,
+        &NORMALS.map(|n| [n[0], n[1], n[2], 0.0]).concat(),
+        &mut w,
+    )
+    .unwrap();
+    let normals = encode_vertex_buffer(&oct, 4, 4, v0, &mut w).unwrap();
+    let idx = encode_index_buffer(&[0, 1, 2, 0, 2, 3], IndexEncoding::DEFAULT, &mut w).unwrap();
+    let mut bin = Vec::new();
+    let mut views = Vec::new();
+    for (bytes, count, stride, mode, filter) in [
+        (pos, 4, 12, "ATTRIBUTES", "NONE"),
+        (normals, 4, 4, "ATTRIBUTES", "OCTAHEDRAL"),
+        (idx, 6, 2, "TRIANGLES", "NONE"),
+    ] {
+        let mut bytes = bytes;
+        edit(&mut bytes);
+        let offset = bin.len();
+        bin.extend_from_slice(&bytes);
+        while bin.len() % 4 != 0 {
+            bin.push(0);
+        }
+        views.push(format!(
+            r#"{{"buffer":1,"byteLength":{},"byteStride":{stride},"extensions":{{"EXT_meshopt_compression":{{"buffer":0,"byteOffset":{offset},"byteLength":{},"byteStride":{stride},"count":{count},"mode":"{mode}","filter":"{filter}"}}}}}}"#,
+            count * stride,
+            bytes.len()
+        ));
+    }
+    // The index view has no stride in glTF: only in the extension.
+    views[2] = views[2].replacen(r#","byteStride":2,"ext"#, r#","ext"#, 1);
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},
+"extensionsUsed":["EXT_meshopt_compression","KHR_mesh_quantization"],"extensionsRequired":["EXT_meshopt_compression","KHR_mesh_quantization"],
+"buffers":[{{"byteLength":{}}},{{"byteLength":96,"extensions":{{"EXT_meshopt_compression":{{"fallback":true}}}}}}],
+"bufferViews":[{}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5120,"normalized":true,"count":4,"type":"VEC3"}},
+{{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1}},"indices":2}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0}}"#,
+        bin.len(),
+        views.join(",")
+    );
+    common::glb(&json, &bin)
+}
+
+#[test]
+fn meshopt_compressed_views_read_as_the_same_floats_and_samples() {
+    let want = load(&plain());
+    let got = load(&meshopt_square(|_| {}));
+    assert_eq!(got.positions, want.positions);
+    // Octahedral bytes: each axis-aligned normal exactly.
+    assert_eq!(got.normals, want.normals);
+    assert_eq!(samples(got), samples(want));
+}
+
+#[test]
+fn damaged_meshopt_streams_are_refused_never_drawn_as_another_mesh() {
+    let want = load(&plain());
+    let mut seed = 11u64;
+    let mut refused = 0;
+    for t in 0..200 {
+        let file = meshopt_square(|s| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let i = (seed >> 33) as usize % s.len();
+            if t % 3 == 0 {
+                s.truncate(i);
+            } else {
+                s[i] ^= (seed >> 20) as u8 | 1;
+            }
+        });
+        match gltf::parse(&file, None, "t.glb", &LoadOptions::default()) {
+            Ok(got) => assert_eq!(got.geometry.faces.len(), want.faces.len()),
+            Err(e) => {
+                assert!(
+                    e.to_string().contains("could not be decoded")
+                        || e.to_string().contains("out of range"),
+                    "{e}"
+                );
+                refused += 1;
+            }
+        }
+    }
+    assert!(refused > 50, "{refused} of 200 refused");
+}

@@ -14,7 +14,8 @@ pub(super) type Buffer = Arc<[u8]>;
 /// The document's buffers, read as the model was read (data URIs decoded,
 /// files found beside the model with [`file::reference`], each file read
 /// once however many buffers name it), each at least as long as it says;
-/// every buffer view is checked to lie inside its buffer.
+/// every buffer view is checked to lie inside its buffer. The buffers
+/// `unread` names are left empty (see `meshopt`).
 pub(super) fn buffers(
     document: &::gltf::Document,
     mut blob: Option<Vec<u8>>,
@@ -22,11 +23,17 @@ pub(super) fn buffers(
     owner: &str,
     files: &Files,
     notes: &mut Vec<String>,
+    unread: &[usize],
 ) -> std::result::Result<Vec<Buffer>, String> {
     let mut out: Vec<Buffer> = Vec::new();
     let mut read: FxHashMap<FileId, Buffer> = FxHashMap::default();
     for b in document.buffers() {
         let what = format!("buffer {}", b.index());
+        // A buffer not to be read (see `meshopt`): empty here.
+        if unread.contains(&b.index()) {
+            out.push(Arc::from(Vec::new()));
+            continue;
+        }
         let data: Buffer = match b.source() {
             ::gltf::buffer::Source::Bin => padded(
                 blob.take()
@@ -76,7 +83,7 @@ pub(super) fn buffers(
 
 /// `data` padded with zeros to a multiple of four bytes, as the gltf
 /// crate's readers expect.
-fn padded(mut data: Vec<u8>) -> Buffer {
+pub(super) fn padded(mut data: Vec<u8>) -> Buffer {
     data.resize(data.len().next_multiple_of(4), 0);
     data.into()
 }

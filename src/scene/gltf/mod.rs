@@ -53,6 +53,7 @@ mod accessor;
 mod budget;
 mod buffers;
 mod draco;
+mod meshopt;
 mod instances;
 mod material;
 mod numbers;
@@ -178,9 +179,15 @@ fn parse_in(
             }
         }
     }
+    // Compressed views pointed at buffers of their own, decoded once the
+    // buffers are read.
+    let compressed = meshopt::rewrite(&mut root, options.max_bytes).map_err(bad)?;
     let document = validated(root).map_err(|e| bad(describe(&e)))?;
     let mut notes = Vec::new();
-    let buffers = buffers(&document, blob, base, name, files, &mut notes).map_err(bad)?;
+    let unread = &compressed.unread;
+    let mut buffers =
+        buffers(&document, blob, base, name, files, &mut notes, unread).map_err(bad)?;
+    meshopt::decode(&compressed, &mut buffers).map_err(bad)?;
 
     let scene = document
         .default_scene()
@@ -823,4 +830,5 @@ const DRAWN_EXTENSIONS: &[&str] = &[
     "KHR_materials_clearcoat",
     "KHR_materials_sheen",
     draco::EXTENSION,
+    meshopt::EXTENSION,
 ];
