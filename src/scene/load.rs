@@ -16,6 +16,8 @@ pub enum Format {
     Gltf,
     /// PLY.
     Ply,
+    /// 3MF.
+    ThreeMf,
     /// A scene file.
     Toml,
     /// A built-in shape named without an extension.
@@ -43,6 +45,8 @@ impl Format {
             Some("gltf" | "glb") => Some(Format::Gltf),
             #[cfg(feature = "ply")]
             Some("ply") => Some(Format::Ply),
+            #[cfg(feature = "threemf")]
+            Some("3mf") => Some(Format::ThreeMf),
             Some("toml") => Some(Format::Toml),
             _ => None,
         };
@@ -117,6 +121,7 @@ impl Format {
             Format::Stl => "STL",
             Format::Gltf => "glTF",
             Format::Ply => "PLY",
+            Format::ThreeMf => "3MF",
             Format::Toml => "TOML scene",
             Format::Shape(_) => "built-in shape",
         }
@@ -127,6 +132,7 @@ impl Format {
 pub(super) fn readable(f: Format) -> bool {
     !matches!(f, Format::Gltf if !cfg!(feature = "gltf"))
         && !matches!(f, Format::Ply if !cfg!(feature = "ply"))
+        && !matches!(f, Format::ThreeMf if !cfg!(feature = "threemf"))
 }
 
 /// What a file's first bytes say: a signature (a format that cannot be
@@ -137,6 +143,10 @@ pub(super) fn sniff(head: &[u8]) -> (Option<Format>, Option<Format>) {
     }
     if head.starts_with(b"ply\n") || head.starts_with(b"ply\r\n") {
         return (Some(Format::Ply), None);
+    }
+    // A zip archive: a 3MF package, if any model is.
+    if head.starts_with(b"PK\x03\x04") {
+        return (None, Some(Format::ThreeMf));
     }
     let text = head.trim_ascii_start();
     if text.starts_with(b"{") {
@@ -277,15 +287,25 @@ pub(super) fn chunks(src: &str, size: usize) -> Vec<(usize, usize)> {
 }
 
 /// The model formats read, in words.
-pub(super) const MODELS: &str = if cfg!(all(feature = "gltf", feature = "ply")) {
-    ".obj with its .mtl, .stl, .gltf, .glb, .ply"
-} else if cfg!(feature = "gltf") {
-    ".obj with its .mtl, .stl, .gltf, .glb"
-} else if cfg!(feature = "ply") {
-    ".obj with its .mtl, .stl, .ply"
-} else {
-    ".obj with its .mtl, .stl"
-};
+pub(super) const MODELS: &str = formats(
+    cfg!(feature = "gltf"),
+    cfg!(feature = "ply"),
+    cfg!(feature = "threemf"),
+);
+
+/// [`MODELS`] for the loaders built.
+const fn formats(gltf: bool, ply: bool, threemf: bool) -> &'static str {
+    match (gltf, ply, threemf) {
+        (true, true, true) => ".obj with its .mtl, .stl, .gltf, .glb, .ply, .3mf",
+        (true, true, false) => ".obj with its .mtl, .stl, .gltf, .glb, .ply",
+        (true, false, true) => ".obj with its .mtl, .stl, .gltf, .glb, .3mf",
+        (true, false, false) => ".obj with its .mtl, .stl, .gltf, .glb",
+        (false, true, true) => ".obj with its .mtl, .stl, .ply, .3mf",
+        (false, true, false) => ".obj with its .mtl, .stl, .ply",
+        (false, false, true) => ".obj with its .mtl, .stl, .3mf",
+        (false, false, false) => ".obj with its .mtl, .stl",
+    }
+}
 
 /// Loads a model file by its extension, or a built-in shape by its name:
 /// its geometry, and what the loader has to tell.
@@ -322,6 +342,8 @@ pub(super) fn load_as(
         Format::Gltf => gltf::load_in(path, options, files)?,
         #[cfg(feature = "ply")]
         Format::Ply => ply::load_in(path, options, files)?,
+        #[cfg(feature = "threemf")]
+        Format::ThreeMf => threemf::load_in(path, options, files)?,
         Format::Shape(shape) => {
             let mut g = shape.geometry();
             if options.crease != mesh::DEFAULT_CREASE {

@@ -80,6 +80,8 @@ mod image;
 pub mod obj;
 #[cfg(feature = "ply")]
 pub mod ply;
+#[cfg(feature = "threemf")]
+pub mod threemf;
 mod polygon;
 mod shapes;
 #[cfg(feature = "gltf")]
@@ -396,9 +398,10 @@ impl Scene {
     fn of_model_in(name: &Path, options: &LoadOptions, files: &file::Files) -> Result<Scene> {
         let (format, note) = Format::of(name)?;
         let (geometry, notes) = load_as(name, format, note, options, files)?;
-        // STL is z-up by convention; OBJ and the shapes are y-up.
-        let stl = format == Format::Stl;
-        let up = options.up.unwrap_or(if stl {
+        // STL is z-up by convention, and 3MF by its spec; OBJ, glTF and
+        // the shapes are y-up.
+        let z_up = matches!(format, Format::Stl | Format::ThreeMf);
+        let up = options.up.unwrap_or(if z_up {
             transform::Axis::Z
         } else {
             transform::Axis::Y

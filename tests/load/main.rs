@@ -23,5 +23,7 @@ mod spec;
 mod environment;
 #[cfg(feature = "gltf")]
 mod layers;
+#[cfg(feature = "threemf")]
+mod threemf;
 #[cfg(all(feature = "gltf", feature = "textures"))]
 mod textures;
