@@ -175,11 +175,12 @@ pub struct SpinArgs {
 #[command(next_help_heading = "Model")]
 pub struct InputArgs {
     /// A scene file (.toml), a model (.obj with its .mtl, .stl, .gltf,
-    /// .glb, .ply; told by its first bytes where its name says nothing) or
+    /// .glb, .ply, .3mf; told by its first bytes where its name says
+    /// nothing) or
     /// a built-in shape (cube, sphere, torus); without it, the built-in
     /// default scene.
     pub scene: Option<PathBuf>,
-    /// A model's up axis [default: z for STL, y otherwise]
+    /// A model's up axis [default: z for STL and 3MF, y otherwise]
     #[arg(long, value_parser = named::<Axis>())]
     pub up: Option<Axis>,
     /// Faces meeting at a sharper angle keep their own normals along the

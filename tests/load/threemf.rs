@@ -275,3 +275,23 @@ fn components_in_other_model_parts_are_read_as_slicers_write_them() {
     let e = threemf::parse(&file, "t.3mf").err().unwrap().to_string();
     assert!(e.contains("not a part inside the archive"), "{e}");
 }
+
+#[test]
+fn a_3mf_file_is_told_by_its_name_and_stood_up_as_stl_is() {
+    // Written where the tests write, then read as `rastty render` reads a
+    // model: by its extension, z-up turned onto y.
+    let dir = std::env::temp_dir().join(format!("rastty-3mf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("model.3mf");
+    std::fs::write(&path, package(&model("millimeter"))).unwrap();
+    let scene = rastty::scene::Scene::of_model(&path).unwrap();
+    let z_up = glam::Mat4::from_cols(glam::Vec4::X, -glam::Vec4::Z, glam::Vec4::Y, glam::Vec4::W);
+    assert_eq!(scene.meshes[0].model, z_up);
+    assert_eq!(scene.meshes[0].geometry.faces.len(), 4);
+    // Without its extension, its first bytes (a zip's) say what it is.
+    let bare = dir.join("model");
+    std::fs::rename(&path, &bare).unwrap();
+    let scene = rastty::scene::Scene::of_model(&bare).unwrap();
+    assert_eq!(scene.meshes[0].geometry.faces.len(), 4);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -725,7 +725,7 @@ fn an_extension_rastty_does_not_read_is_an_error_listing_those_it_does() {
         assert_eq!(
             fails(&["render", p]),
             format!(
-                "error: {p}: rastty does not read .{ext} files; it reads models (.obj with its .mtl, .stl, .gltf, .glb, .ply), scenes (.toml) and the shapes cube, sphere and torus"
+                "error: {p}: rastty does not read .{ext} files; it reads models (.obj with its .mtl, .stl, .gltf, .glb, .ply, .3mf), scenes (.toml) and the shapes cube, sphere and torus"
             )
         );
     }
