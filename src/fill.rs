@@ -655,6 +655,12 @@ pub(crate) struct UvPlanes {
 
 impl UvPlanes {
     pub(crate) fn new(t: &ScreenTriangle, perspective: bool) -> UvPlanes {
+        UvPlanes::of(t, t.uv, perspective)
+    }
+
+    /// [`UvPlanes::new`] of coordinates `uv` at `t`'s corners (a second
+    /// set's).
+    pub(crate) fn of(t: &ScreenTriangle, uv: [Vec2; 3], perspective: bool) -> UvPlanes {
         let [p0, p1, p2] = t.xy;
         let (d1, d2) = (
             [p1[0] - p0[0], p1[1] - p0[1]],
@@ -677,8 +683,8 @@ impl UvPlanes {
         };
         UvPlanes {
             origin: p0,
-            u: plane([0, 1, 2].map(|i| f64::from(t.uv[i].x) * q[i])),
-            v: plane([0, 1, 2].map(|i| f64::from(t.uv[i].y) * q[i])),
+            u: plane([0, 1, 2].map(|i| f64::from(uv[i].x) * q[i])),
+            v: plane([0, 1, 2].map(|i| f64::from(uv[i].y) * q[i])),
             q: plane(q),
         }
     }

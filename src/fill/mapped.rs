@@ -61,6 +61,8 @@ pub(crate) struct MapSet {
     layers: Layers,
     /// Whether it has a map (not layers alone).
     has_maps: bool,
+    /// The maps read through the second coordinate set ([`Maps::second`]).
+    second: u8,
 }
 
 impl MapSet {
@@ -74,6 +76,11 @@ impl MapSet {
     /// Whether it has a map (a run with layers alone has none).
     pub(crate) fn has_maps(&self) -> bool {
         self.has_maps
+    }
+
+    /// Whether a map reads the second coordinate set.
+    pub(crate) fn reads_second(&self) -> bool {
+        self.second != 0
     }
 
     /// Its layers, as the plan draws them.
@@ -109,6 +116,7 @@ impl MapSet {
             unlit: finish.unlit,
             layers,
             has_maps: !maps.is_empty(),
+            second: maps.second,
         }
     }
 }
@@ -131,6 +139,8 @@ pub(crate) struct Mapped<'a> {
     /// (every map is read through them).
     pub base: Option<(&'a Texture, Sampler)>,
     pub planes: &'a UvPlanes,
+    /// The second coordinate set's planes, where a map reads it.
+    pub planes2: Option<&'a UvPlanes>,
     /// The lights and the eye; `None` where nothing is lit.
     pub lights: Option<(&'a Lights, Eye)>,
     /// Whether the rim light is added.
@@ -156,14 +166,19 @@ impl Mapped<'_> {
         };
         let (uv, dx, dy) = self.planes.at(x, y);
         let read = |(t, s): &(&Texture, Sampler)| Vec3A::from(t.sample(s, uv, dx, dy));
-        let map = |(t, s): &Read| read(&(&**t, *s));
+        let s = self.set;
+        let second = self.planes2.map(|p| p.at(x, y));
+        // A map's texel, through the set it reads.
+        let map_on = |(t, sampler): &Read, bit: u8| match second.filter(|_| s.second & bit != 0) {
+            Some((uv, dx, dy)) => Vec3A::from(t.sample(sampler, uv, dx, dy)),
+            None => read(&(&**t, *sampler)),
+        };
         if let Some(base) = &self.base {
             albedo *= read(base);
         }
-        let s = self.set;
         let mut emitted = s.emissive;
         if let Some(m) = &s.emissive_map {
-            emitted *= map(m);
+            emitted *= map_on(m, Maps::EMISSIVE);
         }
         let Some((lights, eye)) = self.lights.filter(|_| !s.unlit) else {
             return Lin::from_lanes(albedo + emitted);
@@ -186,17 +201,16 @@ impl Mapped<'_> {
         // A clear coat lies over the geometry, not the normal map.
         let geometric = n;
         if let Some((m, scale)) = &s.normal {
-            let m = Vec3::from(map(m)) * 2.0 - Vec3::ONE;
+            let m = Vec3::from(map_on(m, Maps::NORMAL)) * 2.0 - Vec3::ONE;
             n = (t * (m.x * scale) + b * (m.y * scale) + n * m.z).normalize_or(n);
         }
-        let occlusion = s
-            .occlusion
-            .as_ref()
-            .map_or(1.0, |(m, strength)| 1.0 + strength * (map(m).x - 1.0));
+        let occlusion = s.occlusion.as_ref().map_or(1.0, |(m, strength)| {
+            1.0 + strength * (map_on(m, Maps::OCCLUSION).x - 1.0)
+        });
         let (mut metallic, mut roughness) =
             s.specular.map_or((0.0, 1.0), |k| (k.metallic, k.roughness));
         if let Some(m) = &s.metallic_roughness {
-            let texel = map(m);
+            let texel = map_on(m, Maps::METALLIC_ROUGHNESS);
             metallic *= texel.z;
             roughness = (roughness * texel.y).max(Specular::MIN_ROUGHNESS);
         }
@@ -204,8 +218,10 @@ impl Mapped<'_> {
         if let Some((colour, gloss)) = &s.specular_glossiness {
             // Specular colour times the texel; glossiness (1 − roughness)
             // times the texel's alpha.
-            reflectance = reflectance.map(|r| r * map(colour));
-            roughness = (1.0 - (1.0 - roughness) * map(gloss).x).max(Specular::MIN_ROUGHNESS);
+            let bit = Maps::SPECULAR_GLOSSINESS;
+            reflectance = reflectance.map(|r| r * map_on(colour, bit));
+            roughness =
+                (1.0 - (1.0 - roughness) * map_on(gloss, bit).x).max(Specular::MIN_ROUGHNESS);
         }
         let mut lit = albedo * (lights.lambert_occluded(n, p, occlusion) * (1.0 - metallic));
         if let (Some(k), Some(dielectric)) = (s.specular, reflectance) {

@@ -45,6 +45,8 @@ pub(super) struct Frame {
     world: [Vec3; 3],
     tangent: [Vec3; 3],
     bitangent: [Vec3; 3],
+    /// The second coordinate set's, where a map reads it.
+    uv2: [glam::Vec2; 3],
 }
 
 impl Painter<'_> {
@@ -75,6 +77,10 @@ impl Painter<'_> {
                 None => [run_color; 3],
             };
             me.mapping.frame = frame(f, face, mesh.tangents.as_ref().map(|t| t[id]));
+            if let Some(uvs2) = &mesh.uvs2 {
+                me.mapping.frame.uv2 =
+                    face.map(|i| uvs2.get(i as usize).copied().unwrap_or_default());
+            }
             let tex = Tex {
                 texture,
                 sampler,
@@ -130,11 +136,22 @@ impl Painter<'_> {
         };
         let done = match (&self.mapping.set, t.shine, &planes) {
             (Some(set), Some(corners), Some(planes)) => {
+                // The second set at this piece's corners, from where they
+                // are in the whole face.
+                let frame = &self.mapping.frame;
+                let planes2 = set.reads_second().then(|| {
+                    let uv2 = corners.1.map(|p| {
+                        let w = weights_in(p, frame.world);
+                        frame.uv2[0] * w.x + frame.uv2[1] * w.y + frame.uv2[2] * w.z
+                    });
+                    fill::UvPlanes::of(t, uv2, stage.plan[Effect::Perspective].run)
+                });
                 let mapped = Mapped {
                     set,
-                    corners: mapped_corners(setup.order(), corners, &self.mapping.frame),
+                    corners: mapped_corners(setup.order(), corners, frame),
                     base: texture.filter(|(t, _)| !std::ptr::eq(*t, Texture::white())),
                     planes,
+                    planes2: planes2.as_ref(),
                     lights: stage.plan[Effect::Lighting]
                         .run
                         .then_some((&stage.lights, stage.eye)),

@@ -245,7 +245,8 @@ pub struct Finish {
 /// A material's textures beyond its base colour's, each an index into
 /// [`crate::scene::Geometry::textures`], read through the base colour's
 /// texture coordinates (glTF's `texCoord` of the base colour, or of the
-/// first map). Any of them makes its faces shaded per sample.
+/// first map) or, those [`Maps::second`] marks, a second set. Any of them
+/// makes its faces shaded per sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Maps {
     /// A tangent-space normal map (linear; x right along the tangent, y
@@ -265,9 +266,24 @@ pub struct Maps {
     /// its glossiness (the alpha channel, linear, in every channel of the
     /// second), multiplying the glossiness (1 − roughness).
     pub specular_glossiness: Option<(u32, u32)>,
+    /// The maps read through the second coordinate set
+    /// ([`crate::scene::Geometry::uvs2`]), as bits of [`Maps::NORMAL`] and
+    /// the others; the rest through the base colour's.
+    pub second: u8,
 }
 
 impl Maps {
+    /// [`Maps::second`]'s bit for the normal map.
+    pub const NORMAL: u8 = 1;
+    /// Its bit for the metallic-roughness map.
+    pub const METALLIC_ROUGHNESS: u8 = 2;
+    /// Its bit for the occlusion map.
+    pub const OCCLUSION: u8 = 4;
+    /// Its bit for the emissive map.
+    pub const EMISSIVE: u8 = 8;
+    /// Its bit for the specular-glossiness texture.
+    pub const SPECULAR_GLOSSINESS: u8 = 16;
+
     /// Whether it has no map.
     pub fn is_empty(&self) -> bool {
         *self == Maps::default()

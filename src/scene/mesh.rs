@@ -119,6 +119,12 @@ pub struct Geometry {
     /// One texture coordinate per position, when the source has them
     /// (`u` right, `v` down the image, as glTF has them).
     pub uvs: Option<Vec<Vec2>>,
+    /// A second texture coordinate per position, where a material's maps
+    /// read another set than its base colour's (those [`Maps::second`]
+    /// marks).
+    ///
+    /// [`Maps::second`]: crate::scene::Maps::second
+    pub uvs2: Option<Vec<Vec2>>,
     /// The textures the material runs name.
     pub textures: Vec<Arc<Texture>>,
     /// Triangles, as indices into `positions` (and `normals`, `colors`).
@@ -168,6 +174,7 @@ impl Clone for Geometry {
             normals: self.normals.clone(),
             colors: self.colors.clone(),
             uvs: self.uvs.clone(),
+            uvs2: self.uvs2.clone(),
             textures: self.textures.clone(),
             faces: self.faces.clone(),
             materials: self.materials.clone(),
@@ -192,6 +199,7 @@ impl PartialEq for Geometry {
             && self.normals == o.normals
             && self.colors == o.colors
             && self.uvs == o.uvs
+            && self.uvs2 == o.uvs2
             && self.textures == o.textures
             && self.faces == o.faces
             && self.materials == o.materials
@@ -228,6 +236,7 @@ impl Geometry {
             normals: Vec::new(),
             colors: None,
             uvs: None,
+            uvs2: None,
             textures: Vec::new(),
             faces,
             materials: Vec::new(),
@@ -420,7 +429,7 @@ impl Geometry {
                 if let Some(c) = &mut self.colors {
                     c.push(c[v as usize]);
                 }
-                if let Some(t) = &mut self.uvs {
+                for t in [&mut self.uvs, &mut self.uvs2].into_iter().flatten() {
                     t.push(t[v as usize]);
                 }
                 self.normals.push(normal);

@@ -177,10 +177,10 @@ fn bad_gltf_files_get_one_error_naming_what_is_wrong() {
         ),
         (
             glb(
-                &triangle_json("", 36, nodes, prim, r#","extensionsUsed":["KHR_texture_transform","KHR_draco_mesh_compression"],"extensionsRequired":["KHR_texture_transform","KHR_draco_mesh_compression"]"#),
+                &triangle_json("", 36, nodes, prim, r#","extensionsUsed":["KHR_texture_transform","KHR_texture_basisu"],"extensionsRequired":["KHR_texture_transform","KHR_texture_basisu"]"#),
                 &f32s(&TRI),
             ),
-            "t.glb: needs the extension KHR_draco_mesh_compression, which rastty does not read",
+            "t.glb: needs the extension KHR_texture_basisu, which rastty does not read",
         ),
         (b"not a model at all".to_vec(), "t.glb: "),
     ];

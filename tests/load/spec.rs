@@ -846,3 +846,56 @@ fn damaged_meshopt_streams_are_refused_never_drawn_as_another_mesh() {
     }
     assert!(refused > 50, "{refused} of 200 refused");
 }
+
+/// A white square with an emissive map of a 2×2 image of four colours
+/// (nearest), read through `set`: the base colour texture (one white
+/// texel) on set 0, whose coordinates are the square's; set 1's the same
+/// mirrored in u. `mirrored`: the image mirrored in u too.
+fn glowing_square(set: u32, mirrored: bool) -> Vec<u8> {
+    let mut d = Doc::default();
+    let pos = d.vec3(&CORNERS);
+    let normal = d.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let proper = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let uv0 = d.floats(&proper.concat(), "VEC2", 2);
+    let uv1 = d.floats(&proper.map(|[u, v]| [1.0 - u, v]).concat(), "VEC2", 2);
+    let idx = d.indices(&[[0, 1, 2], [0, 2, 3]]);
+    let mut texels = [[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 0]];
+    if mirrored {
+        texels.swap(0, 1);
+        texels.swap(2, 3);
+    }
+    let glow = d.view(&common::png_rgb(2, 2, &texels));
+    let white = d.view(&common::png_rgb(1, 1, &[[255, 255, 255]]));
+    d.glb(&format!(
+        r#""materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[0,0,0,1],"baseColorTexture":{{"index":1}}}},"emissiveFactor":[1,1,1],"emissiveTexture":{{"index":0,"texCoord":{set}}}}}],
+"samplers":[{{"magFilter":9728,"minFilter":9728}}],
+"images":[{{"bufferView":{glow},"mimeType":"image/png"}},{{"bufferView":{white},"mimeType":"image/png"}}],"textures":[{{"source":0,"sampler":0}},{{"source":1,"sampler":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{normal},"TEXCOORD_0":{uv0},"TEXCOORD_1":{uv1}}},"indices":{idx},"material":0}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#
+    ))
+}
+
+#[test]
+fn a_map_on_another_set_than_the_base_colours_is_read_through_it() {
+    // The glow read through set 1 (mirrored coordinates) is the mirrored
+    // image read through set 0, sample for sample; and not the image
+    // read through set 0.
+    let second = load(&glowing_square(1, false));
+    assert!(second.uvs2.is_some());
+    let (a, b) = (samples(second), samples(load(&glowing_square(0, true))));
+    assert!(
+        a == b,
+        "the mirrored image through set 0 draws another picture"
+    );
+    let colours = |s: &[Option<rastty::color::Lin>]| {
+        let mut c: Vec<_> = s.iter().flatten().map(|c| c.0).collect();
+        c.sort_unstable();
+        c.dedup();
+        c.len()
+    };
+    assert_eq!(colours(&a), 4, "the four texels glow");
+    assert!(
+        a != samples(load(&glowing_square(0, false))),
+        "set 1 read as set 0"
+    );
+}

@@ -19,6 +19,7 @@ use super::buffers::{Located, locate};
 use crate::scene::file::Files;
 
 use crate::color::Lin;
+use crate::scene::Maps;
 use crate::scene::light::{Light, LightKind};
 use crate::texture::{Filter, Mipmap, Sampler, Wrap};
 
@@ -260,20 +261,33 @@ fn alpha(material: &::gltf::Material<'_>) -> crate::scene::Alpha {
     }
 }
 
+/// A material's base texture and the coordinate sets its textures are read
+/// through.
+pub(super) struct Sets {
+    /// The base colour's texture.
+    pub(super) texture: Option<u32>,
+    /// The first set's `KHR_texture_transform`.
+    pub(super) uv_transform: Option<glam::Affine2>,
+    /// The first set: the base colour's, or the first map's.
+    pub(super) chosen: u32,
+    /// The second set, where a map reads one, and its transform.
+    pub(super) second: Option<(u32, Option<glam::Affine2>)>,
+}
+
 impl Parts<'_> {
     /// A material's textures: its base colour's (and, masked or blended,
     /// its alpha) and its maps, each decoded once, onto `finish`; and the
-    /// `KHR_texture_transform` its coordinates are moved by; and the
-    /// coordinate set they are read through (`TEXCOORD_n`): the base
-    /// colour's, or else the first map's. A texture on another set is
-    /// counted in `ignored` and left out.
+    /// coordinate sets they are read through (`TEXCOORD_n`) with the
+    /// `KHR_texture_transform` each is moved by: the base colour's (or
+    /// else the first map's), and a second where a map reads another. A
+    /// texture on a third set is counted in `ignored` and left out.
     pub(super) fn textures_of(
         &mut self,
         material: &::gltf::Material<'_>,
         finish: &mut crate::scene::Finish,
         buffers: &[Buffer],
         ignored: &mut BTreeMap<&'static str, usize>,
-    ) -> std::result::Result<(Option<u32>, Option<glam::Affine2>, u32), String> {
+    ) -> std::result::Result<Sets, String> {
         // KHR_texture_transform: the coordinates moved once, here
         // (T · R · S, as the extension says), by the base colour's
         // transform, or the first other map's where the base has none.
@@ -292,14 +306,36 @@ impl Parts<'_> {
                 *ignored.entry(what).or_default() += 1;
             }
         }
-        let infos = [
-            base_info.clone(),
-            metallic_roughness.clone(),
-            material.emissive_texture(),
+        let set = |i: &::gltf::texture::Info| {
+            (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
+        };
+        let sg_texture = sg.as_ref().and_then(|sg| sg.specular_glossiness_texture());
+        // Two coordinate sets are read: the base colour's (or else the
+        // first map's), and the first other a map reads. A texture on a
+        // third is noted and left out.
+        let sets = [
+            base_info.as_ref().map(set),
+            metallic_roughness.as_ref().map(set),
+            sg_texture.as_ref().map(set),
+            material.emissive_texture().as_ref().map(set),
+            material.normal_texture().map(|n| n.tex_coord()),
+            material.occlusion_texture().map(|o| o.tex_coord()),
         ];
-        let uv_transform = infos
-            .iter()
+        let mut used = sets.into_iter().flatten();
+        let chosen = used.next().unwrap_or(0);
+        let other = used.find(|&s| s != chosen);
+        // Each set's KHR_texture_transform (T · R · S, as the extension
+        // says): the first its textures give, applied once, here.
+        let transform_of = |on: u32| {
+            [
+                &base_info,
+                &metallic_roughness,
+                &sg_texture,
+                &material.emissive_texture(),
+            ]
+            .into_iter()
             .flatten()
+            .filter(|i| set(i) == on)
             .find_map(|i| i.texture_transform())
             .map(|t| {
                 glam::Affine2::from_scale_angle_translation(
@@ -307,31 +343,27 @@ impl Parts<'_> {
                     -t.rotation(),
                     Vec2::from(t.offset()),
                 )
-            });
-        let set = |i: &::gltf::texture::Info| {
-            (i.texture_transform().and_then(|t| t.tex_coord())).unwrap_or(i.tex_coord())
+            })
         };
-        // One coordinate set is read, the base colour's or else the first
-        // map's: a texture on another is noted and left out.
-        let chosen = [
-            base_info.as_ref().map(set),
-            metallic_roughness.as_ref().map(set),
-            (sg.as_ref().and_then(|sg| sg.specular_glossiness_texture())).map(|i| set(&i)),
-            material.emissive_texture().as_ref().map(set),
-            material.normal_texture().map(|n| n.tex_coord()),
-            material.occlusion_texture().map(|o| o.tex_coord()),
-        ]
-        .into_iter()
-        .flatten()
-        .next()
-        .unwrap_or(0);
-        let mut second = 0;
-        let mut first_set = |set: u32| {
-            second += usize::from(set != chosen);
-            set == chosen
+        let uv_transform = transform_of(chosen);
+        let second_transform = other.and_then(transform_of);
+        let mut third = 0;
+        // Whether a texture on `set` is read, and through the second set.
+        let mut read_on = |set: u32| {
+            let on = (set == chosen)
+                .then_some(false)
+                .or((Some(set) == other).then_some(true));
+            third += usize::from(on.is_none());
+            on
+        };
+        let mut bits = 0u8;
+        let mut mark = |second: bool, bit: u8| {
+            if second {
+                bits |= bit;
+            }
         };
         let texture = match base_info {
-            Some(info) if first_set(set(&info)) => {
+            Some(info) if read_on(set(&info)) == Some(false) => {
                 // A mask's or a blend's alpha is the texture's alpha
                 // channel times the factor.
                 if finish.alpha.mode != crate::scene::AlphaMode::Opaque {
@@ -341,41 +373,56 @@ impl Parts<'_> {
             }
             _ => None,
         };
-        if let Some(info) = metallic_roughness.filter(|i| first_set(set(i))) {
-            finish.maps.metallic_roughness =
-                self.texture(&info.texture(), buffers, Decode::Values)?;
+        let maps = &mut finish.maps;
+        if let Some(info) = metallic_roughness
+            && let Some(second) = read_on(set(&info))
+        {
+            maps.metallic_roughness = self.texture(&info.texture(), buffers, Decode::Values)?;
+            mark(second, Maps::METALLIC_ROUGHNESS);
         }
-        let sg_texture = sg.as_ref().and_then(|sg| sg.specular_glossiness_texture());
-        if let Some(info) = sg_texture.filter(|i| first_set(set(i))) {
+        if let Some(info) = sg_texture
+            && let Some(second) = read_on(set(&info))
+        {
             let colour = self.texture(&info.texture(), buffers, Decode::Colour)?;
             let gloss = self.texture(&info.texture(), buffers, Decode::Alpha)?;
-            finish.maps.specular_glossiness = colour.zip(gloss);
+            maps.specular_glossiness = colour.zip(gloss);
+            mark(second, Maps::SPECULAR_GLOSSINESS);
         }
-        if let Some(info) = material.emissive_texture().filter(|i| first_set(set(i))) {
-            finish.maps.emissive = self.texture(&info.texture(), buffers, Decode::Colour)?;
-        }
-        if let Some(n) = material
-            .normal_texture()
-            .filter(|n| first_set(n.tex_coord()))
+        if let Some(info) = material.emissive_texture()
+            && let Some(second) = read_on(set(&info))
         {
-            finish.maps.normal = self
+            maps.emissive = self.texture(&info.texture(), buffers, Decode::Colour)?;
+            mark(second, Maps::EMISSIVE);
+        }
+        if let Some(n) = material.normal_texture()
+            && let Some(second) = read_on(n.tex_coord())
+        {
+            maps.normal = self
                 .texture(&n.texture(), buffers, Decode::Values)?
                 .map(|t| (t, n.scale()));
+            mark(second, Maps::NORMAL);
         }
-        if let Some(o) = material
-            .occlusion_texture()
-            .filter(|o| first_set(o.tex_coord()))
+        if let Some(o) = material.occlusion_texture()
+            && let Some(second) = read_on(o.tex_coord())
         {
-            finish.maps.occlusion = self
+            maps.occlusion = self
                 .texture(&o.texture(), buffers, Decode::Values)?
                 .map(|t| (t, o.strength().clamp(0.0, 1.0)));
+            mark(second, Maps::OCCLUSION);
         }
-        if second > 0 {
+        if third > 0 {
             *ignored
-                .entry("textures on a second coordinate set")
-                .or_default() += second;
+                .entry("textures on a third coordinate set")
+                .or_default() += third;
         }
-        Ok((texture, uv_transform, chosen))
+        maps.second = bits;
+        let second = (bits != 0).then(|| (other.unwrap_or(0), second_transform));
+        Ok(Sets {
+            texture,
+            uv_transform,
+            chosen,
+            second,
+        })
     }
 
     /// The texture of glTF texture `t` decoded as `how` says (`None` for

@@ -424,6 +424,8 @@ struct Parts<'a> {
     /// Texture coordinates, once a primitive has them (earlier vertices
     /// get zeros: they are not textured).
     uvs: Option<Vec<Vec2>>,
+    /// The second set's, where a map reads one.
+    uvs2: Option<Vec<Vec2>>,
     positions: Vec<Vec3>,
     /// Normals, while every primitive so far has them.
     normals: Vec<Vec3>,
@@ -478,8 +480,12 @@ impl Parts<'_> {
                 .or_default() += 1;
         }
         let mut finish = finish(&material);
-        let (texture, uv_transform, uv_set) =
-            self.textures_of(&material, &mut finish, buffers, ignored)?;
+        let material::Sets {
+            texture,
+            uv_transform,
+            chosen: uv_set,
+            second,
+        } = self.textures_of(&material, &mut finish, buffers, ignored)?;
         let wants_uvs = texture.is_some() || !finish.maps.is_empty();
         let positions = prim.get(&Semantic::Positions).ok_or("it has no POSITION")?;
         let n = positions.count();
@@ -523,6 +529,19 @@ impl Parts<'_> {
         if wants_uvs && tex_coords.is_none() {
             return Err(format!("it has a texture but no {uv_name}"));
         }
+        let second_name = second.map(|(set, _)| format!("TEXCOORD_{set}"));
+        let tex_coords2 = match &second_name {
+            Some(name) => Some(
+                read(
+                    Semantic::TexCoords(second.map_or(0, |s| s.0)),
+                    name,
+                    &QUANTIZED,
+                    &[Dimensions::Vec2],
+                )?
+                .ok_or_else(|| format!("it has a texture on {name} but no {name}"))?,
+            ),
+            None => None,
+        };
         let file_positions = read(
             Semantic::Positions,
             "POSITION",
@@ -654,6 +673,21 @@ impl Parts<'_> {
                 }
             }
         }
+        match (&tex_coords2, second) {
+            (Some(ts), Some((_, transform))) => {
+                let all = self.uvs2.get_or_insert_with(|| vec![Vec2::ZERO; start]);
+                let uvs = ts.chunks_exact(2).map(Vec2::from_slice);
+                match transform {
+                    Some(m) => all.extend(uvs.map(|t| m.transform_point2(t))),
+                    None => all.extend(uvs),
+                }
+            }
+            _ => {
+                if let Some(all) = &mut self.uvs2 {
+                    all.resize(start + n, Vec2::ZERO);
+                }
+            }
+        }
 
         let indices: Vec<u32> = match (draco.as_mut(), reader.read_indices()) {
             (Some(d), _) => std::mem::take(&mut d.indices),
@@ -759,6 +793,7 @@ impl Parts<'_> {
         let maps = self.materials.iter().any(|m| !m.finish.maps.is_empty());
         if maps || self.materials.iter().any(|m| m.texture.is_some()) {
             g.uvs = self.uvs;
+            g.uvs2 = self.uvs2;
             g.textures = self.textures;
         }
         if self.materials.iter().any(|m| {
