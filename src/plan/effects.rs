@@ -207,8 +207,8 @@ effects! {
     }
     /// Light from the environment, reflected by metals.
     Environment "environment" {
-        runs: "a shining material is metal and the scene has an environment (the studio unless `--environment none`): its metal share reflects it, the prefiltered radiance about the reflected direction times the lobe's integral (the split sum), per sample with its highlight",
-        skipped: "no metal, no environment, or no highlights; not forced by the full pipeline: a reflection is what a metal asks for, so both pipelines reflect exactly the metal runs",
+        runs: "a shining material is metal, or a material is coated, and the scene has an environment (the studio unless `--environment none`): its metal share (or its coat) reflects it, the prefiltered radiance about the reflected direction times the lobe's integral (the split sum), per sample with its highlight",
+        skipped: "no metal or coat, no environment, or no highlights; not forced by the full pipeline: a reflection is what a metal or a coat asks for, so both pipelines reflect exactly the metal and coated runs",
         counter: Some(|s| s.reflecting_samples),
         work: |s, scene, _, _| format!(
             "{} samples reflect the {}",

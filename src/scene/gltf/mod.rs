@@ -55,6 +55,7 @@ mod buffers;
 mod draco;
 mod meshopt;
 mod instances;
+mod document;
 mod material;
 mod numbers;
 mod rig;
@@ -81,8 +82,9 @@ use crate::scene::anim::Posed;
 use crate::texture::Texture;
 use budget::{placed, shown};
 use buffers::{buffers, check};
+use document::{DRAWN_EXTENSIONS, describe, semantic_name, validated};
 use material::{Decode, finish, light_of};
-use rig::{Placement, RigParts};
+use rig::{Placement, RigParts, local};
 
 /// The deepest node hierarchy walked (the format has no cycles; a broken
 /// file might).
@@ -347,48 +349,6 @@ fn parse_in(
     geometry.lights = lights;
     geometry.rig = rig.map(Arc::new);
     Ok(Loaded { geometry, notes })
-}
-
-/// A node's transform in its parent's space. A rotation of four zeros is
-/// no rotation at all (the matrix would flatten the node to a point): it
-/// is taken as none, and the node's index added to `unrotated`.
-pub(super) fn local(node: &::gltf::Node, unrotated: &mut Vec<usize>) -> Mat4 {
-    let transform = match node.transform() {
-        ::gltf::scene::Transform::Decomposed {
-            translation,
-            rotation: [0.0, 0.0, 0.0, 0.0],
-            scale,
-        } => {
-            unrotated.push(node.index());
-            ::gltf::scene::Transform::Decomposed {
-                translation,
-                rotation: [0.0, 0.0, 0.0, 1.0],
-                scale,
-            }
-        }
-        t => t,
-    };
-    Mat4::from_cols_array_2d(&transform.matrix())
-}
-
-/// An attribute's name as the file spells it.
-fn semantic_name(s: &::gltf::json::validation::Checked<::gltf::json::mesh::Semantic>) -> String {
-    match s {
-        ::gltf::json::validation::Checked::Valid(s) => s.to_string(),
-        ::gltf::json::validation::Checked::Invalid => "(unknown)".into(),
-    }
-}
-
-/// A `gltf` error in words (its own, with the JSON path for validation).
-fn describe(e: &::gltf::Error) -> String {
-    match e {
-        ::gltf::Error::Validation(errors) => errors
-            .iter()
-            .map(|(path, err)| format!("{path}: {err}"))
-            .collect::<Vec<_>>()
-            .join("; "),
-        other => other.to_string(),
-    }
 }
 
 /// The images of a document, decoded when a material first uses them.
@@ -658,37 +618,19 @@ impl Parts<'_> {
             all.extend_from_slice(&self.base[start..]);
         }
 
-        match &tex_coords {
-            Some(ts) => {
-                let all = self.uvs.get_or_insert_with(|| vec![Vec2::ZERO; start]);
-                let uvs = ts.chunks_exact(2).map(Vec2::from_slice);
-                match uv_transform {
-                    Some(m) => all.extend(uvs.map(|t| m.transform_point2(t))),
-                    None => all.extend(uvs),
-                }
-            }
-            None => {
-                if let Some(all) = &mut self.uvs {
-                    all.resize(start + n, Vec2::ZERO);
-                }
-            }
-        }
-        match (&tex_coords2, second) {
-            (Some(ts), Some((_, transform))) => {
-                let all = self.uvs2.get_or_insert_with(|| vec![Vec2::ZERO; start]);
-                let uvs = ts.chunks_exact(2).map(Vec2::from_slice);
-                match transform {
-                    Some(m) => all.extend(uvs.map(|t| m.transform_point2(t))),
-                    None => all.extend(uvs),
-                }
-            }
-            _ => {
-                if let Some(all) = &mut self.uvs2 {
-                    all.resize(start + n, Vec2::ZERO);
-                }
-            }
-        }
-
+        let second_transform = second.and_then(|s| s.1);
+        extend_uvs(
+            &mut self.uvs,
+            (start, n),
+            tex_coords.as_deref(),
+            uv_transform,
+        );
+        extend_uvs(
+            &mut self.uvs2,
+            (start, n),
+            tex_coords2.as_deref(),
+            second_transform,
+        );
         let indices: Vec<u32> = match (draco.as_mut(), reader.read_indices()) {
             (Some(d), _) => std::mem::take(&mut d.indices),
             (None, Some(i)) => i.into_u32().collect(),
@@ -824,24 +766,26 @@ impl Parts<'_> {
     }
 }
 
-/// The crate's validation of `root`, but for an accessor without a buffer
-/// view, which glTF allows (its elements are zeros, or a Draco stream's)
-/// and the crate does not.
-fn validated(root: ::gltf::json::Root) -> std::result::Result<::gltf::Document, ::gltf::Error> {
-    use ::gltf::json::validation::{Error, Validate};
-    let mut errors = Vec::new();
-    root.validate(&root, ::gltf::json::Path::new, &mut |path, error| {
-        let path = path();
-        let p = path.as_str();
-        let viewless = p.starts_with("accessors[") && p.ends_with("].bufferView");
-        if !(viewless && matches!(error, Error::Missing)) {
-            errors.push((path, error));
+/// A primitive's `n` coordinates `coords` (two floats each), moved by
+/// `transform`, added to `all` at vertex `start` (earlier vertices given
+/// zeros); zeros where it has none and `all` exists.
+fn extend_uvs(
+    all: &mut Option<Vec<Vec2>>,
+    (start, n): (usize, usize),
+    coords: Option<&[f32]>,
+    transform: Option<glam::Affine2>,
+) {
+    let Some(coords) = coords else {
+        if let Some(all) = all {
+            all.resize(start + n, Vec2::ZERO);
         }
-    });
-    if errors.is_empty() {
-        Ok(::gltf::Document::from_json_without_validation(root))
-    } else {
-        Err(::gltf::Error::Validation(errors))
+        return;
+    };
+    let all = all.get_or_insert_with(|| vec![Vec2::ZERO; start]);
+    let uvs = coords.chunks_exact(2).map(Vec2::from_slice);
+    match transform {
+        Some(m) => all.extend(uvs.map(|t| m.transform_point2(t))),
+        None => all.extend(uvs),
     }
 }
 
@@ -849,21 +793,3 @@ fn validated(root: ::gltf::json::Root) -> std::result::Result<::gltf::Document, 
 fn positions_count(prim: &::gltf::Primitive) -> usize {
     prim.get(&Semantic::Positions).map_or(0, |a| a.count())
 }
-
-/// The extensions rastty draws (others are noted as not drawn).
-const DRAWN_EXTENSIONS: &[&str] = &[
-    "KHR_materials_unlit",
-    "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",
-    "KHR_texture_transform",
-    "KHR_materials_pbrSpecularGlossiness",
-    "KHR_mesh_quantization",
-    instances::EXTENSION,
-    "KHR_materials_transmission",
-    "KHR_materials_ior",
-    "KHR_materials_specular",
-    "KHR_materials_clearcoat",
-    "KHR_materials_sheen",
-    draco::EXTENSION,
-    meshopt::EXTENSION,
-];

@@ -528,3 +528,25 @@ pub(super) fn smooth_normals(positions: &[Vec3], faces: &[[u32; 3]], flip: bool)
         })
         .collect()
 }
+
+/// A node's transform in its parent's space. A rotation of four zeros is
+/// no rotation at all (the matrix would flatten the node to a point): it
+/// is taken as none, and the node's index added to `unrotated`.
+pub(super) fn local(node: &::gltf::Node, unrotated: &mut Vec<usize>) -> Mat4 {
+    let transform = match node.transform() {
+        ::gltf::scene::Transform::Decomposed {
+            translation,
+            rotation: [0.0, 0.0, 0.0, 0.0],
+            scale,
+        } => {
+            unrotated.push(node.index());
+            ::gltf::scene::Transform::Decomposed {
+                translation,
+                rotation: [0.0, 0.0, 0.0, 1.0],
+                scale,
+            }
+        }
+        t => t,
+    };
+    Mat4::from_cols_array_2d(&transform.matrix())
+}
