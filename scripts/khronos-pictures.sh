@@ -13,9 +13,14 @@ out=docs/khronos
 mkdir -p "$out"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for model in DamagedHelmet MetalRoughSpheresNoTextures EnvironmentTest NegativeScaleTest TextureSettingsTest SimpleInstancing MeshPrimitiveModes SimpleSparseAccessor GlassVaseFlowers; do
+# MODEL, or MODEL/VARIANT for another variant than glTF (its picture named
+# MODEL-VARIANT).
+for entry in DamagedHelmet MetalRoughSpheresNoTextures EnvironmentTest NegativeScaleTest TextureSettingsTest SimpleInstancing MeshPrimitiveModes SimpleSparseAccessor GlassVaseFlowers \
+  ClearCoatCarPaint SheenChair GlamVelvetSofa SpecGlossVsMetalRough MultiUVTest SpecularTest BrainStem/glTF-Draco; do
+  model=${entry%%/*} variant=glTF name=$entry
+  if [[ $entry == */* ]]; then variant=${entry#*/} name=$model-$variant; fi
   dir=$samples/Models/$model
-  file=$(find "$dir/glTF" -maxdepth 1 \( -name '*.gltf' -o -name '*.glb' \) | head -1)
+  file=$(find "$dir/$variant" -maxdepth 1 \( -name '*.gltf' -o -name '*.glb' \) | head -1)
   [ -n "$file" ] || continue
   for build in before after; do
     bin=${!build}
@@ -26,6 +31,6 @@ for model in DamagedHelmet MetalRoughSpheresNoTextures EnvironmentTest NegativeS
   done
   ref=$(find "$dir/screenshot" -maxdepth 1 -name 'screenshot.*' | head -1)
   convert "$ref" -resize x512 "$work/reference.png"
-  convert "$work/before.png" "$work/after.png" "$work/reference.png" -background '#202020' -splice 8x0 +append -strip "$out/$model.png"
+  convert "$work/before.png" "$work/after.png" "$work/reference.png" -background '#202020' -splice 8x0 +append -strip "$out/$name.png"
 done
 echo "wrote $out"

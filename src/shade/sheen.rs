@@ -86,9 +86,10 @@ impl Lights {
     }
 }
 
-/// The sheen lobe of [`lobe`] for a white sheen of perceptual `roughness`
-/// and one white light without ambient, in f64 from the spec's formulas:
-/// what the renderer's f32 is measured against. `n`, `l`, `v` unit.
+/// The sheen lobe as the renderer adds it, `π·D·V·(n·l)`, for a white
+/// sheen of perceptual `roughness` and one white light without ambient, in
+/// f64 from the spec's formulas: what the renderer's f32 is measured
+/// against. `n`, `l`, `v` unit.
 pub fn sheen_reference(n: glam::DVec3, l: glam::DVec3, v: glam::DVec3, roughness: f64) -> f64 {
     let (nv, nl) = (n.dot(v), n.dot(l));
     if !(nv > 0.0 && nl > 0.0) {
