@@ -98,20 +98,8 @@ impl Painter<'_> {
         };
         // Lines are unlit and opaque, whatever the faces' materials.
         self.surface = Surface::default();
-        let at = |i: u32| {
-            positions
-                .get(i as usize)
-                .map(|p| DVec4::from((p.as_dvec3(), 1.0)))
-        };
-        for &[a, b] in mesh.geometry.edges() {
-            let (Some(a), Some(b)) = (at(a), at(b)) else {
-                continue;
-            };
-            if let Some(ends) =
-                stage
-                    .clipper
-                    .clip_segment([a, b], &transforms.mvp64, &stage.viewport)
-            {
+        for &ends in mesh.geometry.edges() {
+            if let Some(ends) = segment(stage, positions, transforms, ends) {
                 self.stats.edges += 1;
                 self.line(stage, ends, colour, bias);
             }
@@ -130,21 +118,8 @@ impl Painter<'_> {
     ) {
         self.surface = Surface::default();
         let own = Lin::from_srgb(mesh.color);
-        let at = |i: u32| {
-            positions
-                .get(i as usize)
-                .filter(|p| p.is_finite())
-                .map(|p| DVec4::from((p.as_dvec3(), 1.0)))
-        };
-        for &([a, b], colour) in &mesh.geometry.lines {
-            let (Some(a), Some(b)) = (at(a), at(b)) else {
-                continue;
-            };
-            if let Some(ends) =
-                stage
-                    .clipper
-                    .clip_segment([a, b], &transforms.mvp64, &stage.viewport)
-            {
+        for &(ends, colour) in &mesh.geometry.lines {
+            if let Some(ends) = segment(stage, positions, transforms, ends) {
                 self.stats.lines += 1;
                 let colour = Vec3::from(colour.unwrap_or(own).to_f32());
                 self.line(stage, ends, colour, EdgeBias::default());
@@ -210,4 +185,24 @@ impl Painter<'_> {
 fn snap_all(xy: [[f64; 2]; 4]) -> Option<[FixedPoint; 4]> {
     let [a, b, c, d] = xy.map(FixedPoint::snap64);
     Some([a?, b?, c?, d?])
+}
+
+/// The part on screen of the segment between the vertices `ends` (at
+/// `positions` this frame), if any: none where a vertex is missing (or,
+/// as the clipper says, not finite).
+fn segment(
+    stage: &Stage<'_>,
+    positions: &[Vec3],
+    transforms: &Transforms,
+    ends: [u32; 2],
+) -> Option<[ScreenVertex; 2]> {
+    let at = |i: u32| {
+        positions
+            .get(i as usize)
+            .map(|p| DVec4::from((p.as_dvec3(), 1.0)))
+    };
+    let [a, b] = ends.map(at);
+    stage
+        .clipper
+        .clip_segment([a?, b?], &transforms.mvp64, &stage.viewport)
 }

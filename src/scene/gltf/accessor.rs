@@ -17,6 +17,21 @@ use ::gltf::accessor::{DataType, Dimensions};
 
 use super::buffers::{Buffer, check_range};
 
+/// The component types `KHR_mesh_quantization` allows for positions,
+/// texture coordinates, and an instance's translation and scale: floats,
+/// or bytes and shorts of either sign.
+pub(super) const QUANTIZED: [DataType; 5] = [
+    DataType::F32,
+    DataType::I8,
+    DataType::U8,
+    DataType::I16,
+    DataType::U16,
+];
+
+/// The component types it allows for directions (normals, tangents,
+/// rotations): floats, or signed bytes and shorts.
+pub(super) const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
+
 /// The components of each element.
 fn width(d: Dimensions) -> usize {
     match d {

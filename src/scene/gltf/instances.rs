@@ -59,17 +59,9 @@ pub(super) fn of(
         let at = format!("{EXTENSION}'s {what}");
         accessor::floats(&acc, buffers, types, &[dims], &at, budget).map(Some)
     };
-    const QUANTIZED: [DataType; 5] = [
-        DataType::F32,
-        DataType::I8,
-        DataType::U8,
-        DataType::I16,
-        DataType::U16,
-    ];
-    const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
-    let t = read(t, "TRANSLATION", &QUANTIZED, Dimensions::Vec3)?;
-    let r = read(r, "ROTATION", &SIGNED, Dimensions::Vec4)?;
-    let s = read(s, "SCALE", &QUANTIZED, Dimensions::Vec3)?;
+    let t = read(t, "TRANSLATION", &accessor::QUANTIZED, Dimensions::Vec3)?;
+    let r = read(r, "ROTATION", &accessor::SIGNED, Dimensions::Vec4)?;
+    let s = read(s, "SCALE", &accessor::QUANTIZED, Dimensions::Vec3)?;
     let counts = [(&t, 3), (&r, 4), (&s, 3)].map(|(a, w)| a.as_ref().map(|v| v.len() / w));
     let n = counts.iter().flatten().copied().max().unwrap_or(0);
     if counts.iter().flatten().any(|&c| c != n) {

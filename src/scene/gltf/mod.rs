@@ -471,19 +471,11 @@ impl Parts<'_> {
             }
             accessor::floats(&acc, buffers, types, dims, what, self.budget).map(Some)
         };
-        const QUANTIZED: [DataType; 5] = [
-            DataType::F32,
-            DataType::I8,
-            DataType::U8,
-            DataType::I16,
-            DataType::U16,
-        ];
-        const SIGNED: [DataType; 3] = [DataType::F32, DataType::I8, DataType::I16];
         let uv_name = format!("TEXCOORD_{uv_set}");
         let tex_coords = read(
             Semantic::TexCoords(uv_set),
             &uv_name,
-            &QUANTIZED,
+            &accessor::QUANTIZED,
             &[Dimensions::Vec2],
         )?;
         if wants_uvs && tex_coords.is_none() {
@@ -495,7 +487,7 @@ impl Parts<'_> {
                 read(
                     Semantic::TexCoords(second.map_or(0, |s| s.0)),
                     name,
-                    &QUANTIZED,
+                    &accessor::QUANTIZED,
                     &[Dimensions::Vec2],
                 )?
                 .ok_or_else(|| format!("it has a texture on {name} but no {name}"))?,
@@ -505,12 +497,22 @@ impl Parts<'_> {
         let file_positions = read(
             Semantic::Positions,
             "POSITION",
-            &QUANTIZED,
+            &accessor::QUANTIZED,
             &[Dimensions::Vec3],
         )?
         .unwrap_or_default();
-        let file_normals = read(Semantic::Normals, "NORMAL", &SIGNED, &[Dimensions::Vec3])?;
-        let file_tangents = read(Semantic::Tangents, "TANGENT", &SIGNED, &[Dimensions::Vec4])?;
+        let file_normals = read(
+            Semantic::Normals,
+            "NORMAL",
+            &accessor::SIGNED,
+            &[Dimensions::Vec3],
+        )?;
+        let file_tangents = read(
+            Semantic::Tangents,
+            "TANGENT",
+            &accessor::SIGNED,
+            &[Dimensions::Vec4],
+        )?;
         let colors = prim.get(&Semantic::Colors(0));
         let draco_colors = draco.as_ref().and_then(|d| d.get("COLOR_0"));
         if let Some(c) = colors.as_ref().filter(|_| draco_colors.is_none()) {
