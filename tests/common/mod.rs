@@ -5,6 +5,49 @@
 
 use std::num::NonZeroU16;
 
+/// The example model `examples/models/{name}`, held to the bytes its
+/// builder `made` (`RASTTY_BLESS=1 cargo test` writes them again): its path.
+pub fn example_model(name: &str, made: impl AsRef<[u8]>) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/models")
+        .join(name);
+    if std::env::var_os("RASTTY_BLESS").is_some() {
+        std::fs::write(&path, made.as_ref()).unwrap();
+    }
+    assert!(
+        std::fs::read(&path).unwrap() == made.as_ref(),
+        "{} is not what its builder makes (RASTTY_BLESS=1 writes it again)",
+        path.display()
+    );
+    path
+}
+
+/// The colours of the samples `scene` covers in a frame of `cols × rows`
+/// cells, drawn as users draw it, each once, in order; a frame that covers
+/// nothing fails.
+pub fn colours(scene: &rastty::scene::Scene, cols: u16, rows: u16) -> Vec<rastty::color::Lin> {
+    let mut r = rastty::Renderer::new();
+    r.render(
+        scene,
+        &rastty::RenderOptions {
+            cols,
+            rows,
+            ..rastty::RenderOptions::default()
+        },
+    );
+    let mut c: Vec<_> = r
+        .framebuffer()
+        .samples()
+        .iter()
+        .flatten()
+        .copied()
+        .collect();
+    assert!(!c.is_empty(), "the scene covers samples");
+    c.sort_by_key(|l| l.0);
+    c.dedup();
+    c
+}
+
 /// A vt100 parser of `rows × cols` cells, no scrollback.
 pub fn terminal(rows: u16, cols: u16) -> vt100::Parser {
     vt100::Parser::new(nz(rows), nz(cols), 0)

@@ -455,13 +455,7 @@ fn a_clip_that_moves_no_vertex_costs_nothing_and_is_drawn_at_rest() {
 
 #[test]
 fn the_example_arm_is_what_its_builder_makes() {
-    // `RASTTY_BLESS=1 cargo test --test animation` writes it again.
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/arm.glb");
-    let made = skinned_arm();
-    if std::env::var_os("RASTTY_BLESS").is_some() {
-        std::fs::write(&path, &made).unwrap();
-    }
-    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let path = common::example_model("arm.glb", skinned_arm());
     let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
     let rig = loaded.geometry.rig.as_ref().unwrap();

@@ -16,13 +16,7 @@ use rastty::{RenderOptions, Renderer};
 
 #[test]
 fn the_example_metals_are_what_their_builder_makes() {
-    // `RASTTY_BLESS=1 cargo test --test load` writes it again.
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/metals.glb");
-    let made = common::metals_glb();
-    if std::env::var_os("RASTTY_BLESS").is_some() {
-        std::fs::write(&path, &made).unwrap();
-    }
-    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let path = common::example_model("metals.glb", common::metals_glb());
     let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
     let metals: Vec<f32> = (loaded.geometry.materials.iter())
@@ -77,24 +71,7 @@ fn reflected(n: Vec3, roughness: f32) -> (Vec<Lin>, f64) {
         })
         .build()
         .unwrap();
-    let mut r = Renderer::new();
-    r.render(
-        &scene,
-        &RenderOptions {
-            cols: 20,
-            rows: 10,
-            ..RenderOptions::default()
-        },
-    );
-    let mut c: Vec<Lin> = r
-        .framebuffer()
-        .samples()
-        .iter()
-        .flatten()
-        .copied()
-        .collect();
-    c.sort_by_key(|l| l.0);
-    c.dedup();
+    let c = common::colours(&scene, 20, 10);
     let a = f64::from(roughness) * f64::from(roughness);
     let want = reflection_reference(&studio_radiance, n.as_dvec3(), DVec3::Z, 1.0, a * a, 512);
     (c, want * 65535.0)

@@ -7,20 +7,13 @@ use crate::common;
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
-use rastty::color::{Lin, Rgb};
+use rastty::color::Rgb;
 use rastty::scene::environment::Environment;
 use rastty::scene::{Camera, LoadOptions, Mesh, Projection, Scene, gltf};
-use rastty::{RenderOptions, Renderer};
 
 #[test]
 fn the_example_layers_are_what_their_builder_makes() {
-    // `RASTTY_BLESS=1 cargo test --test load` writes it again.
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/layers.glb");
-    let made = common::layers_glb();
-    if std::env::var_os("RASTTY_BLESS").is_some() {
-        std::fs::write(&path, &made).unwrap();
-    }
-    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let path = common::example_model("layers.glb", common::layers_glb());
     let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
     let m = &loaded.geometry.materials;
@@ -88,24 +81,7 @@ fn square(n: Vec3, l: Vec3, material: &str) -> Vec<[f64; 3]> {
         .build()
         .unwrap();
     scene.environment = Environment::None;
-    let mut r = Renderer::new();
-    r.render(
-        &scene,
-        &RenderOptions {
-            cols: 20,
-            rows: 10,
-            ..RenderOptions::default()
-        },
-    );
-    let mut c: Vec<Lin> = r
-        .framebuffer()
-        .samples()
-        .iter()
-        .flatten()
-        .copied()
-        .collect();
-    c.sort_by_key(|l| l.0);
-    c.dedup();
+    let c = common::colours(&scene, 20, 10);
     assert!(
         !c.is_empty() && c.len() <= 4,
         "the square drawn, nearly one colour: {c:?}"

@@ -326,14 +326,7 @@ fn a_mapped_frame_is_the_same_planned_or_full_and_in_bands() {
 
 #[test]
 fn the_example_finishes_are_what_their_builder_makes() {
-    // `RASTTY_BLESS=1 cargo test --test load` writes it again.
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/finishes.glb");
-    let made = crate::common::finishes_glb();
-    if std::env::var_os("RASTTY_BLESS").is_some() {
-        std::fs::write(&path, &made).unwrap();
-    }
-    assert_eq!(std::fs::read(&path).unwrap(), made);
+    let path = crate::common::example_model("finishes.glb", crate::common::finishes_glb());
     let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
     let g = &loaded.geometry;

@@ -80,19 +80,7 @@ fn opts() -> RenderOptions {
 
 /// The colours of the covered samples, each once, in order.
 fn colours(scene: &Scene) -> Vec<Lin> {
-    let mut r = Renderer::new();
-    r.render(scene, &opts());
-    let mut c: Vec<Lin> = r
-        .framebuffer()
-        .samples()
-        .iter()
-        .flatten()
-        .copied()
-        .collect();
-    assert!(!c.is_empty(), "the square covers samples");
-    c.sort_by_key(|l| l.0);
-    c.dedup();
-    c
+    common::colours(scene, opts().cols, opts().rows)
 }
 
 const WHITE_FROM_FRONT: (Vec3, Rgb, f32) =

@@ -389,13 +389,7 @@ fn an_instanced_mesh_is_drawn_once_an_instance_each_placed_before_its_node() {
 
 #[test]
 fn line_and_point_primitives_are_drawn_one_sample_wide_in_their_colours() {
-    // `RASTTY_BLESS=1 cargo test --test load` writes the example again.
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models/lines.gltf");
-    let made = common::lines_gltf();
-    if std::env::var_os("RASTTY_BLESS").is_some() {
-        std::fs::write(&path, &made).unwrap();
-    }
-    assert_eq!(std::fs::read_to_string(&path).unwrap(), made);
+    let path = common::example_model("lines.gltf", common::lines_gltf());
     let loaded = gltf::load(&path, &LoadOptions::default()).unwrap();
     assert!(loaded.notes.is_empty(), "{:?}", loaded.notes);
     let g = loaded.geometry;
